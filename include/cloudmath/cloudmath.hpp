@@ -1,0 +1,14 @@
+// cloudmath/cloudmath.hpp: the whole library. Each module can also be included alone.
+#ifndef CLOUDMATH_CLOUDMATH_HPP
+#define CLOUDMATH_CLOUDMATH_HPP
+
+#include "core.hpp"
+#include "phase.hpp"
+#include "transmittance.hpp"
+#include "integration.hpp"
+#include "multiple_scattering.hpp"
+#include "cone_sampling.hpp"
+#include "geometry.hpp"
+#include "density.hpp"
+
+#endif  // CLOUDMATH_CLOUDMATH_HPP

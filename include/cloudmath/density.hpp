@@ -1,0 +1,123 @@
+// cloudmath/density.hpp: cloud density shaping (height gradients, coverage, erosion) and
+// exponential height fog with its analytic optical depth.
+//
+// Use:      #include <cloudmath/density.hpp>
+//           float hf = cloudmath::height_fraction(alt, 1500.f, 4000.f);
+//           float d = cloudmath::apply_coverage(base * cloudmath::height_gradient_for_type(hf, type), coverage);
+//           d = cloudmath::erode(d, detail_noise * 0.2f);
+// Inputs:   h is a height fraction in [0, 1] within the cloud layer (geometry.hpp);
+//           densities, coverage, erosion and cloud type are in [0, 1] (coverage and type are
+//           clamped to it). Fog altitudes and distances in metres, falloff in 1/m.
+// Source:   Schneider, "The real-time volumetric cloudscapes of Horizon Zero Dawn", SIGGRAPH
+//           2015 Advances, and GPU Pro 7 (2016); Olajos 2016 (height distribution).
+// GLSL twin: cloudmath/glsl/density.glsl.
+#ifndef CLOUDMATH_DENSITY_HPP
+#define CLOUDMATH_DENSITY_HPP
+
+#include <cmath>
+
+#include "core.hpp"
+
+namespace cloudmath {
+
+// height_gradient(h, profile) = smoothstep(p.x, p.y, h) - smoothstep(p.z, p.w, h):
+// a ramp up between p.x and p.y and down between p.z and p.w (p.x <= p.y <= p.z <= p.w
+// gives a value in [0, 1]). Uses smoothstep_safe, so equal edges are a step, not undefined
+// behaviour as in GLSL.
+template <class T, glm::qualifier Q>
+[[nodiscard]] constexpr T height_gradient(T h, const glm::vec<4, T, Q>& profile) noexcept {
+    return smoothstep_safe(profile.x, profile.y, h) - smoothstep_safe(profile.z, profile.w, h);
+}
+
+// Height profiles of the three cloud types (community convention following Schneider 2015,
+// for smoothstep(x, y, h) - smoothstep(z, w, h)).
+template <class T>
+[[nodiscard]] constexpr glm::vec<4, T> height_profile_stratus() noexcept {
+    return glm::vec<4, T>(T(0.02), T(0.05), T(0.09), T(0.11));
+}
+template <class T>
+[[nodiscard]] constexpr glm::vec<4, T> height_profile_stratocumulus() noexcept {
+    return glm::vec<4, T>(T(0.02), T(0.2), T(0.48), T(0.625));
+}
+template <class T>
+[[nodiscard]] constexpr glm::vec<4, T> height_profile_cumulus() noexcept {
+    return glm::vec<4, T>(T(0.01), T(0.0625), T(0.78), T(1.0));
+}
+
+// Profile for a cloud type t in [0, 1] (clamped): stratus at 0, stratocumulus at 0.5,
+// cumulus at 1, with the weights stratus 1 - saturate(2t), stratocumulus 1 - |t - 0.5| 2,
+// cumulus saturate(t - 0.5) 2, which sum to 1. The profiles (edge heights) are blended,
+// not the gradients, so intermediate types morph the shape continuously and cost one
+// gradient evaluation.
+template <class T>
+[[nodiscard]] constexpr glm::vec<4, T> height_profile_for_type(T cloud_type) noexcept {
+    const T t = saturate(cloud_type);
+    const T w_stratus = T(1) - saturate(T(2) * t);
+    const T w_stratocumulus = T(1) - detail::abs(t - T(0.5)) * T(2);
+    const T w_cumulus = saturate(t - T(0.5)) * T(2);
+    return height_profile_stratus<T>() * w_stratus +
+           height_profile_stratocumulus<T>() * w_stratocumulus +
+           height_profile_cumulus<T>() * w_cumulus;
+}
+
+// height_gradient_for_type(h, cloud_type) = height_gradient(h, height_profile_for_type(t)).
+template <class T>
+[[nodiscard]] constexpr T height_gradient_for_type(T h, T cloud_type) noexcept {
+    return height_gradient(h, height_profile_for_type(cloud_type));
+}
+
+// height_gradient_exponential(h, a, b) = (1 - exp(-a h)) exp(-b h) (Olajos 2016, with
+// a = 50, b = 4): a fast rise above the layer bottom and a slow exponential decay.
+// The rise uses -expm1 so small a h keeps full precision. Domain h >= 0, a, b >= 0;
+// negative a h is clamped to 0 (density 0 below the layer).
+template <class T>
+[[nodiscard]] inline T height_gradient_exponential(T h, T a, T b) noexcept {
+    return one_minus_exp_neg(detail::max(a * h, T(0))) * std::exp(-b * h);
+}
+
+// apply_coverage(base, coverage) = remap_clamped(base, 1 - coverage, 1, 0, 1) * coverage
+// (Schneider 2016 with the GPU Pro 7 text's inversion fixed): for base in [0, 1] this is
+// max(0, base + coverage - 1), increasing in both base and coverage. coverage is clamped
+// to [0, 1]; coverage 0 gives 0 and coverage 1 gives base.
+template <class T>
+[[nodiscard]] constexpr T apply_coverage(T base, T coverage) noexcept {
+    const T c = saturate(coverage);
+    return remap_clamped(base, T(1) - c, T(1), T(0), T(1)) * c;
+}
+
+// erode(base, erosion) = remap_clamped(base, erosion, 1, 0, 1): removes density below
+// `erosion` and stretches the rest back to [0, 1] (detail-noise erosion of Nubis).
+// erosion = 1 is the degenerate step: only base >= 1 survives.
+template <class T>
+[[nodiscard]] constexpr T erode(T base, T erosion) noexcept {
+    return remap_clamped(base, erosion, T(1), T(0), T(1));
+}
+
+// ---------------------------------------------------------------------------------------
+// Exponential height fog: density(h) = density_at_zero exp(-falloff h).
+template <class T>
+[[nodiscard]] inline T height_fog_density(T altitude, T density_at_zero, T falloff) noexcept {
+    return density_at_zero * std::exp(-falloff * altitude);
+}
+
+// Optical depth of exponential height fog along a straight ray from `altitude` with
+// vertical direction cosine cos_zenith over `distance`:
+//   integral_0^L rho0 exp(-k (h0 + t mu)) dt = rho0 L exp(-k h_low) (1 - exp(-x)) / x,
+//   x = k |mu| L,  h_low = the lower end's altitude, min(h0, h0 + mu L).
+// Written from the lower end so the exponential never grows, and with the stable
+// (1 - exp(-x))/x of core.hpp, which makes horizontal rays (mu = 0, or k = 0) exact:
+// rho0 L exp(-k h0). Domain: distance >= 0, falloff >= 0; cos_zenith is clamped to [-1, 1].
+// Multiply by the extinction per unit density to get tau.
+template <class T>
+[[nodiscard]] inline T height_fog_optical_depth(T altitude, T cos_zenith, T distance,
+                                                T density_at_zero, T falloff) noexcept {
+    const T mu = detail::clamp(cos_zenith, T(-1), T(1));
+    const T rise = mu * distance;
+    const T h_low = rise < T(0) ? altitude + rise : altitude;
+    return density_at_zero * distance * std::exp(-falloff * h_low) *
+           one_minus_exp_neg_over_x(falloff * detail::abs(rise));
+}
+
+}  // namespace cloudmath
+
+#endif  // CLOUDMATH_DENSITY_HPP

@@ -1,0 +1,80 @@
+// cloudmath/transmittance.hpp: Beer-Lambert transmittance, powder, Schneider's
+// Beer-Powder and the Nubis 2017 attenuation.
+//
+// Use:      #include <cloudmath/transmittance.hpp>
+//           float T = cloudmath::beer_lambert(sigma_t * distance);
+// Input:    optical depth tau = integral of sigma_t ds (dimensionless), tau >= 0.
+//           Negative tau is clamped to 0 so every transmittance stays in [0, 1];
+//           tau = +Inf gives the limit (0 for Beer-Lambert).
+// Types:    scalar T (float, double) or glm::vec<N, T> component-wise (RGB optical depth).
+// Accuracy: powder terms use -expm1 (core.hpp), so they keep full relative precision for
+//           tiny tau where 1 - exp(-x) rounds to 0 in float.
+// GLSL twin: cloudmath/glsl/transmittance.glsl.
+#ifndef CLOUDMATH_TRANSMITTANCE_HPP
+#define CLOUDMATH_TRANSMITTANCE_HPP
+
+#include <cmath>
+
+#include "core.hpp"
+
+namespace cloudmath {
+
+// Beer-Lambert: T = exp(-tau). Result in [0, 1] for every tau (negative tau clamped to 0).
+template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
+[[nodiscard]] inline T beer_lambert(T optical_depth) noexcept {
+    return std::exp(-detail::max(optical_depth, T(0)));
+}
+
+template <glm::length_t L, class T, glm::qualifier Q>
+[[nodiscard]] inline glm::vec<L, T, Q> beer_lambert(const glm::vec<L, T, Q>& tau) noexcept {
+    return detail::map(tau, [](T v) { return beer_lambert(v); });
+}
+
+// Powder effect (Schneider 2015, GPU Pro 7 2016): 1 - exp(-k tau), the darkening of cloud
+// edges seen with the sun behind the viewer. k > 0 sets how fast it saturates (Schneider
+// uses 2). k * tau < 0 is clamped to 0. Result in [0, 1].
+template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
+[[nodiscard]] inline T powder(T optical_depth, T k) noexcept {
+    return one_minus_exp_neg(detail::max(k * optical_depth, T(0)));
+}
+
+template <glm::length_t L, class T, glm::qualifier Q>
+[[nodiscard]] inline glm::vec<L, T, Q> powder(const glm::vec<L, T, Q>& tau, T k) noexcept {
+    return detail::map(tau, [k](T v) { return powder(v, k); });
+}
+
+// Beer-Powder (Schneider, "Real-time volumetric cloudscapes", GPU Pro 7, 2016):
+//   E = 2 exp(-tau) (1 - exp(-2 tau)).
+// Peak 4 / (3 sqrt 3) = 0.7698 at tau = ln(3)/2 = 0.5493; it exceeds plain Beer-Lambert for
+// tau > ln(2)/2 = 0.3466, so it is an artistic term, not an energy-bounded transmittance.
+// Result in [0, 0.7698].
+template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
+[[nodiscard]] inline T beer_powder(T optical_depth) noexcept {
+    const T tau = detail::max(optical_depth, T(0));
+    return T(2) * std::exp(-tau) * one_minus_exp_neg(T(2) * tau);
+}
+
+template <glm::length_t L, class T, glm::qualifier Q>
+[[nodiscard]] inline glm::vec<L, T, Q> beer_powder(const glm::vec<L, T, Q>& tau) noexcept {
+    return detail::map(tau, [](T v) { return beer_powder(v); });
+}
+
+// Nubis 2017 attenuation (Schneider, "Nubis: authoring real-time volumetric cloudscapes
+// with the Decima engine", SIGGRAPH 2017 Advances): max(exp(-tau), 0.7 exp(-0.25 tau)).
+// The second exponential keeps light reaching deep into thick clouds, a cheap stand-in for
+// multiple scattering. The two curves cross at tau = -ln(0.7) / 0.75 = 0.4756.
+// Result in (0, 1].
+template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
+[[nodiscard]] inline T nubis_attenuation(T optical_depth) noexcept {
+    const T tau = detail::max(optical_depth, T(0));
+    return detail::max(std::exp(-tau), T(0.7) * std::exp(T(-0.25) * tau));
+}
+
+template <glm::length_t L, class T, glm::qualifier Q>
+[[nodiscard]] inline glm::vec<L, T, Q> nubis_attenuation(const glm::vec<L, T, Q>& tau) noexcept {
+    return detail::map(tau, [](T v) { return nubis_attenuation(v); });
+}
+
+}  // namespace cloudmath
+
+#endif  // CLOUDMATH_TRANSMITTANCE_HPP

@@ -1,0 +1,105 @@
+// Tests of cone_sampling.hpp: the Vogel kernel, sample distances and lengths, positions
+// inside the cone, the far sample, and optical depth through constant and layered media.
+#include <cloudmath/cone_sampling.hpp>
+
+#include <cmath>
+#include <initializer_list>
+#include <set>
+#include <utility>
+
+#include "test_support.hpp"
+
+using namespace cloudmath;
+using cm_test::ld;
+
+TEST_CASE_TEMPLATE("cone_kernel_offset: deterministic points strictly inside the unit disc, evenly spread", T, float, double) {
+    for (int n : {1, 5, 6, 16}) {
+        std::set<std::pair<long, long>> seen;
+        ld mean_x = 0, mean_y = 0;
+        for (int i = 0; i < n; ++i) {
+            const glm::vec<2, T> k = cone_kernel_offset<T>(i, n);
+            const ld r = std::hypot(ld(k.x), ld(k.y));
+            CHECK(r < 1);
+            CHECK(cm_test::rel_err(r, std::sqrt((i + 0.5L) / n)) <= 8 * cm_test::eps<T>());
+            seen.insert({std::lround(ld(k.x) * 1e4L), std::lround(ld(k.y) * 1e4L)});
+            mean_x += k.x;
+            mean_y += k.y;
+            CHECK(cone_kernel_offset<T>(i, n) == k);           // deterministic
+            CHECK(cone_kernel_offset<T>(i + n, n) == k);       // modulo n
+            CHECK(cone_kernel_offset<T>(i - n, n) == k);
+        }
+        CHECK(int(seen.size()) == n);  // distinct points
+        if (n >= 6) CHECK(std::hypot(mean_x / n, mean_y / n) < 0.2L);  // no strong bias to one side
+    }
+    CHECK(cone_kernel_offset<T>(3, 0) == cone_kernel_offset<T>(0, 1));  // n < 1 treated as 1
+}
+
+TEST_CASE_TEMPLATE("cone sample distances, lengths and the far sample", T, float, double) {
+    const cone_light_config<T> cfg{6, T(50), T(0.4), T(800), T(100)};
+    for (int i = 0; i < 5; ++i) {
+        CHECK(cone_sample_distance(cfg, i) == (T(i) + T(0.5)) * T(50));
+        CHECK(cone_sample_length(cfg, i) == T(50));
+    }
+    CHECK(cone_sample_distance(cfg, 5) == T(800));
+    CHECK(cone_sample_length(cfg, 5) == T(100));
+    CHECK(cone_sample_distance(cfg, -2) == T(25));   // clamped to the first
+    CHECK(cone_sample_distance(cfg, 99) == T(800));  // past the end: the far sample
+    const cone_light_config<T> no_far{4, T(10), T(0.5), T(0), T(0)};
+    CHECK(cone_sample_distance(no_far, 3) == T(35));
+    CHECK(cone_sample_distance(no_far, 9) == T(35));
+    CHECK(cone_sample_length(no_far, 3) == T(10));
+    static_assert(cone_sample_distance(cone_light_config<T>{6, T(50), T(0.4), T(800), T(100)}, 1) == T(75), "constexpr");
+}
+
+TEST_CASE_TEMPLATE("cone_sample_position: inside the cone toward the light, far sample on the axis", T, float, double) {
+    using v3 = glm::vec<3, T>;
+    const cone_light_config<T> cfg{6, T(50), T(0.4), T(800), T(100)};
+    for (const v3& dir_raw : {v3(T(0), T(1), T(0)), v3(T(0), T(0), T(-1)), v3(T(1), T(2), T(3)), v3(T(-0.3), T(0.1), T(-0.9))}) {
+        const v3 dir = glm::normalize(dir_raw);
+        const v3 origin(T(10), T(-4), T(7));
+        ld lateral_max = 0;
+        for (int i = 0; i < cfg.sample_count; ++i) {
+            const v3 p = cone_sample_position(origin, dir, cfg, i);
+            const v3 d = p - origin;
+            // Along and across the axis in long double (|d x dir| has no cancellation).
+            const ld dx = d.x, dy = d.y, dz = d.z, ux = dir.x, uy = dir.y, uz = dir.z;
+            const ld along = dx * ux + dy * uy + dz * uz;
+            const ld cx = dy * uz - dz * uy, cy = dz * ux - dx * uz, cz = dx * uy - dy * ux;
+            const ld lateral = std::sqrt(cx * cx + cy * cy + cz * cz);
+            CHECK(std::fabs(along - ld(cone_sample_distance(cfg, i))) <= 1e3L * cm_test::eps<T>() * 800);
+            if (i < 5) {
+                // Radius sqrt((i + 1/2) / 5) of the cone radius at that distance.
+                const ld want = 0.4L * ld(cone_sample_distance(cfg, i)) * std::sqrt((i + 0.5L) / 5);
+                CHECK(std::fabs(lateral - want) <= 1e3L * cm_test::eps<T>() * 800);
+                CHECK(lateral <= 0.4L * along * (1 + 1e-4L));
+                lateral_max = std::fmax(lateral_max, lateral);
+            } else {
+                CHECK(lateral <= 1e3L * cm_test::eps<T>() * 800);  // far sample on the axis
+            }
+        }
+        CHECK(lateral_max > 10);  // the cone really spreads
+    }
+    // Zero spread: every sample on the ray.
+    const cone_light_config<T> line{5, T(10), T(0), T(0), T(0)};
+    for (int i = 0; i < 5; ++i)
+        CHECK(cone_sample_position(v3(T(0)), v3(T(0), T(0), T(1)), line, i) == v3(T(0), T(0), (T(i) + T(0.5)) * T(10)));
+}
+
+TEST_CASE_TEMPLATE("cone_optical_depth: constant medium exact, half-space, callable with the sample index", T, float, double) {
+    using v3 = glm::vec<3, T>;
+    const cone_light_config<T> cfg{6, T(50), T(0.4), T(800), T(100)};
+    const v3 up(T(0), T(1), T(0));
+    const T tau = cone_optical_depth(v3(T(0)), up, cfg, [](const v3&) { return T(0.01); });
+    CHECK(cm_test::rel_err(tau, 0.01L * (5 * 50 + 100)) <= 16 * cm_test::eps<T>());
+    // A cloud slab 100 < y < 200: samples at 125 and 175 fall in it (lateral offsets are
+    // perpendicular to the light, so heights are exact), the far one at 800 does not.
+    const T slab = cone_optical_depth(v3(T(0)), up, cfg, [](const v3& p) { return (p.y > T(100) && p.y < T(200)) ? T(0.02) : T(0); });
+    CHECK(cm_test::rel_err(slab, 0.02L * 2 * 50) <= 16 * cm_test::eps<T>());
+    // The (p, i) form: cheap density after the second sample.
+    int calls = 0;
+    const T indexed = cone_optical_depth(v3(T(0)), up, cfg, [&](const v3&, int i) { ++calls; return i < 2 ? T(0.01) : T(0); });
+    CHECK(calls == 6);
+    CHECK(cm_test::rel_err(indexed, 0.01L * 2 * 50) <= 16 * cm_test::eps<T>());
+    const cone_light_config<T> none{0, T(50), T(0.4), T(800), T(100)};
+    CHECK(cone_optical_depth(v3(T(0)), up, none, [](const v3&) { return T(1); }) == T(0));
+}

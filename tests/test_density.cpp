@@ -1,0 +1,150 @@
+// Tests of density.hpp: height gradients and their presets, type blending, the exponential
+// height distribution, coverage (monotonic, the fixed GPU Pro 7 inversion), erosion, and
+// exponential height fog with its analytic optical depth against quadrature.
+#include <cloudmath/density.hpp>
+
+#include <cmath>
+#include <initializer_list>
+
+#include "test_support.hpp"
+
+using namespace cloudmath;
+using cm_test::ld;
+
+namespace {
+ld smoothstep_ref(ld e0, ld e1, ld x) {
+    const ld t = std::fmin(std::fmax((x - e0) / (e1 - e0), 0.0L), 1.0L);
+    return t * t * (3 - 2 * t);
+}
+}  // namespace
+
+TEST_CASE_TEMPLATE("height_gradient: difference of two smoothsteps, presets in [0, 1]", T, float, double) {
+    const glm::vec<4, T> p(T(0.1), T(0.3), T(0.6), T(0.9));
+    for (int i = 0; i <= 100; ++i) {
+        const T h = T(i) / T(100);
+        const ld ref = smoothstep_ref(0.1L, 0.3L, h) - smoothstep_ref(0.6L, 0.9L, h);
+        CHECK(std::fabs(ld(height_gradient(h, p)) - ref) <= 16 * cm_test::eps<T>());
+    }
+    CHECK(height_gradient(T(0.45), p) == T(1));
+    CHECK(height_gradient(T(0), p) == T(0));
+    CHECK(height_gradient(T(1), p) == T(0));
+    // Degenerate edges: a box, defined (GLSL smoothstep would be undefined).
+    const glm::vec<4, T> box(T(0.2), T(0.2), T(0.7), T(0.7));
+    CHECK(height_gradient(T(0.1), box) == T(0));
+    CHECK(height_gradient(T(0.5), box) == T(1));
+    CHECK(height_gradient(T(0.8), box) == T(0));
+    // Presets (REFERENCES.md values).
+    CHECK(height_profile_stratus<T>() == glm::vec<4, T>(T(0.02), T(0.05), T(0.09), T(0.11)));
+    CHECK(height_profile_stratocumulus<T>() == glm::vec<4, T>(T(0.02), T(0.2), T(0.48), T(0.625)));
+    CHECK(height_profile_cumulus<T>() == glm::vec<4, T>(T(0.01), T(0.0625), T(0.78), T(1.0)));
+    for (int i = 0; i <= 200; ++i) {
+        const T h = T(i) / T(200);
+        for (const glm::vec<4, T>& q : {height_profile_stratus<T>(), height_profile_stratocumulus<T>(), height_profile_cumulus<T>()}) {
+            CHECK(height_gradient(h, q) >= T(0));
+            CHECK(height_gradient(h, q) <= T(1));
+        }
+    }
+    CHECK(height_gradient(T(0.07), height_profile_stratus<T>()) == T(1));
+    CHECK(height_gradient(T(0.3), height_profile_stratus<T>()) == T(0));   // stratus is thin
+    CHECK(height_gradient(T(0.5), height_profile_cumulus<T>()) == T(1));  // cumulus is tall
+}
+
+TEST_CASE_TEMPLATE("height_gradient_for_type: presets at 0, 0.5, 1, blended profiles between", T, float, double) {
+    for (int i = 0; i <= 50; ++i) {
+        const T h = T(i) / T(50);
+        CHECK(cm_test::same_value(height_gradient_for_type(h, T(0)), height_gradient(h, height_profile_stratus<T>())));
+        CHECK(cm_test::same_value(height_gradient_for_type(h, T(0.5)), height_gradient(h, height_profile_stratocumulus<T>())));
+        CHECK(cm_test::same_value(height_gradient_for_type(h, T(1)), height_gradient(h, height_profile_cumulus<T>())));
+        CHECK(height_gradient_for_type(h, T(-3)) == height_gradient_for_type(h, T(0)));  // type clamped
+        CHECK(height_gradient_for_type(h, T(7)) == height_gradient_for_type(h, T(1)));
+    }
+    // Type 0.25: the profile halfway between stratus and stratocumulus.
+    const glm::vec<4, T> mid = height_profile_for_type(T(0.25));
+    const glm::vec<4, T> want = (height_profile_stratus<T>() + height_profile_stratocumulus<T>()) * T(0.5);
+    for (int c = 0; c < 4; ++c) CHECK(mid[c] == doctest::Approx(want[c]));
+    // Weights sum to one everywhere, so the blended edges stay ordered.
+    for (int i = 0; i <= 100; ++i) {
+        const glm::vec<4, T> q = height_profile_for_type(T(i) / T(100));
+        CHECK(q.x <= q.y);
+        CHECK(q.y <= q.z);
+        CHECK(q.z <= q.w);
+    }
+}
+
+TEST_CASE_TEMPLATE("height_gradient_exponential: Olajos (1 - exp(-a h)) exp(-b h)", T, float, double) {
+    for (int i = 0; i <= 100; ++i) {
+        const T h = T(i) / T(100);
+        const ld ref = -std::expm1(-50 * ld(h)) * std::exp(-4 * ld(h));
+        CHECK(cm_test::close_ulps(height_gradient_exponential(h, T(50), T(4)), ref, 8));
+    }
+    // Tiny h keeps relative precision (1 - exp(-a h) would round to 0 in float).
+    CHECK(cm_test::rel_err(height_gradient_exponential(T(1e-12), T(50), T(4)), 50e-12L) <= 1e-6L);
+    // Peak of (1 - e^-50h) e^-4h at h = ln(54/4)/50.
+    const T peak = static_cast<T>(std::log(54.0L / 4) / 50);
+    CHECK(height_gradient_exponential(peak, T(50), T(4)) >= height_gradient_exponential(peak * T(0.95), T(50), T(4)));
+    CHECK(height_gradient_exponential(peak, T(50), T(4)) >= height_gradient_exponential(peak * T(1.05), T(50), T(4)));
+    CHECK(height_gradient_exponential(T(-0.1), T(50), T(4)) == T(0));
+}
+
+TEST_CASE_TEMPLATE("apply_coverage: max(0, base + coverage - 1), monotonic in coverage (not inverted)", T, float, double) {
+    for (int b = 0; b <= 20; ++b)
+        for (int c = 0; c <= 20; ++c) {
+            const T base = T(b) / T(20), cov = T(c) / T(20);
+            const ld ref = std::fmax(0.0L, ld(base) + ld(cov) - 1);
+            CHECK(std::fabs(ld(apply_coverage(base, cov)) - ref) <= 8 * cm_test::eps<T>());
+        }
+    // More coverage never gives less cloud (GPU Pro 7's text has it the other way round).
+    for (int b = 0; b <= 50; ++b) {
+        T prev = T(0);
+        for (int c = 0; c <= 200; ++c) {
+            const T v = apply_coverage(T(b) / T(50), T(c) / T(200));
+            CHECK(v >= prev);
+            prev = v;
+        }
+    }
+    CHECK(apply_coverage(T(0.8), T(0)) == T(0));
+    CHECK(apply_coverage(T(0.8), T(1)) == T(0.8));
+    CHECK(apply_coverage(T(1), T(0)) == T(0));        // degenerate remap range, finite
+    CHECK(apply_coverage(T(0.8), T(2)) == T(0.8));     // coverage clamped
+    CHECK(apply_coverage(T(0.8), T(-1)) == T(0));
+}
+
+TEST_CASE_TEMPLATE("erode: remap_clamped(base, erosion, 1, 0, 1)", T, float, double) {
+    CHECK(erode(T(0.5), T(0)) == T(0.5));
+    CHECK(erode(T(0.2), T(0.3)) == T(0));
+    CHECK(erode(T(0.65), T(0.3)) == doctest::Approx(T(0.5)));
+    CHECK(erode(T(1), T(0.3)) == T(1));
+    CHECK(erode(T(0.999), T(1)) == T(0));   // degenerate: a step, finite
+    CHECK(erode(T(1), T(1)) == T(1));
+    for (int i = 0; i <= 100; ++i) {
+        const T v = erode(T(i) / T(100), T(0.4));
+        CHECK(v >= T(0));
+        CHECK(v <= T(1));
+    }
+}
+
+TEST_CASE_TEMPLATE("height fog: density and the analytic optical depth against quadrature", T, float, double) {
+    CHECK(cm_test::rel_err(height_fog_density(T(100), T(0.02), T(0.001)), 0.02L * std::exp(-0.1L)) <= 4 * cm_test::eps<T>());
+    static const cm_test::gauss16 gl;
+    ld worst = 0;
+    for (T h : {T(0), T(10), T(500)})
+        for (T mu : {T(-0.5), T(-1e-6), T(0), T(1e-9), T(0.01), T(0.3), T(1)})
+            for (T L : {T(1), T(100), T(5000)}) {
+                const T rho0 = T(0.02), k = T(0.002);
+                // Reference: the integral by composite Gauss-Legendre in long double.
+                ld ref = 0;
+                for (int p = 0; p < 16; ++p)
+                    ref += gl.integrate([&](ld t) { return ld(rho0) * std::exp(-ld(k) * (ld(h) + t * ld(mu))); }, ld(L) * p / 16, ld(L) * (p + 1) / 16);
+                worst = std::fmax(worst, cm_test::rel_err(height_fog_optical_depth(h, mu, L, rho0, k), ref));
+            }
+    MESSAGE(cm_test::type_name<T>() << ": height_fog_optical_depth worst relative error " << double(worst));
+    CHECK(worst <= 16 * cm_test::eps<T>());
+    // Horizontal rays and zero falloff are exact: rho0 L exp(-k h).
+    CHECK(cm_test::rel_err(height_fog_optical_depth(T(10), T(0), T(100), T(0.02), T(0.002)), 0.02L * 100 * std::exp(-ld(T(0.002)) * 10)) <= 4 * cm_test::eps<T>());
+    CHECK(height_fog_optical_depth(T(10), T(0.5), T(100), T(0.02), T(0)) == doctest::Approx(T(2)));
+    // Looking steeply down from high up over a long distance: no overflow (written from the low end).
+    const T deep = height_fog_optical_depth(T(3000), T(-1), T(3000), T(0.02), T(0.05));
+    CHECK(cm_test::finite_bits(deep));
+    CHECK(cm_test::rel_err(deep, 0.02L / 0.05L * -std::expm1(-ld(T(0.05)) * 3000)) <= 8 * cm_test::eps<T>());
+    CHECK(height_fog_optical_depth(T(10), T(-3), T(5), T(0.02), T(0.002)) == height_fog_optical_depth(T(10), T(-1), T(5), T(0.02), T(0.002)));
+}

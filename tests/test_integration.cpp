@@ -1,0 +1,97 @@
+// Tests of integration.hpp: integrate_scattering against the exact integral in long double
+// for sigma_t ds from 0 to 1e4 (and the hard cases 0, 1e-30, 1e-8, 1e4), the biased clamp
+// it replaces, and march_accumulator's step-size independence in homogeneous media.
+#include <cloudmath/integration.hpp>
+
+#include <cmath>
+#include <initializer_list>
+
+#include "test_support.hpp"
+
+using namespace cloudmath;
+using cm_test::ld;
+
+namespace {
+// Exact step integral S (1 - exp(-s ds)) / s in long double, S ds at s = 0.
+ld exact_step(ld S, ld sigma, ld ds) {
+    const ld x = sigma * ds;
+    return x == 0 ? S * ds : S * ds * (-std::expm1(-x) / x);
+}
+}  // namespace
+
+TEST_CASE_TEMPLATE("integrate_scattering within a few ulp for sigma_t ds in [0, 1e4], no clamp constant", T, float, double) {
+    CHECK(integrate_scattering(T(2), T(0), T(3)) == T(6));  // exactly S ds
+    ld worst = 0;
+    for (T sigma : {T(0), T(1e-30), T(1e-20), T(1e-8), T(1e-6), T(1e-3), T(0.05), T(1), T(10), T(100), T(1e4)})
+        for (T ds : {T(0.01), T(0.5), T(1), T(7.3)}) {
+            const T S = T(0.37);
+            worst = std::fmax(worst, cm_test::rel_err_eps(integrate_scattering(S, sigma, ds), exact_step(S, sigma, ds)));
+        }
+    for (int i = -30 * 10; i <= 4 * 10; ++i) {  // x = sigma * 1 log-spaced, 10 per decade
+        const T sigma = static_cast<T>(std::pow(10.0L, i / 10.0L));
+        worst = std::fmax(worst, cm_test::rel_err_eps(integrate_scattering(T(1), sigma, T(1)), exact_step(1, sigma, 1)));
+    }
+    MESSAGE(cm_test::type_name<T>() << ": integrate_scattering worst relative error: " << double(worst) << " eps");
+    CHECK(worst <= 4);
+    CHECK(integrate_scattering(T(1), T(-2), T(1)) == T(1));  // negative extinction: no attenuation
+    if constexpr (cm_test::ieee_build) CHECK(integrate_scattering(T(1), cm_test::make_inf<T>(), T(1)) == T(0));
+}
+
+TEST_CASE("known mistake: max(sigma_t, 1e-6) clamping and the naive quotient are biased for thin media") {
+    auto clamped = [](float S, float s, float ds) { return (S - S * std::exp(-s * ds)) / std::fmax(s, 1e-6f); };
+    auto naive = [](float S, float s, float ds) { volatile float e = std::exp(-s * ds); return S * (1.0f - e) / s; };
+    // Thin fog: sigma_t = 1e-8 1/m over a 10 m step. The exact answer is S ds (1 - 5e-8).
+    const ld exact = exact_step(1, ld(1e-8f), 10);
+    const ld e_clamped = cm_test::rel_err(clamped(1.0f, 1e-8f, 10.0f), exact);
+    const ld e_naive = cm_test::rel_err(naive(1.0f, 1e-8f, 10.0f), exact);
+    const ld e_ours = cm_test::rel_err(integrate_scattering(1.0f, 1e-8f, 10.0f), exact);
+    MESSAGE("sigma_t = 1e-8, ds = 10: clamp " << double(e_clamped) << ", naive " << double(e_naive) << ", ours " << double(e_ours));
+    CHECK(e_clamped > 0.5L);   // the clamp loses the whole step
+    CHECK(e_naive > 1e-3L);
+    CHECK(e_ours <= 2 * cm_test::eps<float>());
+    CHECK(clamped(1.0f, 0.0f, 10.0f) == 0.0f);  // and returns nothing at all at sigma_t = 0
+}
+
+TEST_CASE_TEMPLATE("integrate_scattering: RGB extinction and grey extinction overloads", T, float, double) {
+    using v3 = glm::vec<3, T>;
+    const v3 S(T(1), T(2), T(3));
+    const v3 sig(T(0), T(0.5), T(1e4));
+    const v3 r = integrate_scattering(S, sig, T(2));
+    for (int c = 0; c < 3; ++c) CHECK(r[c] == integrate_scattering(S[c], sig[c], T(2)));
+    const v3 g = integrate_scattering(S, T(0.5), T(2));
+    for (int c = 0; c < 3; ++c) CHECK(cm_test::rel_err(g[c], exact_step(S[c], 0.5L, 2)) <= 4 * cm_test::eps<T>());
+}
+
+TEST_CASE_TEMPLATE("march_accumulator: step-size independent for homogeneous media, early out, opacity", T, float, double) {
+    // Homogeneous slab of length 10, sigma_t = 0.3, source S = 2: exact L = S/sigma (1 - e^-3),
+    // T = e^-3, whatever the number of steps.
+    const ld L_exact = 2 / 0.3L * -std::expm1(-0.3L * 10);
+    for (int steps : {1, 3, 64, 1000}) {
+        march_accumulator<T> acc;
+        const T ds = T(10) / T(steps);
+        for (int i = 0; i < steps; ++i) acc.add_segment(T(2), T(0.3), ds);
+        INFO("steps = " << steps);
+        CHECK(cm_test::rel_err(acc.luminance, L_exact) <= 8 * ld(steps) * cm_test::eps<T>());
+        CHECK(cm_test::rel_err(acc.transmittance, std::exp(-ld(T(0.3)) * 10)) <= 4 * ld(steps) * cm_test::eps<T>());
+        CHECK(acc.opacity() == T(1) - acc.transmittance);
+    }
+    // Colour with grey extinction, and colour with chromatic extinction.
+    march_accumulator<glm::vec<3, T>, T> grey;
+    march_accumulator<glm::vec<3, T>> chroma;
+    CHECK(grey.transmittance == T(1));
+    CHECK(chroma.luminance == glm::vec<3, T>(T(0)));
+    for (int i = 0; i < 20; ++i) {
+        grey.add_segment(glm::vec<3, T>(T(1), T(2), T(3)), T(0.5), T(1));
+        chroma.add_segment(glm::vec<3, T>(T(1)), glm::vec<3, T>(T(0.1), T(0.5), T(2)), T(1));
+    }
+    CHECK(cm_test::rel_err(grey.luminance.z, 3 / 0.5L * -std::expm1(-10.0L)) <= 64 * cm_test::eps<T>());
+    CHECK(cm_test::rel_err(chroma.transmittance.x, std::exp(-ld(T(0.1)) * 20)) <= 64 * cm_test::eps<T>());
+    CHECK(grey.is_opaque(T(0.01)));            // e^-10 < 0.01
+    CHECK_FALSE(chroma.is_opaque(T(0.01)));    // the red channel is still e^-2 = 0.135
+    CHECK(chroma.is_opaque(T(0.2)));
+    CHECK(chroma.opacity().z == T(1) - chroma.transmittance.z);
+    // A thin medium (sigma_t = 1e-9) accumulates S * length, no bias.
+    march_accumulator<T> thin;
+    for (int i = 0; i < 100; ++i) thin.add_segment(T(1), T(1e-9), T(1));
+    CHECK(cm_test::rel_err(thin.luminance, 100 * (1 - 50e-9L)) <= 64 * cm_test::eps<T>());
+}
