@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 
 #include "test_support.hpp"
 
@@ -147,4 +148,21 @@ TEST_CASE_TEMPLATE("height fog: density and the analytic optical depth against q
     CHECK(cm_test::finite_bits(deep));
     CHECK(cm_test::rel_err(deep, 0.02L / 0.05L * -std::expm1(-ld(T(0.05)) * 3000)) <= 8 * cm_test::eps<T>());
     CHECK(height_fog_optical_depth(T(10), T(-3), T(5), T(0.02), T(0.002)) == height_fog_optical_depth(T(10), T(-1), T(5), T(0.02), T(0.002)));
+}
+
+TEST_CASE_TEMPLATE("density functions: denormal and NaN inputs (documented: NaN propagates)", T, float, double) {
+    const T tiny = std::numeric_limits<T>::denorm_min();
+    CHECK(height_gradient(tiny, height_profile_cumulus<T>()) == T(0));
+    CHECK(height_gradient_exponential(tiny, T(50), T(4)) >= T(0));
+    CHECK(apply_coverage(tiny, T(1)) == tiny);
+    CHECK(height_fog_optical_depth(T(0), tiny, T(10), T(0.1), T(0.01)) == doctest::Approx(T(1)));
+    if constexpr (cm_test::ieee_build) {
+        const T nan = cm_test::make_nan<T>();
+        CHECK(cm_test::nan_bits(height_gradient(nan, height_profile_cumulus<T>())));
+        CHECK(cm_test::nan_bits(height_gradient_for_type(T(0.5), nan)));
+        CHECK(cm_test::nan_bits(apply_coverage(nan, T(0.5))));
+        CHECK(cm_test::nan_bits(erode(nan, T(0.5))));
+        CHECK(cm_test::nan_bits(height_fog_optical_depth(nan, T(0.5), T(10), T(0.1), T(0.01))));
+        CHECK(height_fog_density(cm_test::make_inf<T>(), T(0.1), T(0.01)) == T(0));
+    }
 }

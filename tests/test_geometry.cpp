@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -224,6 +225,16 @@ TEST_CASE_TEMPLATE("cloud_layer_segment: below, inside, above, ground, tangent a
     const glm::vec<2, T> z = cloud_layer_segment(T(1.8), T(1), R, T(2000), T(2000));   // zero thickness
     CHECK(z.y <= z.x);
     CHECK(cloud_layer_segment(T(100), T(1.5), R, lo, hi) == seg(T(100), T(1)));
+    // Denormal cos_zenith is horizontal.
+    CHECK(seg(T(2000), std::numeric_limits<T>::denorm_min()).y == doctest::Approx(seg(T(2000), T(0)).y));
+    if constexpr (cm_test::ieee_build) {  // documented: NaN never gives a non-empty stretch
+        const T nan = cm_test::make_nan<T>();
+        for (const glm::vec<2, T>& n : {cloud_layer_segment(nan, T(0.5), R, lo, hi), cloud_layer_segment(T(1.8), nan, R, lo, hi),
+                                        cloud_layer_segment(T(1.8), T(0.5), nan, lo, hi), cloud_layer_segment(T(1.8), T(0.5), R, nan, hi),
+                                        cloud_layer_segment(T(1.8), T(0.5), R, lo, nan), cloud_layer_segment(T(5000), nan, R, lo, hi)})
+            CHECK_FALSE(n.y > n.x);
+        CHECK(cm_test::nan_bits(ray_sphere_intersect_altitude(T(1.8), nan, R, T(1500)).x));
+    }
 }
 
 TEST_CASE_TEMPLATE("cloud_layer_segment property sweep: every returned stretch lies in the layer", T, float, double) {

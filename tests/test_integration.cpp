@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 
 #include "test_support.hpp"
 
@@ -94,4 +95,14 @@ TEST_CASE_TEMPLATE("march_accumulator: step-size independent for homogeneous med
     march_accumulator<T> thin;
     for (int i = 0; i < 100; ++i) thin.add_segment(T(1), T(1e-9), T(1));
     CHECK(cm_test::rel_err(thin.luminance, 100 * (1 - 50e-9L)) <= 64 * cm_test::eps<T>());
+}
+
+TEST_CASE_TEMPLATE("integrate_scattering: denormal extinction and NaN inputs", T, float, double) {
+    const T tiny = std::numeric_limits<T>::denorm_min();
+    CHECK(integrate_scattering(T(3), tiny, T(2)) == T(6));
+    CHECK(integrate_scattering(T(3), T(1), tiny) >= T(0));
+    if constexpr (cm_test::ieee_build) {
+        CHECK(cm_test::nan_bits(integrate_scattering(cm_test::make_nan<T>(), T(1), T(1))));
+        CHECK(cm_test::nan_bits(integrate_scattering(T(1), cm_test::make_nan<T>(), T(1))));  // documented: NaN propagates
+    }
 }

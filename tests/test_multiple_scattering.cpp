@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 
 #include "test_support.hpp"
 
@@ -79,4 +80,24 @@ TEST_CASE_TEMPLATE("multiple_scattering_with: any phase function, runtime and co
           multiple_scattering(tau, mu, T(0.8), T(0.5), T(0.5), T(0.5), 4));
     auto mie = [](T m, T scale) { (void)scale; return phase_mie_approx(m, T(10)); };
     CHECK(multiple_scattering_with<1>(tau, mu, T(0.5), T(0.5), T(0.5), mie) == phase_mie_approx(mu, T(10)) * beer_lambert(tau));
+}
+
+TEST_CASE_TEMPLATE("multiple_scattering sweep: finite and non-negative over the documented domain", T, float, double) {
+    bool ok = true;
+    for (int ti = 0; ti <= 40; ++ti)
+        for (int mi = -20; mi <= 20; ++mi)
+            for (T g : {T(-0.9999), T(-0.5), T(0), T(0.8), T(0.9999)})
+                for (T a : {T(0), T(0.3), T(0.5), T(1)})
+                    for (int n : {1, 3, 8}) {
+                        const T tau = static_cast<T>(std::pow(10.0L, -8 + 12 * ti / 40.0L));
+                        const T v = multiple_scattering(tau, T(mi) / T(20), g, a, T(0.5), T(0.5), n);
+                        ok = ok && cm_test::finite_bits(v) && v >= T(0);
+                    }
+    CHECK(ok);
+    if constexpr (cm_test::ieee_build) {
+        CHECK(cm_test::nan_bits(multiple_scattering(cm_test::make_nan<T>(), T(0.5), T(0.8), T(0.5), T(0.5), T(0.5), 3)));
+        CHECK(multiple_scattering(cm_test::make_inf<T>(), T(0.5), T(0.8), T(0.5), T(0.5), T(0.5), 3) == T(0));
+    }
+    const T tiny = std::numeric_limits<T>::denorm_min();
+    CHECK(cm_test::same_value(multiple_scattering(tiny, tiny, T(0.8), T(0.5), T(0.5), T(0.5), 1), phase_hg(T(0), T(0.8))));
 }

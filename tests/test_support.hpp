@@ -42,34 +42,23 @@ inline bool nan_bits(double x) {
            (u & 0x000fffffffffffffull) != 0;
 }
 
-// NaN and Inf built from bits, so -ffast-math cannot fold them.
+// NaN and Inf built from their bit patterns, so -ffast-math cannot fold them.
+template <class T>
+T from_bits(std::uint32_t float_bits, std::uint64_t double_bits) {
+    T x;
+    if constexpr (std::is_same_v<T, float>)
+        std::memcpy(&x, &float_bits, sizeof x);
+    else
+        std::memcpy(&x, &double_bits, sizeof x);
+    return x;
+}
 template <class T>
 T make_nan() {
-    if constexpr (std::is_same_v<T, float>) {
-        const std::uint32_t u = 0x7fc00000u;
-        float x;
-        std::memcpy(&x, &u, sizeof x);
-        return x;
-    } else {
-        const std::uint64_t u = 0x7ff8000000000000ull;
-        double x;
-        std::memcpy(&x, &u, sizeof x);
-        return x;
-    }
+    return from_bits<T>(0x7fc00000u, 0x7ff8000000000000ull);
 }
 template <class T>
 T make_inf() {
-    if constexpr (std::is_same_v<T, float>) {
-        const std::uint32_t u = 0x7f800000u;
-        float x;
-        std::memcpy(&x, &u, sizeof x);
-        return x;
-    } else {
-        const std::uint64_t u = 0x7ff0000000000000ull;
-        double x;
-        std::memcpy(&x, &u, sizeof x);
-        return x;
-    }
+    return from_bits<T>(0x7f800000u, 0x7ff0000000000000ull);
 }
 
 // True when this translation unit is compiled with IEEE semantics for NaN and Inf; the

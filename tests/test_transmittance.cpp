@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 #include <vector>
 
 #include "test_support.hpp"
@@ -89,4 +90,21 @@ TEST_CASE_TEMPLATE("nubis_attenuation: max(exp(-d), 0.7 exp(-0.25 d)), crossing 
     CHECK(nubis_attenuation(T(0)) == T(1));
     CHECK(nubis_attenuation(T(-1)) == T(1));
     CHECK(nubis_attenuation(glm::vec<2, T>(T(3))).x == nubis_attenuation(T(3)));
+}
+
+TEST_CASE_TEMPLATE("transmittance sweep: finite and in range on a dense grid, denormal tau", T, float, double) {
+    bool ok = true;
+    for (int i = 0; i <= 20000; ++i) {
+        const T tau = static_cast<T>(std::pow(10.0L, -30 + 35 * i / 20000.0L));  // 1e-30 .. 1e5
+        const T b = beer_lambert(tau), bp = beer_powder(tau), na = nubis_attenuation(tau), pw = powder(tau, T(2));
+        ok = ok && cm_test::finite_bits(b) && cm_test::finite_bits(bp) && cm_test::finite_bits(na) && cm_test::finite_bits(pw);
+        ok = ok && b >= T(0) && b <= T(1) && na >= T(0) && na <= T(1) && pw >= T(0) && pw <= T(1);
+        ok = ok && bp >= T(0) && bp <= T(0.7698004);
+    }
+    CHECK(ok);
+    const T tiny = std::numeric_limits<T>::denorm_min();
+    CHECK(beer_lambert(tiny) == T(1));
+    CHECK(nubis_attenuation(tiny) == T(1));
+    CHECK(beer_powder(tiny) >= T(0));
+    CHECK(beer_powder(tiny) <= T(1e-30));
 }

@@ -9,7 +9,8 @@
 //           (the radial direction through the ray origin); it is clamped to [-1, 1].
 // Results:  glm::vec<2, T>(t_near, t_far), distances along the ray, t_near <= t_far; the
 //           sentinel (-1, -1) means the line misses. A sphere behind the ray origin gives
-//           negative distances; test t_far >= 0 for "in front".
+//           negative distances; test t_far >= 0 for "in front". NaN inputs give NaN
+//           distances (IEEE builds; unspecified under -ffast-math).
 // Accuracy: why the altitude forms exist. At R = 6371 km, the textbook quadratic in float
 //           computes c = |o|^2 - r^2 from two numbers near 4e13 and loses tens of metres;
 //           the altitude form takes c = (h - H)(2R + h + H) from the altitudes directly,
@@ -117,7 +118,9 @@ template <class T>
 // When there is no such stretch, t_end <= t_start (the sentinel (-1, -1) where the ray
 // never reaches the layer). Tangent rays that touch a sphere in a single point pass it.
 // Bad input: altitude below 0 is treated as 0 (on the ground); layer_bottom > layer_top
-// are swapped; a layer of zero thickness gives an empty stretch.
+// are swapped; a layer of zero thickness gives an empty stretch. A NaN in any argument
+// (IEEE builds) gives NaN or the sentinel, never a non-empty stretch: t_end > t_start is
+// false, so a march loop over the result does nothing.
 template <class T>
 [[nodiscard]] inline glm::vec<2, T> cloud_layer_segment(T altitude, T cos_zenith,
                                                         T planet_radius, T layer_bottom,
