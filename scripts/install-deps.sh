@@ -9,6 +9,9 @@ packages=(
   libglm-dev                                     # vector types (the library's only dependency)
   doctest-dev                                    # unit tests
   libbenchmark-dev                               # bench/
+  libegl-dev libgl-dev libopengl-dev             # GLSL tests: EGL + GL headers, libOpenGL
+  libegl-mesa0 libgl1-mesa-dri                   # GLSL tests: Mesa EGL, llvmpipe (no GPU)
+  glslang-tools spirv-tools                      # GLSL tests: glslangValidator, spirv-val
 )
 
 missing=()

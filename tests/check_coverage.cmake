@@ -2,11 +2,9 @@
 #   cmake -DHEADER_DIR=<dir with *.hpp> -DTEST_DIR=<dir with test_*.cpp> [-DMIN_PUBLIC=<n>] -P check_coverage.cmake
 #
 # Rule, kept deliberately simple so it needs no C++ parser:
-# - A public function is any function declared with [[nodiscard]] in HEADER_DIR/*.hpp
-#   (not recursive: glsl/ and other subfolders are not C++ API). Its name is the identifier
-#   immediately before the first "(" after the attribute; the declaration may span lines.
-#   Operators are skipped, overloads count once. Helpers in `namespace detail` carry no
-#   [[nodiscard]] by convention, so they are not public and need no namespace parsing.
+# - A public function is any function declared with [[nodiscard]] in HEADER_DIR/*.hpp, as
+#   listed by cloudmath_public_functions() in public_functions.cmake (shared with the GLSL
+#   twin check; the exact parse rule is documented there).
 # - It counts as tested when its name, preceded by a non-identifier character and followed
 #   by "(" or "<" (optionally after spaces), appears in some TEST_DIR/test_*.cpp.
 # - Comments are removed from headers and tests first, so a commented-out call or a
@@ -24,56 +22,10 @@ if(NOT DEFINED MIN_PUBLIC)
   set(MIN_PUBLIC 5)
 endif()
 
-# Reads a source file with comments removed. Semicolons become "}" because CMake treats ";"
-# as a list separator (and "}" still ends a declaration for the regexes below); the other
-# square brackets become spaces so that "x[i]" cannot read as a call to x.
-function(read_source path out)
-  file(READ "${path}" text)
-  # Block comments: cut from each "/*" to the next "*/" (CMake regexes are greedy).
-  while(TRUE)
-    string(FIND "${text}" "/*" begin)
-    if(begin EQUAL -1)
-      break()
-    endif()
-    string(SUBSTRING "${text}" ${begin} -1 rest)
-    string(FIND "${rest}" "*/" length)
-    if(length EQUAL -1)
-      string(SUBSTRING "${text}" 0 ${begin} text)
-      break()
-    endif()
-    math(EXPR after "${begin} + ${length} + 2")
-    string(SUBSTRING "${text}" 0 ${begin} head)
-    string(SUBSTRING "${text}" ${after} -1 tail)
-    set(text "${head} ${tail}")
-  endwhile()
-  string(REGEX REPLACE "//[^\n]*" "" text "${text}")
-  string(REPLACE ";" "}" text "${text}")
-  string(REPLACE "[[nodiscard]]" " CLOUDMATH_NODISCARD " text "${text}")
-  string(REPLACE "[" " " text "${text}")
-  string(REPLACE "]" " " text "${text}")
-  set(${out} "${text}" PARENT_SCOPE)
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/public_functions.cmake")
 
 # --- public functions --------------------------------------------------------------------
-file(GLOB headers "${HEADER_DIR}/*.hpp")
-set(public_functions "")
-foreach(header IN LISTS headers)
-  read_source("${header}" text)
-  # Attribute, then anything up to the first "(" that does not cross a "}" or "{".
-  string(REGEX MATCHALL " CLOUDMATH_NODISCARD [^(){}]*\\(" declarations "${text}")
-  foreach(declaration IN LISTS declarations)
-    if(declaration MATCHES "(^|[^A-Za-z0-9_])operator([^A-Za-z0-9_]|$)")
-      continue()
-    endif()
-    if(declaration MATCHES "([A-Za-z_][A-Za-z0-9_]*)[ \t\r\n]*\\($")
-      list(APPEND public_functions "${CMAKE_MATCH_1}")
-    else()
-      message(FATAL_ERROR "check_coverage: cannot find the name in '${declaration}' (${header})")
-    endif()
-  endforeach()
-endforeach()
-list(REMOVE_DUPLICATES public_functions)
-list(SORT public_functions)
+cloudmath_public_functions("${HEADER_DIR}" public_functions)
 list(LENGTH public_functions count)
 message(STATUS "check_coverage: ${count} public functions in ${HEADER_DIR}")
 if(count LESS MIN_PUBLIC)
@@ -86,7 +38,7 @@ endif()
 file(GLOB tests "${TEST_DIR}/test_*.cpp")
 set(all_tests "")
 foreach(test IN LISTS tests)
-  read_source("${test}" text)
+  cloudmath_read_source("${test}" text)
   string(APPEND all_tests "\n${text}")
 endforeach()
 

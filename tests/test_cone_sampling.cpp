@@ -49,6 +49,12 @@ TEST_CASE_TEMPLATE("cone sample distances, lengths and the far sample", T, float
     CHECK(cone_sample_distance(no_far, 9) == T(35));
     CHECK(cone_sample_length(no_far, 3) == T(10));
     static_assert(cone_sample_distance(cone_light_config<T>{6, T(50), T(0.4), T(800), T(100)}, 1) == T(75), "constexpr");
+    // No samples at all: indices clamp to the first position, never a negative distance
+    // (found by the GLSL parity review: the GLSL twin clamps the same way).
+    const cone_light_config<T> empty{0, T(10), T(0.5), T(0), T(0)};
+    CHECK(cone_sample_distance(empty, 0) == T(5));
+    CHECK(cone_sample_distance(empty, 3) == T(5));
+    CHECK(cone_sample_distance(empty, -1) == T(5));
 }
 
 TEST_CASE_TEMPLATE("cone_sample_position: inside the cone toward the light, far sample on the axis", T, float, double) {

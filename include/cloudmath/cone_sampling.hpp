@@ -86,7 +86,8 @@ template <class T>
 [[nodiscard]] constexpr T cone_sample_distance(const cone_light_config<T>& cfg, int i) noexcept {
     const int n_near = detail::near_sample_count(cfg);
     if (detail::has_far_sample(cfg) && i >= n_near) return cfg.far_distance;
-    const int k = i < 0 ? 0 : (i >= n_near ? n_near - 1 : i);
+    const int last = n_near > 0 ? n_near - 1 : 0;  // no near samples: the first position
+    const int k = i < 0 ? 0 : (i > last ? last : i);
     return (T(k) + T(0.5)) * cfg.step_length;
 }
 

@@ -1,11 +1,21 @@
 // Smallest real use of an installed cloudmath: the umbrella header compiles and a few
-// functions give the documented values. Returns non-zero, with a message, on failure.
+// functions give the documented values, and the GLSL twins are usable: the embedded copies
+// (cloudmath/glsl_embedded.hpp, generated and installed) and the .glsl files on disk agree.
+// Usage: consumer GLSL_DIR, the directory of the .glsl files that belong to the headers in
+// use (<prefix>/include/cloudmath/glsl when installed, the source tree's
+// include/cloudmath/glsl under add_subdirectory). Returns non-zero, with a message, on failure.
 #include <cloudmath/cloudmath.hpp>
+#include <cloudmath/glsl.hpp>
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
-int main() {
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: %s GLSL_DIR\n", argc > 0 ? argv[0] : "consumer");
+        return 2;
+    }
     int failures = 0;
     auto check = [&failures](bool ok, const char* what) {
         if (!ok) {
@@ -19,6 +29,22 @@ int main() {
     const double inv_four_pi = 1.0 / (4.0 * std::acos(-1.0));
     check(std::abs(cloudmath::phase_isotropic<double>() - inv_four_pi) < 1e-15,
           "phase_isotropic<double>() == 1/(4 pi)");
+
+    // GLSL: the embedded module, then the same module resolved from the files on disk.
+    const std::string phase = cloudmath::glsl_source("phase");
+    check(!phase.empty(), "glsl_source(\"phase\") is not empty");
+    check(phase.find("cm_phase_hg") != std::string::npos,
+          "glsl_source(\"phase\") contains cm_phase_hg");
+    std::string error;
+    const std::string from_directory =
+        cloudmath::glsl_source_from_directory(argv[1], "cloudmath", &error);
+    if (from_directory.empty())
+        std::fprintf(stderr, "consumer: glsl_source_from_directory(\"%s\"): %s\n", argv[1],
+                     error.c_str());
+    check(!from_directory.empty(), "glsl_source_from_directory(GLSL_DIR, \"cloudmath\") is not empty");
+    check(from_directory == cloudmath::glsl_source("cloudmath"),
+          "glsl_source_from_directory(GLSL_DIR, \"cloudmath\") == glsl_source(\"cloudmath\")");
+
     if (failures == 0) std::printf("consumer: ok\n");
     return failures == 0 ? 0 : 1;
 }

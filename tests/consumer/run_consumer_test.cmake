@@ -17,6 +17,9 @@ consumer_step("install into ${prefix}"
 
 foreach(file
     include/cloudmath/cloudmath.hpp
+    include/cloudmath/glsl.hpp
+    include/cloudmath/glsl_embedded.hpp
+    include/cloudmath/glsl/cloudmath.glsl
     share/cmake/cloudmath/cloudmathConfig.cmake
     share/cmake/cloudmath/cloudmathConfigVersion.cmake
     share/cmake/cloudmath/cloudmathTargets.cmake
@@ -37,7 +40,9 @@ if(found EQUAL -1)
     "${consumer_step_output}")
 endif()
 consumer_step("build consumer project" "${CMAKE_COMMAND}" --build "${SCRATCH_DIR}/build")
-consumer_step("run consumer (find_package)" "${SCRATCH_DIR}/build/consumer")
+# The consumer compares the embedded GLSL with the installed .glsl files.
+set(glsl_dir "${prefix}/include/cloudmath/glsl")
+consumer_step("run consumer (find_package)" "${SCRATCH_DIR}/build/consumer" "${glsl_dir}")
 
 # (2) pkg-config, with our .pc first on the search path (glm.pc still comes from the system).
 find_program(PKG_CONFIG_EXECUTABLE NAMES pkg-config pkgconf REQUIRED)
@@ -57,4 +62,4 @@ separate_arguments(cflags UNIX_COMMAND "${cflags}")
 consumer_step("compile consumer with pkg-config flags"
   "${CXX_COMPILER}" -std=c++17 -Wall -Wextra -Wpedantic -Werror ${cflags}
   "${SOURCE_DIR}/main.cpp" -o "${SCRATCH_DIR}/consumer_pkgconfig")
-consumer_step("run consumer (pkg-config)" "${SCRATCH_DIR}/consumer_pkgconfig")
+consumer_step("run consumer (pkg-config)" "${SCRATCH_DIR}/consumer_pkgconfig" "${glsl_dir}")

@@ -10,4 +10,6 @@ consumer_step("configure add_subdirectory consumer"
   "${CMAKE_COMMAND}" -S "${SOURCE_DIR}" -B "${SCRATCH_DIR}" ${configure_args}
   "-DCLOUDMATH_SOURCE_DIR=${CLOUDMATH_SOURCE_DIR}")
 consumer_step("build add_subdirectory consumer" "${CMAKE_COMMAND}" --build "${SCRATCH_DIR}")
-consumer_step("run add_subdirectory consumer" "${SCRATCH_DIR}/consumer_subdir")
+# The .glsl files of a vendored cloudmath are the source tree's.
+consumer_step("run add_subdirectory consumer" "${SCRATCH_DIR}/consumer_subdir"
+  "${CLOUDMATH_SOURCE_DIR}/include/cloudmath/glsl")

@@ -1,0 +1,15 @@
+// cloudmath/glsl/cloudmath.glsl: every GLSL twin. Define configuration macros
+// (CM_MS_OCTAVES, CM_MS_PHASE, CM_CONE_EXTINCTION, CM_CONE_SAMPLES) before including it.
+#ifndef CM_CLOUDMATH_GLSL
+#define CM_CLOUDMATH_GLSL
+
+#include "core.glsl"
+#include "phase.glsl"
+#include "transmittance.glsl"
+#include "integration.glsl"
+#include "multiple_scattering.glsl"
+#include "cone_sampling.glsl"
+#include "geometry.glsl"
+#include "density.glsl"
+
+#endif  // CM_CLOUDMATH_GLSL

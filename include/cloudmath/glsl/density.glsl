@@ -1,0 +1,57 @@
+// cloudmath/glsl/density.glsl: GLSL twin of cloudmath/density.hpp: height gradients and
+// presets, coverage, erosion, exponential height fog and its analytic optical depth.
+#ifndef CM_DENSITY_GLSL
+#define CM_DENSITY_GLSL
+
+#include "core.glsl"
+
+float cm_height_gradient(float h, vec4 profile) {
+    return cm_smoothstep_safe(profile.x, profile.y, h) - cm_smoothstep_safe(profile.z, profile.w, h);
+}
+
+vec4 cm_height_profile_stratus() { return vec4(0.02, 0.05, 0.09, 0.11); }
+vec4 cm_height_profile_stratocumulus() { return vec4(0.02, 0.2, 0.48, 0.625); }
+vec4 cm_height_profile_cumulus() { return vec4(0.01, 0.0625, 0.78, 1.0); }
+
+// Type 0 stratus, 0.5 stratocumulus, 1 cumulus; profiles blended with weights summing to 1.
+vec4 cm_height_profile_for_type(float cloud_type) {
+    float t = cm_saturate(cloud_type);
+    float w_stratus = 1.0 - cm_saturate(2.0 * t);
+    float w_stratocumulus = 1.0 - abs(t - 0.5) * 2.0;
+    float w_cumulus = cm_saturate(t - 0.5) * 2.0;
+    return cm_height_profile_stratus() * w_stratus + cm_height_profile_stratocumulus() * w_stratocumulus +
+           cm_height_profile_cumulus() * w_cumulus;
+}
+
+float cm_height_gradient_for_type(float h, float cloud_type) {
+    return cm_height_gradient(h, cm_height_profile_for_type(cloud_type));
+}
+
+// (1 - exp(-a h)) exp(-b h) (Olajos 2016: a = 50, b = 4).
+float cm_height_gradient_exponential(float h, float a, float b) {
+    return cm_one_minus_exp_neg(max(a * h, 0.0)) * exp(-b * h);
+}
+
+// max(0, base + coverage - 1): monotonic in coverage; coverage clamped to [0, 1].
+float cm_apply_coverage(float base, float coverage) {
+    float c = cm_saturate(coverage);
+    return cm_remap_clamped(base, 1.0 - c, 1.0, 0.0, 1.0) * c;
+}
+
+float cm_erode(float base, float erosion) { return cm_remap_clamped(base, erosion, 1.0, 0.0, 1.0); }
+
+float cm_height_fog_density(float altitude, float density_at_zero, float falloff) {
+    return density_at_zero * exp(-falloff * altitude);
+}
+
+// rho0 L exp(-k h_low) (1 - exp(-x)) / x, x = k |mu| L, from the lower end of the ray.
+float cm_height_fog_optical_depth(float altitude, float cos_zenith, float distance,
+                                  float density_at_zero, float falloff) {
+    float mu = clamp(cos_zenith, -1.0, 1.0);
+    float rise = mu * distance;
+    float h_low = rise < 0.0 ? altitude + rise : altitude;
+    return density_at_zero * distance * exp(-falloff * h_low) *
+           cm_one_minus_exp_neg_over_x(falloff * abs(rise));
+}
+
+#endif  // CM_DENSITY_GLSL

@@ -1,0 +1,88 @@
+// cloudmath/glsl/geometry.glsl: GLSL twin of cloudmath/geometry.hpp: ray/sphere roots and
+// planet-scale cloud-layer segments in the altitude form, accurate in float at Earth radius
+// (c = (h - H)(2R + h + H) and a cancellation-free discriminant; see geometry.hpp).
+// Results are vec2(t_near, t_far); vec2(-1) when the line misses.
+#ifndef CM_GEOMETRY_GLSL
+#define CM_GEOMETRY_GLSL
+
+#include "core.glsl"
+
+// Roots of t^2 + 2 b t + c = 0 with disc = b^2 - c >= 0, sorted; stable q form.
+vec2 cmi_stable_quadratic_roots(float b, float c, float disc) {
+    float sq = sqrt(disc);
+    float q = b >= 0.0 ? -(b + sq) : (sq - b);
+    float t1 = q != 0.0 ? c / q : 0.0;
+    return q < t1 ? vec2(q, t1) : vec2(t1, q);
+}
+
+// A secant crossing the sphere ahead of the origin (a tangent contact does not count).
+bool cmi_enters_ahead(vec2 roots) { return roots.x >= 0.0 && roots.y > roots.x; }
+
+// Unit dir; Haines et al. 2019 discriminant.
+vec2 cm_ray_sphere_intersect(vec3 origin, vec3 dir, vec3 center, float radius) {
+    vec3 f = origin - center;
+    float b = dot(f, dir);
+    vec3 perp = f - b * dir;
+    float disc = radius * radius - dot(perp, perp);
+    if (disc < 0.0) return vec2(-1.0);
+    float c = dot(f, f) - radius * radius;
+    return cmi_stable_quadratic_roots(b, c, disc);
+}
+
+vec2 cm_ray_sphere_intersect_altitude(float altitude, float cos_zenith, float planet_radius,
+                                      float sphere_altitude) {
+    float mu = clamp(cos_zenith, -1.0, 1.0);
+    float h = altitude;
+    float H = sphere_altitude;
+    float R = planet_radius;
+    float r = R + h;
+    float s = sqrt(max((1.0 - mu) * (1.0 + mu), 0.0));
+    float disc = ((H - h) + r * mu * mu / (1.0 + s)) * ((R + H) + r * s);
+    if (disc < 0.0) return vec2(-1.0);
+    float b = r * mu;
+    float c = (h - H) * (2.0 * R + h + H);
+    return cmi_stable_quadratic_roots(b, c, disc);
+}
+
+vec2 cm_cloud_layer_segment(float altitude, float cos_zenith, float planet_radius,
+                            float layer_bottom, float layer_top) {
+    vec2 none = vec2(-1.0);
+    float h = max(altitude, 0.0);
+    float bottom = min(layer_bottom, layer_top);
+    float top = max(layer_bottom, layer_top);
+    vec2 to_top = cm_ray_sphere_intersect_altitude(h, cos_zenith, planet_radius, top);
+    vec2 to_bottom = cm_ray_sphere_intersect_altitude(h, cos_zenith, planet_radius, bottom);
+    vec2 to_ground = cm_ray_sphere_intersect_altitude(h, cos_zenith, planet_radius, 0.0);
+    float t_start, t_end;
+    if (h < bottom) {
+        t_start = to_bottom.y;
+        t_end = to_top.y;
+    } else if (h <= top) {
+        t_start = 0.0;
+        t_end = cmi_enters_ahead(to_bottom) ? to_bottom.x : to_top.y;
+    } else {
+        if (!cmi_enters_ahead(to_top)) return none;
+        t_start = to_top.x;
+        t_end = cmi_enters_ahead(to_bottom) ? to_bottom.x : to_top.y;
+    }
+    if (cmi_enters_ahead(to_ground)) {
+        if (to_ground.x <= t_start) return none;
+        t_end = min(t_end, to_ground.x);
+    }
+    return vec2(t_start, t_end);
+}
+
+float cm_altitude_along_ray(float altitude, float cos_zenith, float planet_radius, float t) {
+    float mu = clamp(cos_zenith, -1.0, 1.0);
+    float R = planet_radius;
+    float r = R + altitude;
+    float excess = altitude * (2.0 * R + altitude) + t * (2.0 * r * mu + t);
+    float radius = sqrt(max(R * R + excess, 0.0));
+    return excess / (radius + R);
+}
+
+float cm_height_fraction(float altitude, float layer_bottom, float layer_top) {
+    return cm_remap_clamped(altitude, layer_bottom, layer_top, 0.0, 1.0);
+}
+
+#endif  // CM_GEOMETRY_GLSL

@@ -1,0 +1,49 @@
+// cloudmath/glsl/integration.glsl: GLSL twin of cloudmath/integration.hpp: the
+// energy-conserving step integral (Hillaire 2015) and a front-to-back march accumulator.
+//
+// Use:      CmMarchAccumulator acc = cm_march_accumulator();
+//           for (...) { cm_march_add_segment(acc, S, sigma_t, ds); if (cm_march_is_opaque(acc, 0.01)) break; }
+//           color = background * acc.transmittance + acc.luminance;
+// S is radiance per metre (sigma_s * phase * light); sigma_t in 1/m; ds in m.
+#ifndef CM_INTEGRATION_GLSL
+#define CM_INTEGRATION_GLSL
+
+#include "core.glsl"
+#include "transmittance.glsl"
+
+// S (1 - exp(-sigma_t ds)) / sigma_t, exactly S ds at sigma_t = 0, no clamp constant.
+float cm_integrate_scattering(float S, float sigma_t, float ds) {
+    return S * ds * cm_one_minus_exp_neg_over_x(max(sigma_t * ds, 0.0));
+}
+vec3 cm_integrate_scattering(vec3 S, vec3 sigma_t, float ds) {
+    return S * ds * cm_one_minus_exp_neg_over_x(max(sigma_t * ds, vec3(0.0)));
+}
+vec3 cm_integrate_scattering(vec3 S, float sigma_t, float ds) {
+    return S * cm_integrate_scattering(1.0, sigma_t, ds);
+}
+
+// The C++ march_accumulator<vec3, vec3>; grey extinction uses the float overload below.
+struct CmMarchAccumulator {
+    vec3 luminance;
+    vec3 transmittance;
+};
+
+CmMarchAccumulator cm_march_accumulator() { return CmMarchAccumulator(vec3(0.0), vec3(1.0)); }
+
+void cm_march_add_segment(inout CmMarchAccumulator acc, vec3 S, vec3 sigma_t, float ds) {
+    acc.luminance += acc.transmittance * cm_integrate_scattering(S, sigma_t, ds);
+    acc.transmittance *= cm_beer_lambert(sigma_t * ds);
+}
+void cm_march_add_segment(inout CmMarchAccumulator acc, vec3 S, float sigma_t, float ds) {
+    acc.luminance += acc.transmittance * cm_integrate_scattering(S, sigma_t, ds);
+    acc.transmittance *= cm_beer_lambert(sigma_t * ds);
+}
+
+// True once every channel's transmittance is below min_transmittance.
+bool cm_march_is_opaque(CmMarchAccumulator acc, float min_transmittance) {
+    return all(lessThan(acc.transmittance, vec3(min_transmittance)));
+}
+
+vec3 cm_march_opacity(CmMarchAccumulator acc) { return vec3(1.0) - acc.transmittance; }
+
+#endif  // CM_INTEGRATION_GLSL

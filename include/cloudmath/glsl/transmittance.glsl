@@ -1,0 +1,36 @@
+// cloudmath/glsl/transmittance.glsl: GLSL twin of cloudmath/transmittance.hpp.
+// Optical depth tau >= 0; negative tau is clamped to 0. float and vec3 (RGB) overloads.
+#ifndef CM_TRANSMITTANCE_GLSL
+#define CM_TRANSMITTANCE_GLSL
+
+#include "core.glsl"
+
+// exp(-tau), in [0, 1].
+float cm_beer_lambert(float optical_depth) { return exp(-max(optical_depth, 0.0)); }
+vec3 cm_beer_lambert(vec3 optical_depth) { return exp(-max(optical_depth, vec3(0.0))); }
+
+// 1 - exp(-k tau) (Schneider 2015), full precision for tiny tau.
+float cm_powder(float optical_depth, float k) { return cm_one_minus_exp_neg(max(k * optical_depth, 0.0)); }
+vec3 cm_powder(vec3 optical_depth, float k) { return cm_one_minus_exp_neg(max(k * optical_depth, vec3(0.0))); }
+
+// 2 exp(-tau) (1 - exp(-2 tau)) (Schneider, GPU Pro 7): peak 0.7698 at ln(3)/2.
+float cm_beer_powder(float optical_depth) {
+    float tau = max(optical_depth, 0.0);
+    return 2.0 * exp(-tau) * cm_one_minus_exp_neg(2.0 * tau);
+}
+vec3 cm_beer_powder(vec3 optical_depth) {
+    vec3 tau = max(optical_depth, vec3(0.0));
+    return 2.0 * exp(-tau) * cm_one_minus_exp_neg(2.0 * tau);
+}
+
+// max(exp(-tau), 0.7 exp(-0.25 tau)) (Schneider, Nubis 2017).
+float cm_nubis_attenuation(float optical_depth) {
+    float tau = max(optical_depth, 0.0);
+    return max(exp(-tau), 0.7 * exp(-0.25 * tau));
+}
+vec3 cm_nubis_attenuation(vec3 optical_depth) {
+    vec3 tau = max(optical_depth, vec3(0.0));
+    return max(exp(-tau), 0.7 * exp(-0.25 * tau));
+}
+
+#endif  // CM_TRANSMITTANCE_GLSL

@@ -1,0 +1,24 @@
+// Helpers of the test shaders built from calls.txt: goes after the cloudmath module and
+// before main. Defines the user functions declared in calls_prelude.glsl and turns struct
+// and void results into floats.
+
+// Phase function of cm_multiple_scattering_with: a dual lobe whose eccentricities scale.
+float cm_test_phase(float mu, float scale) { return cm_phase_hg_dual(mu, 0.8 * scale, -0.5 * scale, 0.5); }
+
+// Extinction (1/m) of cm_cone_optical_depth at sample i.
+float cm_test_extinction(vec3 p, int i) {
+    return cm_height_fog_density(p.y, 0.01, 1e-3) * (1.0 + 0.1 * float(i));
+}
+
+float cm_test_sum(CmMieApproxParams p) { return p.g_hg + p.g_draine + p.alpha + p.w_draine; }
+float cm_test_sum(CmMarchAccumulator acc) { return cm_test_sum(acc.luminance + acc.transmittance); }
+
+// cm_march_add_segment on a copy of acc; the state after the step, summed.
+float cm_test_add_segment(CmMarchAccumulator acc, vec3 S, vec3 sigma_t, float ds) {
+    cm_march_add_segment(acc, S, sigma_t, ds);
+    return cm_test_sum(acc);
+}
+float cm_test_add_segment(CmMarchAccumulator acc, vec3 S, float sigma_t, float ds) {
+    cm_march_add_segment(acc, S, sigma_t, ds);
+    return cm_test_sum(acc);
+}

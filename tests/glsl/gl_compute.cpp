@@ -1,0 +1,494 @@
+// Implementation notes: EGL gives a context with no window system, so the same code runs on
+// a headless CI box (Mesa llvmpipe) and on a GPU server (NVIDIA through EGL devices). GL entry
+// points are loaded with eglGetProcAddress (EGL 1.5 and EGL_KHR_get_all_proc_addresses allow
+// it for core functions too), so no loader library and no link-time GL symbols are needed.
+#include "gl_compute.hpp"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/glcorearb.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <utility>
+
+namespace cm_gl {
+namespace {
+
+// Every GL function used here, once: the list declares the pointers and loads them.
+#define CM_GL_FUNCTIONS(X)                              \
+    X(PFNGLGETERRORPROC, GetError)                      \
+    X(PFNGLGETSTRINGPROC, GetString)                    \
+    X(PFNGLGETINTEGERVPROC, GetIntegerv)                \
+    X(PFNGLGETINTEGERI_VPROC, GetIntegeri_v)            \
+    X(PFNGLGETINTEGER64VPROC, GetInteger64v)            \
+    X(PFNGLCREATESHADERPROC, CreateShader)              \
+    X(PFNGLSHADERSOURCEPROC, ShaderSource)              \
+    X(PFNGLCOMPILESHADERPROC, CompileShader)            \
+    X(PFNGLGETSHADERIVPROC, GetShaderiv)                \
+    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)      \
+    X(PFNGLDELETESHADERPROC, DeleteShader)              \
+    X(PFNGLCREATEPROGRAMPROC, CreateProgram)            \
+    X(PFNGLATTACHSHADERPROC, AttachShader)              \
+    X(PFNGLLINKPROGRAMPROC, LinkProgram)                \
+    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)              \
+    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)    \
+    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)            \
+    X(PFNGLUSEPROGRAMPROC, UseProgram)                  \
+    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)  \
+    X(PFNGLUNIFORM1IPROC, Uniform1i)                    \
+    X(PFNGLGENBUFFERSPROC, GenBuffers)                  \
+    X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)            \
+    X(PFNGLBINDBUFFERPROC, BindBuffer)                  \
+    X(PFNGLBUFFERDATAPROC, BufferData)                  \
+    X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)          \
+    X(PFNGLGETBUFFERSUBDATAPROC, GetBufferSubData)      \
+    X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)        \
+    X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)
+
+struct gl_api {
+#define CM_GL_DECLARE(type, name) type name = nullptr;
+    CM_GL_FUNCTIONS(CM_GL_DECLARE)
+#undef CM_GL_DECLARE
+
+    // Empty on success, else the name of the first function the driver does not provide.
+    std::string load() {
+#define CM_GL_LOAD(type, name)                                                     \
+    name = reinterpret_cast<type>(eglGetProcAddress("gl" #name));                  \
+    if (name == nullptr) return "gl" #name;
+        CM_GL_FUNCTIONS(CM_GL_LOAD)
+#undef CM_GL_LOAD
+        return {};
+    }
+};
+
+// Whole-token search: strstr would match EGL_EXT_foo inside EGL_EXT_foo_bar.
+bool has_extension(const char* list, const char* name) {
+    if (list == nullptr) return false;
+    const std::size_t len = std::strlen(name);
+    for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += len) {
+        const bool starts = p == list || p[-1] == ' ';
+        const bool ends = p[len] == ' ' || p[len] == '\0';
+        if (starts && ends) return true;
+    }
+    return false;
+}
+
+std::string egl_error() {
+    static const char* const names[] = {
+        "EGL_SUCCESS", "EGL_NOT_INITIALIZED", "EGL_BAD_ACCESS", "EGL_BAD_ALLOC",
+        "EGL_BAD_ATTRIBUTE", "EGL_BAD_CONFIG", "EGL_BAD_CONTEXT", "EGL_BAD_CURRENT_SURFACE",
+        "EGL_BAD_DISPLAY", "EGL_BAD_MATCH", "EGL_BAD_NATIVE_PIXMAP", "EGL_BAD_NATIVE_WINDOW",
+        "EGL_BAD_PARAMETER", "EGL_BAD_SURFACE", "EGL_CONTEXT_LOST"};
+    const EGLint e = eglGetError();
+    if (e >= EGL_SUCCESS && e <= EGL_CONTEXT_LOST) return names[e - EGL_SUCCESS];
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "EGL error 0x%04x", static_cast<unsigned>(e));
+    return buf;
+}
+
+const char* gl_error_name(GLenum e) {
+    switch (e) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
+    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_CONTEXT_LOST: return "GL_CONTEXT_LOST";
+    default: return "unknown GL error";
+    }
+}
+
+// eglTerminate is not reference counted (EGL returns the same EGLDisplay for the same
+// platform and device), so terminating when one context dies would break any other live
+// instance on that display. Count the users and terminate with the last one.
+std::mutex& display_mutex() {
+    static std::mutex m;
+    return m;
+}
+std::map<EGLDisplay, int>& display_users() {
+    static std::map<EGLDisplay, int> users;
+    return users;
+}
+bool acquire_display(EGLDisplay dpy, std::string& why) {
+    std::lock_guard<std::mutex> lock(display_mutex());
+    // eglInitialize is a no-op on an initialized display, so calling it every time is fine.
+    if (eglInitialize(dpy, nullptr, nullptr) != EGL_TRUE) {
+        why = "eglInitialize failed (" + egl_error() + ")";
+        return false;
+    }
+    ++display_users()[dpy];
+    return true;
+}
+void release_display(EGLDisplay dpy) {
+    std::lock_guard<std::mutex> lock(display_mutex());
+    auto it = display_users().find(dpy);
+    if (it != display_users().end() && --it->second == 0) {
+        display_users().erase(it);
+        eglTerminate(dpy);
+    }
+}
+
+}  // namespace
+
+struct compute_context::state {
+    EGLDisplay dpy = EGL_NO_DISPLAY;  // set only once acquire_display succeeded
+    EGLContext ctx = EGL_NO_CONTEXT;
+    EGLSurface surf = EGL_NO_SURFACE;  // a 1x1 pbuffer, only without EGL_KHR_surfaceless_context
+    gl_api gl;
+    GLuint program = 0;
+    GLint local_x = 0;  // GL_COMPUTE_WORK_GROUP_SIZE.x of `program`
+    GLuint buffers[2] = {0, 0};
+    GLint max_groups_x = 0;
+    GLint64 max_ssbo_bytes = 0;
+
+    // Creates the context on one display and checks that it can do what run() needs.
+    // Returns nullptr with the reason in `why`; partial state is released by ~state.
+    static std::unique_ptr<state> open(EGLDisplay dpy, std::string& why);
+
+    state() = default;
+    state(const state&) = delete;
+    state& operator=(const state&) = delete;
+
+    // Several instances may live on one thread, so every public call re-selects its own
+    // context (cheap when it is already current). eglBindAPI is per-thread state as well.
+    bool make_current() const {
+        if (eglGetCurrentContext() == ctx) return true;
+        return eglBindAPI(EGL_OPENGL_API) == EGL_TRUE &&
+               eglMakeCurrent(dpy, surf, surf, ctx) == EGL_TRUE;
+    }
+
+    // All pending GL errors as text, empty when there are none. Bounded because a lost
+    // context may report the same error forever.
+    std::string gl_errors(const char* phase) const {
+        std::string text;
+        for (int i = 0; i < 8; ++i) {
+            const GLenum e = gl.GetError();
+            if (e == GL_NO_ERROR) break;
+            text += text.empty() ? std::string("GL error after ") + phase + ": " : ", ";
+            text += gl_error_name(e);
+        }
+        return text;
+    }
+
+    void drop_program() {
+        if (program != 0) {
+            gl.UseProgram(0);
+            gl.DeleteProgram(program);
+        }
+        program = 0;
+        local_x = 0;
+    }
+
+    ~state() {
+        if (ctx != EGL_NO_CONTEXT) {
+            if (gl.DeleteBuffers != nullptr && make_current()) {  // null: loading failed
+                drop_program();
+                gl.DeleteBuffers(2, buffers);
+            }
+            eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            eglDestroyContext(dpy, ctx);
+        }
+        if (surf != EGL_NO_SURFACE) eglDestroySurface(dpy, surf);
+        if (dpy != EGL_NO_DISPLAY) release_display(dpy);
+    }
+};
+
+std::unique_ptr<compute_context::state> compute_context::state::open(EGLDisplay dpy,
+                                                                     std::string& why) {
+    if (dpy == EGL_NO_DISPLAY) {
+        why = "no display (" + egl_error() + ")";
+        return nullptr;
+    }
+    if (!acquire_display(dpy, why)) return nullptr;
+    auto s = std::make_unique<state>();
+    s->dpy = dpy;
+    if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) {
+        why = "desktop OpenGL not supported (eglBindAPI: " + egl_error() + ")";
+        return nullptr;
+    }
+    // Mesa and recent NVIDIA drivers need neither a config nor a surface; older drivers get
+    // a config and a 1x1 pbuffer, which costs nothing and is never drawn to.
+    const char* exts = eglQueryString(dpy, EGL_EXTENSIONS);
+    const bool surfaceless = has_extension(exts, "EGL_KHR_surfaceless_context");
+    const bool no_config = has_extension(exts, "EGL_KHR_no_config_context");
+    EGLConfig config = EGL_NO_CONFIG_KHR;
+    if (!no_config || !surfaceless) {
+        const EGLint want[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE,
+                               surfaceless ? 0 : EGL_PBUFFER_BIT, EGL_NONE};
+        EGLint count = 0;
+        if (eglChooseConfig(dpy, want, &config, 1, &count) != EGL_TRUE || count < 1) {
+            why = "no OpenGL EGL config (" + egl_error() + ")";
+            return nullptr;
+        }
+    }
+    // Asking for 4.3 core, the first version with compute shaders and SSBOs; drivers return
+    // the newest version compatible with it (4.5 or 4.6 in practice).
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3,
+                              EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    s->ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, attribs);
+    if (s->ctx == EGL_NO_CONTEXT) {
+        why = "no OpenGL 4.3 core context (eglCreateContext: " + egl_error() + ")";
+        return nullptr;
+    }
+    if (!surfaceless) {
+        const EGLint size[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
+        s->surf = eglCreatePbufferSurface(dpy, config, size);
+        if (s->surf == EGL_NO_SURFACE) {
+            why = "eglCreatePbufferSurface failed (" + egl_error() + ")";
+            return nullptr;
+        }
+    }
+    if (!s->make_current()) {
+        why = "eglMakeCurrent failed (" + egl_error() + ")";
+        return nullptr;
+    }
+    const std::string missing = s->gl.load();
+    if (!missing.empty()) {
+        why = "GL entry point " + missing + " not found";
+        return nullptr;
+    }
+    GLint major = 0, minor = 0;
+    s->gl.GetIntegerv(GL_MAJOR_VERSION, &major);
+    s->gl.GetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major * 10 + minor < 43) {
+        why = "OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
+              " context, compute shaders need 4.3";
+        return nullptr;
+    }
+    s->gl.GetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &s->max_groups_x);
+    s->gl.GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &s->max_ssbo_bytes);
+    s->gl.GenBuffers(2, s->buffers);
+    why = s->gl_errors("context setup");
+    if (!why.empty()) return nullptr;
+    return s;
+}
+
+compute_context::compute_context(std::unique_ptr<state> s) : s_(std::move(s)) {}
+compute_context::~compute_context() = default;
+
+std::unique_ptr<compute_context> compute_context::create(std::string& why) {
+    why.clear();
+    const char* env = std::getenv("CLOUDMATH_GL_PLATFORM");
+    const std::string only = env != nullptr ? env : "";
+    if (!only.empty() && only != "surfaceless" && only != "device" && only != "default") {
+        why = "CLOUDMATH_GL_PLATFORM=" + only + " is not surfaceless, device or default";
+        return nullptr;
+    }
+    // Client extensions say which platforms exist; NULL from an EGL 1.4 library means none.
+    const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    std::string tried;  // one "platform: reason" per failed attempt, for the one-line why
+    auto attempt = [&](const std::string& name, EGLDisplay dpy) -> std::unique_ptr<state> {
+        std::string reason;
+        auto s = state::open(dpy, reason);
+        if (s == nullptr) tried += (tried.empty() ? "" : "; ") + name + ": " + reason;
+        return s;
+    };
+
+    std::unique_ptr<state> s;
+    if (only.empty() || only == "surfaceless") {
+        if (has_extension(client, "EGL_MESA_platform_surfaceless"))
+            s = attempt("surfaceless",
+                        eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
+                                              nullptr));
+        else
+            tried += std::string(tried.empty() ? "" : "; ") + "surfaceless: not available";
+    }
+    if (s == nullptr && (only.empty() || only == "device")) {
+        const auto query = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(
+            eglGetProcAddress("eglQueryDevicesEXT"));
+        EGLDeviceEXT devices[16];
+        EGLint count = 0;
+        if (has_extension(client, "EGL_EXT_platform_device") && query != nullptr &&
+            query(16, devices, &count) == EGL_TRUE && count > 0) {
+            for (EGLint i = 0; i < count && s == nullptr; ++i)
+                s = attempt("device " + std::to_string(i),
+                            eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr));
+        } else {
+            tried += std::string(tried.empty() ? "" : "; ") + "device: no EGL devices";
+        }
+    }
+    if (s == nullptr && (only.empty() || only == "default"))
+        s = attempt("default", eglGetDisplay(EGL_DEFAULT_DISPLAY));
+
+    if (s == nullptr) {
+        why = "no headless OpenGL 4.3 context: " + tried;
+        return nullptr;
+    }
+    return std::unique_ptr<compute_context>(new compute_context(std::move(s)));
+}
+
+std::string compute_context::renderer() const {
+    if (!s_->make_current()) return {};
+    const GLubyte* text = s_->gl.GetString(GL_RENDERER);
+    return text != nullptr ? reinterpret_cast<const char*>(text) : "";
+}
+
+std::string compute_context::version() const {
+    if (!s_->make_current()) return {};
+    const GLubyte* text = s_->gl.GetString(GL_VERSION);
+    return text != nullptr ? reinterpret_cast<const char*>(text) : "";
+}
+
+namespace {
+
+// Reads a shader or program info log with the matching pair of GL getters.
+template <class GetIv, class GetLog>
+std::string info_log(GLuint object, GetIv get_iv, GetLog get_log) {
+    GLint length = 0;
+    get_iv(object, GL_INFO_LOG_LENGTH, &length);
+    if (length <= 1) return {};
+    std::string text(static_cast<std::size_t>(length), '\0');
+    GLsizei written = 0;
+    get_log(object, length, &written, &text[0]);
+    text.resize(static_cast<std::size_t>(std::max(written, 0)));
+    return text;
+}
+
+}  // namespace
+
+bool compute_context::compile(const std::string& source, std::string& log) {
+    log.clear();
+    state& s = *s_;
+    if (!s.make_current()) {
+        log = "eglMakeCurrent failed (" + egl_error() + ")";
+        return false;
+    }
+    const gl_api& gl = s.gl;
+    s.gl_errors("");  // errors from earlier calls must not be blamed on this compile
+    s.drop_program();
+    if (source.size() > static_cast<std::size_t>(std::numeric_limits<GLint>::max())) {
+        log = "shader source too long";
+        return false;
+    }
+
+    const GLuint shader = gl.CreateShader(GL_COMPUTE_SHADER);
+    const GLchar* text = source.c_str();
+    const GLint length = static_cast<GLint>(source.size());
+    gl.ShaderSource(shader, 1, &text, &length);
+    gl.CompileShader(shader);
+    GLint ok = GL_FALSE;
+    gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    log += info_log(shader, gl.GetShaderiv, gl.GetShaderInfoLog);
+    if (ok != GL_TRUE) {
+        gl.DeleteShader(shader);
+        if (log.empty()) log = "compile failed, empty info log";
+        return false;
+    }
+
+    const GLuint program = gl.CreateProgram();
+    gl.AttachShader(program, shader);
+    gl.LinkProgram(program);
+    gl.DeleteShader(shader);  // only flagged: it stays alive while attached to the program
+    gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
+    log += info_log(program, gl.GetProgramiv, gl.GetProgramInfoLog);
+    if (ok != GL_TRUE) {
+        gl.DeleteProgram(program);
+        if (log.empty()) log = "link failed, empty info log";
+        return false;
+    }
+
+    // run() maps invocation i to element i along x only, so a 2D/3D local size would
+    // silently run extra invocations on the same elements: refuse it.
+    GLint size[3] = {0, 0, 0};
+    gl.GetProgramiv(program, GL_COMPUTE_WORK_GROUP_SIZE, size);
+    if (size[0] < 1 || size[1] != 1 || size[2] != 1) {
+        gl.DeleteProgram(program);
+        log += "local size must be (N, 1, 1); write layout(local_size_x = N) in;";
+        return false;
+    }
+    gl.UseProgram(program);
+    s.program = program;
+    s.local_x = size[0];
+    const std::string errors = s.gl_errors("compile/link");
+    if (!errors.empty()) {
+        s.drop_program();
+        log += errors;
+        return false;
+    }
+    return true;
+}
+
+std::vector<std::array<float, 4>> compute_context::run(
+    const std::vector<std::array<float, 4>>& inputs, int case_id) {
+    using vec4 = std::array<float, 4>;
+    static_assert(sizeof(vec4) == 4 * sizeof(float), "vec4 must match std430 vec4 layout");
+    error_.clear();
+    state& s = *s_;
+    const gl_api& gl = s.gl;
+    auto fail = [&](std::string message) {
+        error_ = std::move(message);
+        return std::vector<vec4>();
+    };
+    if (!s.make_current()) return fail("eglMakeCurrent failed (" + egl_error() + ")");
+    if (s.program == 0) return fail("no program: compile() failed or was not called");
+    if (inputs.empty()) return {};
+    std::string errors = s.gl_errors("earlier calls (before run)");
+    if (!errors.empty()) return fail(errors);
+
+    const std::size_t n = inputs.size();
+    const std::size_t local = static_cast<std::size_t>(s.local_x);
+    const std::size_t groups = (n + local - 1) / local;
+    const std::size_t padded = groups * local;
+    const std::size_t bytes = padded * sizeof(vec4);
+    if (groups > static_cast<std::size_t>(s.max_groups_x))
+        return fail(std::to_string(n) + " inputs need " + std::to_string(groups) +
+                    " work groups, driver maximum is " + std::to_string(s.max_groups_x));
+    if (bytes > static_cast<std::size_t>(s.max_ssbo_bytes))
+        return fail(std::to_string(bytes) + " bytes per buffer, driver maximum is " +
+                    std::to_string(s.max_ssbo_bytes));
+
+    // Inputs padded with zeros, then the same staging storage zeroed for the outputs, so
+    // a shader that writes nothing for some element is seen as 0, not as stale memory.
+    std::vector<vec4> staging(padded, vec4{0.f, 0.f, 0.f, 0.f});
+    std::copy(inputs.begin(), inputs.end(), staging.begin());
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, s.buffers[0]);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(bytes), staging.data(),
+                  GL_STATIC_DRAW);
+    std::fill(staging.begin(), staging.end(), vec4{0.f, 0.f, 0.f, 0.f});
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, s.buffers[1]);
+    gl.BufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(bytes), staging.data(),
+                  GL_STREAM_READ);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, s.buffers[0]);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, s.buffers[1]);
+    if (!(errors = s.gl_errors("buffer upload")).empty()) return fail(errors);
+
+    // -1 when the program does not declare u_case or the compiler removed it as unused.
+    const GLint where = gl.GetUniformLocation(s.program, "u_case");
+    if (where >= 0) gl.Uniform1i(where, case_id);
+    if (!(errors = s.gl_errors("setting u_case")).empty()) return fail(errors);
+
+    gl.DispatchCompute(static_cast<GLuint>(groups), 1, 1);
+    // Shader writes must be visible to glGetBufferSubData, which is a buffer update.
+    gl.MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (!(errors = s.gl_errors("dispatch")).empty()) return fail(errors);
+
+    std::vector<vec4> out(n);
+    gl.BindBuffer(GL_SHADER_STORAGE_BUFFER, s.buffers[1]);
+    gl.GetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(n * sizeof(vec4)),
+                        out.data());  // waits for the dispatch to finish
+    if (!(errors = s.gl_errors("readback")).empty()) return fail(errors);
+    return out;
+}
+
+int no_context_exit_code(const std::string& why) {
+    const char* ci = std::getenv("CI");
+    if (ci != nullptr && std::strcmp(ci, "true") == 0) {
+        std::fprintf(stderr, "FAILED: no OpenGL context, and CI=true requires the GL tests: %s\n",
+                     why.c_str());
+        return 1;
+    }
+    std::printf("SKIPPED: %s\n", why.c_str());
+    std::fflush(stdout);
+    return 77;
+}
+
+}  // namespace cm_gl
