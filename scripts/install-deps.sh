@@ -9,6 +9,7 @@ packages=(
   libglm-dev                                     # vector types (the library's only dependency)
   doctest-dev                                    # unit tests
   libbenchmark-dev                               # bench/
+  libstb-dev                                     # tools/: stb_image_write for PNG output
   libegl-dev libgl-dev libopengl-dev             # GLSL tests: EGL + GL headers, libOpenGL
   libegl-mesa0 libgl1-mesa-dri                   # GLSL tests: Mesa EGL, llvmpipe (no GPU)
   glslang-tools spirv-tools                      # GLSL tests: glslangValidator, spirv-val

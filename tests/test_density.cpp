@@ -166,3 +166,46 @@ TEST_CASE_TEMPLATE("density functions: denormal and NaN inputs (documented: NaN 
         CHECK(height_fog_density(cm_test::make_inf<T>(), T(0.1), T(0.01)) == T(0));
     }
 }
+
+TEST_CASE_TEMPLATE("Nubis density model: each step against its formula, limits and ranges", T, float, double) {
+    using v3 = glm::vec<3, T>;
+    using v4 = glm::vec<4, T>;
+    // Low-frequency fBm: G 0.625 + B 0.25 + A 0.125 (weights sum to 1).
+    CHECK(nubis_low_frequency_fbm(v4(T(0.9), T(1), T(1), T(1))) == T(1));
+    CHECK(nubis_low_frequency_fbm(v4(T(0.9), T(0.4), T(0.8), T(0.2))) == doctest::Approx(T(0.4 * 0.625 + 0.8 * 0.25 + 0.2 * 0.125)));
+    // Base cloud: remap(R, lf - 1, 1, 0, 1): (R + 1) / 2 when lf = 0, R when lf = 1.
+    CHECK(nubis_base_cloud(v4(T(0.5), T(0), T(0), T(0))) == doctest::Approx(T(0.75)));
+    CHECK(nubis_base_cloud(v4(T(0.3), T(1), T(1), T(1))) == doctest::Approx(T(0.3)));
+    CHECK(nubis_high_frequency_fbm(v3(T(1), T(0), T(0))) == T(0.625));
+    // Erosion threshold: 0.2 hf at the bottom (wispy), 0.2 (1 - hf) from a tenth up (billowy).
+    const v3 detail(T(0.8), T(0.4), T(0.0));
+    const T hf = T(0.8 * 0.625 + 0.4 * 0.25);
+    CHECK(nubis_detail_erosion(detail, T(0)) == doctest::Approx(T(0.2) * hf));
+    CHECK(nubis_detail_erosion(detail, T(0.1)) == doctest::Approx(T(0.2) * (T(1) - hf)));
+    CHECK(nubis_detail_erosion(detail, T(0.7)) == doctest::Approx(T(0.2) * (T(1) - hf)));
+    CHECK(nubis_detail_erosion(detail, T(0.05)) == doctest::Approx(T(0.2) * T(0.5)));
+    // Composition: zero coverage gives no cloud; without erosion (hf = 0 at h = 0 ... use a
+    // detail of 0 at the bottom) the density is the shaped base with coverage applied.
+    const v4 base(T(0.8), T(0.5), T(0.5), T(0.5));
+    CHECK(nubis_density(base, detail, T(0), T(1), T(0.5)) == T(0));
+    const T h = T(0.05);  // inside the cumulus profile's ramp, erosion threshold 0.2 * mix(0, 1, 0.5)
+    const T shaped = nubis_base_cloud(base) * height_gradient_for_type(h, T(1));
+    CHECK(nubis_density(base, v3(T(0)), T(0.9), T(1), h) == doctest::Approx(erode(apply_coverage(shaped, T(0.9)), T(0.1))));
+    // Range and monotonic in coverage over a grid of samples.
+    cm_test::rng r(5);
+    bool ok = true;
+    for (int i = 0; i < 2000; ++i) {
+        const v4 b(T(r.uniform()), T(r.uniform()), T(r.uniform()), T(r.uniform()));
+        const v3 d(T(r.uniform()), T(r.uniform()), T(r.uniform()));
+        const T type = T(r.uniform()), hh = T(r.uniform());
+        T prev = T(0);
+        for (int c = 0; c <= 10; ++c) {
+            const T v = nubis_density(b, d, T(c) / T(10), type, hh);
+            ok = ok && v >= T(0) && v <= T(1) && v >= prev && cm_test::finite_bits(v);
+            prev = v;
+        }
+        const T base_cloud = nubis_base_cloud(b);
+        ok = ok && base_cloud >= T(0) && base_cloud <= T(1);
+    }
+    CHECK(ok);
+}

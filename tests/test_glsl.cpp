@@ -15,7 +15,7 @@
 
 namespace {
 const char* const modules[] = {"core", "phase", "transmittance", "integration", "multiple_scattering",
-                               "cone_sampling", "geometry", "density", "cloudmath"};
+                               "cone_sampling", "geometry", "density", "noise", "cloudmath"};
 
 std::string read_file(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -58,7 +58,7 @@ TEST_CASE("every GLSL file is embedded, byte for byte") {
 
 TEST_CASE("the shipped files do use #include (so resolution is exercised)") {
     CHECK(include_directives(std::string(cloudmath::glsl_embedded_file("phase.glsl"))) >= 1);
-    CHECK(include_directives(std::string(cloudmath::glsl_embedded_file("cloudmath.glsl"))) == 8);
+    CHECK(include_directives(std::string(cloudmath::glsl_embedded_file("cloudmath.glsl"))) == 9);
     CHECK(include_directives("  #  include \"x.glsl\"\n// #include \"y.glsl\"\n") == 1);
 }
 
@@ -75,7 +75,7 @@ TEST_CASE("glsl_source resolves includes once each, dependencies first, no #incl
     }
     const std::string all = cloudmath::glsl_source("cloudmath");
     for (const char* guard : {"CM_PHASE_GLSL", "CM_TRANSMITTANCE_GLSL", "CM_INTEGRATION_GLSL", "CM_MULTIPLE_SCATTERING_GLSL",
-                              "CM_CONE_SAMPLING_GLSL", "CM_GEOMETRY_GLSL", "CM_DENSITY_GLSL"})
+                              "CM_CONE_SAMPLING_GLSL", "CM_GEOMETRY_GLSL", "CM_DENSITY_GLSL", "CM_NOISE_GLSL"})
         CHECK(count(all, std::string("#define ") + guard) == 1);
     // phase needs core before its first use of CM_INV_FOUR_PI.
     const std::string phase = cloudmath::glsl_source("phase");

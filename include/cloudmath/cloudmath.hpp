@@ -10,5 +10,6 @@
 #include "cone_sampling.hpp"
 #include "geometry.hpp"
 #include "density.hpp"
+#include "noise.hpp"
 
 #endif  // CLOUDMATH_CLOUDMATH_HPP

@@ -118,6 +118,53 @@ template <class T>
            one_minus_exp_neg_over_x(falloff * detail::abs(rise));
 }
 
+// ---------------------------------------------------------------------------------------
+// The Nubis density model (Schneider 2015 and GPU Pro 7 2016; Nubis 2017), as functions of
+// already-sampled texture values, so it works with any texture layout or noise source:
+//   base   = base volume RGBA (R Perlin-Worley, G/B/A Worley fBm at rising frequencies),
+//   detail = detail volume RGB (Worley fBm at rising frequencies),
+//   coverage, cloud_type from the weather map, h the height fraction in the layer.
+// Each step is callable on its own; nubis_density composes them in the published order.
+
+// Low-frequency fBm of the base volume: G 0.625 + B 0.25 + A 0.125.
+template <class T, glm::qualifier Q>
+[[nodiscard]] constexpr T nubis_low_frequency_fbm(const glm::vec<4, T, Q>& base) noexcept {
+    return base.y * T(0.625) + base.z * T(0.25) + base.w * T(0.125);
+}
+
+// Base cloud shape: remap(R, low_fbm - 1, 1, 0, 1): the Worley octaves carve the
+// Perlin-Worley channel. In [0, 1] for channels in [0, 1] (the old range is never empty:
+// its width 2 - low_fbm is at least 1).
+template <class T, glm::qualifier Q>
+[[nodiscard]] constexpr T nubis_base_cloud(const glm::vec<4, T, Q>& base) noexcept {
+    return remap(base.x, nubis_low_frequency_fbm(base) - T(1), T(1), T(0), T(1));
+}
+
+// High-frequency fBm of the detail volume: R 0.625 + G 0.25 + B 0.125.
+template <class T, glm::qualifier Q>
+[[nodiscard]] constexpr T nubis_high_frequency_fbm(const glm::vec<3, T, Q>& detail) noexcept {
+    return detail.x * T(0.625) + detail.y * T(0.25) + detail.z * T(0.125);
+}
+
+// Detail erosion threshold: 0.2 mix(hf, 1 - hf, saturate(10 h)): the inverted (billowy)
+// detail noise above the lowest tenth of the layer, the plain (wispy) one at the bottom.
+template <class T, glm::qualifier Q>
+[[nodiscard]] constexpr T nubis_detail_erosion(const glm::vec<3, T, Q>& detail, T h) noexcept {
+    const T hf = nubis_high_frequency_fbm(detail);
+    const T t = saturate(h * T(10));
+    return (hf + t * ((T(1) - hf) - hf)) * T(0.2);
+}
+
+// Full density in [0, 1]: base cloud times the type's height gradient, coverage, then
+// detail erosion (erode = remap_clamped(density, threshold, 1, 0, 1)). coverage and
+// cloud_type are clamped to [0, 1].
+template <class T, glm::qualifier Q>
+[[nodiscard]] constexpr T nubis_density(const glm::vec<4, T, Q>& base, const glm::vec<3, T, Q>& detail,
+                                        T coverage, T cloud_type, T h) noexcept {
+    const T shaped = nubis_base_cloud(base) * height_gradient_for_type(h, cloud_type);
+    return erode(apply_coverage(shaped, coverage), nubis_detail_erosion(detail, h));
+}
+
 }  // namespace cloudmath
 
 #endif  // CLOUDMATH_DENSITY_HPP

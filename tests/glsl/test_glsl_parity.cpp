@@ -107,6 +107,20 @@ std::vector<float> unit_values() {
     return v;
 }
 
+// Noise sample points: a = (position, period), b.x = seed. Lattice points, cell borders,
+// negative coordinates, positions a whole period away, and random interior points.
+void cm_test_points(std::vector<std::pair<vec4, vec4>>& pts) {
+    std::uint32_t state = 12345U;
+    auto unit = [&state]() { state = cm::noise_hash(state + 1U); return float(state >> 8) / 16777216.0f; };
+    for (float period : {1.0f, 4.0f, 7.0f})
+        for (float seed : {0.0f, 3.0f}) {
+            for (vec3 p : {vec3(0.0f), vec3(1.0f, 2.0f, 3.0f), vec3(-1.0f, -2.5f, 0.5f), vec3(3.999f, 0.001f, 2.0f), vec3(-7.25f, 8.5f, 11.75f)})
+                pts.push_back({vec4(p, period), vec4(seed, 0.0f, 0.0f, 0.0f)});
+            for (int i = 0; i < 40; ++i)
+                pts.push_back({vec4(unit() * 16.0f - 8.0f, unit() * 16.0f - 8.0f, unit() * 16.0f - 8.0f, period), vec4(seed, 0.0f, 0.0f, 0.0f)});
+        }
+}
+
 // --- the cases --------------------------------------------------------------------------------
 std::vector<parity_case> make_cases() {
     std::vector<parity_case> cs;
@@ -327,6 +341,70 @@ std::vector<parity_case> make_cases() {
         add({"cm_height_fog_density", "vec4(cm_height_fog_density(a.x, b.x, b.y))", [](vec4 a, vec4 b) { return vec4(cm::height_fog_density(a.x, b.x, b.y)); }, fog});
         add({"cm_height_fog_optical_depth", "vec4(cm_height_fog_optical_depth(a.x, a.y, a.z, b.x, b.y), cm_height_fog_optical_depth(a.x, a.y, a.z, b.x, b.z), 0.0, 0.0)",
              [](vec4 a, vec4 b) { return vec4(cm::height_fog_optical_depth(a.x, a.y, a.z, b.x, b.y), cm::height_fog_optical_depth(a.x, a.y, a.z, b.x, b.z), 0.0f, 0.0f); }, fog, 2});
+    }
+    // Nubis density composition over a grid of texture values, types, coverage and heights.
+    {
+        std::vector<std::pair<vec4, vec4>> in;
+        std::uint32_t state = 99U;
+        auto unit = [&state]() { state = cm::noise_hash(state + 1U); return float(state >> 8) / 16777216.0f; };
+        for (int i = 0; i < 400; ++i)
+            in.push_back({vec4(unit(), unit(), unit(), unit()), vec4(unit(), unit(), unit() * 1.2f - 0.1f, unit() * 1.2f - 0.1f)});
+        for (float h : {0.0f, 0.05f, 0.1f, 0.5f, 1.0f}) in.push_back({vec4(1.0f, 0.0f, 0.0f, 0.0f), vec4(0.5f, 0.5f, 1.0f, h)});
+        add({"cm_nubis_low_frequency_fbm", "vec4(cm_nubis_low_frequency_fbm(a), cm_nubis_base_cloud(a), cm_nubis_high_frequency_fbm(b.xyz), cm_nubis_detail_erosion(b.xyz, b.w))",
+             [](vec4 a, vec4 b) { return vec4(cm::nubis_low_frequency_fbm(a), cm::nubis_base_cloud(a), cm::nubis_high_frequency_fbm(vec3(b)), cm::nubis_detail_erosion(vec3(b), b.w)); },
+             in, 4, 1.0f});
+        add({"cm_nubis_base_cloud", "vec4(cm_nubis_base_cloud(a))", [](vec4 a, vec4) { return vec4(cm::nubis_base_cloud(a)); }, in, 1, 1.0f});
+        add({"cm_nubis_high_frequency_fbm", "vec4(cm_nubis_high_frequency_fbm(a.xyz))", [](vec4 a, vec4) { return vec4(cm::nubis_high_frequency_fbm(vec3(a))); }, in, 1, 1.0f});
+        add({"cm_nubis_detail_erosion", "vec4(cm_nubis_detail_erosion(a.xyz, b.w))", [](vec4 a, vec4 b) { return vec4(cm::nubis_detail_erosion(vec3(a), b.w)); }, in, 1, 1.0f});
+        add({"cm_nubis_density", "vec4(cm_nubis_density(a, b.xyz, b.z, a.w, b.w), cm_nubis_density(a, b.xyz, 1.0, 1.0, b.w), cm_nubis_density(a, b.xyz, 0.6, 0.0, b.w * 0.2), 0.0)",
+             [](vec4 a, vec4 b) { return vec4(cm::nubis_density(a, vec3(b), b.z, a.w, b.w), cm::nubis_density(a, vec3(b), 1.0f, 1.0f, b.w),
+                                              cm::nubis_density(a, vec3(b), 0.6f, 0.0f, b.w * 0.2f), 0.0f); }, in, 3, 1.0f});
+    }
+    // noise: the hashes must agree bit for bit (compared as two exact 16-bit halves);
+    // the noise values within 1e-5 of their range (floor 1).
+    {
+        std::vector<std::pair<vec4, vec4>> hashes;
+        for (std::uint32_t i = 0; i < 64; ++i) {
+            const std::uint32_t x = cm::noise_hash(i * 2654435761U);  // spread over all 32 bits
+            hashes.push_back({vec4(float(x >> 16), float(x & 0xffffU), float(i), float(i % 5)), vec4(float(i * 7 % 13), 0.0f, 0.0f, 0.0f)});
+        }
+        add({"cm_noise_hash",
+             "vec4(float(cm_noise_hash((uint(a.x) << 16u) | uint(a.y)) >> 16u), float(cm_noise_hash((uint(a.x) << 16u) | uint(a.y)) & 0xffffu), "
+             "float(cm_noise_hash(uint(a.z), uint(a.w), uint(b.x), 7u) >> 16u), float(cm_noise_hash(uint(a.z), uint(a.w), uint(b.x), 7u) & 0xffffu))",
+             [](vec4 a, vec4 b) {
+                 const std::uint32_t h = cm::noise_hash((std::uint32_t(a.x) << 16) | std::uint32_t(a.y));
+                 const std::uint32_t g = cm::noise_hash(std::uint32_t(a.z), std::uint32_t(a.w), std::uint32_t(b.x), 7U);
+                 return vec4(float(h >> 16), float(h & 0xffffU), float(g >> 16), float(g & 0xffffU)); },
+             hashes, 4, 1.0f, 0.0});
+        std::vector<std::pair<vec4, vec4>> pts;
+        cm_test_points(pts);
+        add({"cm_perlin_noise_derivatives", "cm_perlin_noise_derivatives(a.xyz, int(a.w), uint(b.x))",
+             [](vec4 a, vec4 b) { return cm::perlin_noise_derivatives(vec3(a), int(a.w), std::uint32_t(b.x)); }, pts, 4, 1.0f});
+        add({"cm_perlin_noise_derivatives", "cm_perlin_noise_derivatives(a.xyz, int(a.w))",
+             [](vec4 a, vec4) { return cm::perlin_noise_derivatives(vec3(a), int(a.w)); }, pts, 4, 1.0f});
+        add({"cm_perlin_noise", "vec4(cm_perlin_noise(a.xyz, int(a.w), uint(b.x)), cm_perlin_noise(a.xyz, int(a.w)), cm_perlin_noise(a.xy, int(a.w), uint(b.x)), cm_perlin_noise(a.xy, int(a.w)))",
+             [](vec4 a, vec4 b) { return vec4(cm::perlin_noise(vec3(a), int(a.w), std::uint32_t(b.x)), cm::perlin_noise(vec3(a), int(a.w)),
+                                              cm::perlin_noise(vec2(a), int(a.w), std::uint32_t(b.x)), cm::perlin_noise(vec2(a), int(a.w))); }, pts, 4, 1.0f});
+        add({"cm_worley_f1", "vec4(cm_worley_f1(a.xyz, int(a.w), uint(b.x)), cm_worley_f1(a.xyz, int(a.w)), 0.0, 0.0)",
+             [](vec4 a, vec4 b) { return vec4(cm::worley_f1(vec3(a), int(a.w), std::uint32_t(b.x)), cm::worley_f1(vec3(a), int(a.w)), 0.0f, 0.0f); }, pts, 2, 1.0f});
+        add({"cm_worley_noise", "vec4(cm_worley_noise(a.xyz, int(a.w), uint(b.x)), cm_worley_noise(a.xyz, int(a.w)), 0.0, 0.0)",
+             [](vec4 a, vec4 b) { return vec4(cm::worley_noise(vec3(a), int(a.w), std::uint32_t(b.x)), cm::worley_noise(vec3(a), int(a.w)), 0.0f, 0.0f); }, pts, 2, 1.0f});
+        add({"cm_perlin_fbm", "vec4(cm_perlin_fbm(a.xyz, int(a.w), 4, 3, 0.6, uint(b.x)), cm_perlin_fbm(a.xyz, int(a.w), 4), cm_perlin_fbm(a.xy, int(a.w), 5, 2, 0.5, uint(b.x)), cm_perlin_fbm(a.xy, int(a.w), 3))",
+             [](vec4 a, vec4 b) { return vec4(cm::perlin_fbm(vec3(a), int(a.w), 4, 3, 0.6f, std::uint32_t(b.x)), cm::perlin_fbm(vec3(a), int(a.w), 4),
+                                              cm::perlin_fbm(vec2(a), int(a.w), 5, 2, 0.5f, std::uint32_t(b.x)), cm::perlin_fbm(vec2(a), int(a.w), 3)); }, pts, 4, 1.0f});
+        add({"cm_worley_fbm", "vec4(cm_worley_fbm(a.xyz, int(a.w), 3, 2, 0.5, uint(b.x)), cm_worley_fbm(a.xyz, int(a.w), 3), 0.0, 0.0)",
+             [](vec4 a, vec4 b) { return vec4(cm::worley_fbm(vec3(a), int(a.w), 3, 2, 0.5f, std::uint32_t(b.x)), cm::worley_fbm(vec3(a), int(a.w), 3), 0.0f, 0.0f); }, pts, 2, 1.0f});
+        add({"cm_worley_fbm_nubis", "vec4(cm_worley_fbm_nubis(a.xyz, int(a.w), uint(b.x)), cm_worley_fbm_nubis(a.xyz, int(a.w)), 0.0, 0.0)",
+             [](vec4 a, vec4 b) { return vec4(cm::worley_fbm_nubis(vec3(a), int(a.w), std::uint32_t(b.x)), cm::worley_fbm_nubis(vec3(a), int(a.w)), 0.0f, 0.0f); }, pts, 2, 1.0f});
+        add({"cm_perlin_worley", "vec4(cm_perlin_worley(a.xyz, int(a.w), uint(b.x)), cm_perlin_worley(a.xyz, int(a.w)), 0.0, 0.0)",
+             [](vec4 a, vec4 b) { return vec4(cm::perlin_worley(vec3(a), int(a.w), std::uint32_t(b.x)), cm::perlin_worley(vec3(a), int(a.w)), 0.0f, 0.0f); }, pts, 2, 1.0f});
+        // Curl components reach about +-3.6; compared on that scale.
+        add({"cm_curl_noise", "vec4(cm_curl_noise(a.xyz, int(a.w), uint(b.x)), 0.0)",
+             [](vec4 a, vec4 b) { return vec4(cm::curl_noise(vec3(a), int(a.w), std::uint32_t(b.x)), 0.0f); }, pts, 3, 4.0f});
+        add({"cm_curl_noise", "vec4(cm_curl_noise(a.xyz, int(a.w)), 0.0)",
+             [](vec4 a, vec4) { return vec4(cm::curl_noise(vec3(a), int(a.w)), 0.0f); }, pts, 3, 4.0f});
+        add({"cm_curl_noise", "vec4(cm_curl_noise(a.xy, int(a.w), uint(b.x)), cm_curl_noise(a.xy, int(a.w)))",
+             [](vec4 a, vec4 b) { return vec4(cm::curl_noise(vec2(a), int(a.w), std::uint32_t(b.x)), cm::curl_noise(vec2(a), int(a.w))); }, pts, 4, 4.0f});
     }
     return cs;
 }

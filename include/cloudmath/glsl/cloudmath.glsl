@@ -11,5 +11,6 @@
 #include "cone_sampling.glsl"
 #include "geometry.glsl"
 #include "density.glsl"
+#include "noise.glsl"
 
 #endif  // CM_CLOUDMATH_GLSL

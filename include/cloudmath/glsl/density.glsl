@@ -54,4 +54,18 @@ float cm_height_fog_optical_depth(float altitude, float cos_zenith, float distan
            cm_one_minus_exp_neg_over_x(falloff * abs(rise));
 }
 
+// Nubis density model (density.hpp): steps on already-sampled texture values.
+float cm_nubis_low_frequency_fbm(vec4 base) { return base.y * 0.625 + base.z * 0.25 + base.w * 0.125; }
+float cm_nubis_base_cloud(vec4 base) { return cm_remap(base.x, cm_nubis_low_frequency_fbm(base) - 1.0, 1.0, 0.0, 1.0); }
+float cm_nubis_high_frequency_fbm(vec3 detail) { return detail.x * 0.625 + detail.y * 0.25 + detail.z * 0.125; }
+float cm_nubis_detail_erosion(vec3 detail, float h) {
+    float hf = cm_nubis_high_frequency_fbm(detail);
+    float t = cm_saturate(h * 10.0);
+    return (hf + t * ((1.0 - hf) - hf)) * 0.2;
+}
+float cm_nubis_density(vec4 base, vec3 detail, float coverage, float cloud_type, float h) {
+    float shaped = cm_nubis_base_cloud(base) * cm_height_gradient_for_type(h, cloud_type);
+    return cm_erode(cm_apply_coverage(shaped, coverage), cm_nubis_detail_erosion(detail, h));
+}
+
 #endif  // CM_DENSITY_GLSL
