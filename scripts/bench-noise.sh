@@ -12,15 +12,8 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="$root/build/bench"
 out=${1:-"$root/docs/bench_noise.md"}
 
-bash "$root/scripts/install-deps.sh"
-
-generator=()
-command -v ninja >/dev/null && generator=(-G Ninja)
-if [[ ! -f "$build/CMakeCache.txt" ]]; then
-    cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
-        -DCLOUDMATH_BUILD_TESTS=OFF -DCLOUDMATH_BUILD_BENCH=ON -DCLOUDMATH_BUILD_EXAMPLES=OFF >/dev/null
-fi
-cmake --build "$build" --target cloudmath_bench_noise >/dev/null
+source "$root/scripts/bench-build.sh"
+cloudmath_build_bench "$root" cloudmath_bench_noise
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -220,7 +220,9 @@ template <class T>
 // Fast approximation of HG: phase_schlick(mu, schlick_k_from_hg_g(g)).
 // Normalised exactly. Maximum relative error against phase_hg(mu, g) over mu in [-1, 1]
 // (measured by tests/test_phase.cpp, which asserts these bounds):
-//   |g| <= 0.3: 9%,  |g| <= 0.5: 23%,  |g| <= 0.8: 66%,  |g| <= 0.9: 90%.
+//   |g| <= 0.3: 9%,  |g| <= 0.5: 23%,  |g| <= 0.8: 66%,  |g| <= 0.9: 90%;
+//   towards the clamp |g| = 0.9999 it grows to a factor 73 (the opposite lobe), measured by
+//   bash scripts/speed-vs-error.sh.
 // The error is largest in the forward peak and the back lobe; it is a shape
 // approximation, not a drop-in replacement where the forward peak matters.
 template <class T>
