@@ -100,6 +100,22 @@ template <class T>
                : cfg.step_length;
 }
 
+namespace detail {
+
+// Position of sample i given the basis (u, v) across the light and the near-sample count,
+// shared by cone_sample_position and cone_optical_depth (which computes the basis once).
+template <class T, glm::qualifier Q>
+inline glm::vec<3, T, Q> cone_position(const glm::vec<3, T, Q>& origin, const glm::vec<3, T, Q>& light_dir,
+                                       const glm::vec<3, T, Q>& u, const glm::vec<3, T, Q>& v,
+                                       const cone_light_config<T>& cfg, int n_near, int i) noexcept {
+    const T d = cone_sample_distance(cfg, i);
+    if (has_far_sample(cfg) && i >= n_near) return origin + light_dir * d;
+    const glm::vec<2, T> k = cone_kernel_offset<T>(i, n_near);
+    return origin + light_dir * d + (u * k.x + v * k.y) * (cfg.cone_spread * d);
+}
+
+}  // namespace detail
+
 // World position of sample i: origin + light_dir * d_i + spread * d_i * (k.x u + k.y v)
 // for near samples, origin + light_dir * far_distance for the far one.
 template <class T, glm::qualifier Q>
@@ -107,13 +123,9 @@ template <class T, glm::qualifier Q>
                                                             const glm::vec<3, T, Q>& light_dir,
                                                             const cone_light_config<T>& cfg,
                                                             int i) noexcept {
-    const T d = cone_sample_distance(cfg, i);
-    const int n_near = detail::near_sample_count(cfg);
-    if (detail::has_far_sample(cfg) && i >= n_near) return origin + light_dir * d;
     glm::vec<3, T, Q> u, v;
     detail::orthonormal_basis(light_dir, u, v);
-    const glm::vec<2, T> k = cone_kernel_offset<T>(i, n_near);
-    return origin + light_dir * d + (u * k.x + v * k.y) * (cfg.cone_spread * d);
+    return detail::cone_position(origin, light_dir, u, v, cfg, detail::near_sample_count(cfg), i);
 }
 
 // Optical depth toward the light: sum over samples of extinction(p_i) * length_i, where
@@ -125,9 +137,12 @@ template <class T, glm::qualifier Q, class Extinction>
                                           const glm::vec<3, T, Q>& light_dir,
                                           const cone_light_config<T>& cfg,
                                           Extinction&& extinction) {
+    glm::vec<3, T, Q> u, v;
+    detail::orthonormal_basis(light_dir, u, v);  // once, not per sample
+    const int n_near = detail::near_sample_count(cfg);
     T tau = T(0);
     for (int i = 0; i < cfg.sample_count; ++i) {
-        const glm::vec<3, T, Q> p = cone_sample_position(origin, light_dir, cfg, i);
+        const glm::vec<3, T, Q> p = detail::cone_position(origin, light_dir, u, v, cfg, n_near, i);
         T sigma;
         if constexpr (std::is_invocable_v<Extinction&, const glm::vec<3, T, Q>&, int>)
             sigma = static_cast<T>(extinction(p, i));
