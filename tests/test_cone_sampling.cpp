@@ -3,6 +3,8 @@
 #include <cloudmath/cone_sampling.hpp>
 
 #include <cmath>
+
+#include <glm/geometric.hpp>
 #include <initializer_list>
 #include <set>
 #include <utility>
@@ -109,3 +111,21 @@ TEST_CASE_TEMPLATE("cone_optical_depth: constant medium exact, half-space, calla
     const cone_light_config<T> none{0, T(50), T(0.4), T(800), T(100)};
     CHECK(cone_optical_depth(v3(T(0)), up, none, [](const v3&) { return T(1); }) == T(0));
 }
+
+TEST_CASE_TEMPLATE("cone_optical_depth equals the sum over cone_sample_position (rotated Vogel angles)", T, float, double) {
+    using v3 = glm::vec<3, T>;
+    // A density that varies across the cone, so lateral positions matter.
+    auto sigma = [](const v3& p) { return T(0.01) * (T(1) + T(0.5) * std::sin(T(0.02) * p.x) * std::cos(T(0.017) * p.z)); };
+    for (int count : {1, 6, 16}) {
+        for (T far : {T(0), T(900)}) {
+            const cone_light_config<T> cfg{count, T(40), T(0.6), far, T(120)};
+            const v3 origin(T(3), T(-1), T(2));
+            const v3 dir = glm::normalize(v3(T(0.3), T(1), T(-0.2)));
+            ld sum = 0;
+            for (int i = 0; i < count; ++i) sum += ld(sigma(cone_sample_position(origin, dir, cfg, i))) * ld(cone_sample_length(cfg, i));
+            INFO("count " << count << ", far " << far);
+            CHECK(cm_test::rel_err(cone_optical_depth(origin, dir, cfg, sigma), sum) <= (std::is_same_v<T, float> ? 2e-6L : 1e-13L));
+        }
+    }
+}
+
