@@ -64,34 +64,27 @@ CLOUDMATH_ALWAYS_INLINE T one_minus_exp_neg_over_x_vec(T x_in, const policy_exp<
     return quotient + use_taylor * (taylor - quotient);
 }
 
-// A loop-invariant value hidden from the optimiser (see exp_kernel).
-template <class T>
-inline T runtime_constant(T v) noexcept {
-    opaque(v);
-    return v;
-}
-
-// HG with the g-dependent terms hoisted out of the loop: p = k / (d sqrt d) with
-// d = a0 + a1 (1 -+ mu) (the stable base of phase.hpp).
+// HG with the g-dependent terms hoisted out of the loop: p = k d^(-3/2) with
+// d = base + slope (1 -+ mu) (the stable base of phase.hpp).
 template <class Policy, class T>
 struct hg_kernel {
     T k, base, slope, sign;
-    T lo = T(-1), hi = T(1);  // mu's clamp, hidden from the optimiser (see exp_kernel)
+    T lo = runtime_constant(T(-1)), hi = runtime_constant(T(1));  // mu's clamp (see exp_kernel)
     explicit hg_kernel(T g) noexcept {
-        T l = lo, h = hi;  // hide copies (see exp_kernel): member addresses must not escape
-        opaque(l);
-        opaque(h);
-        lo = l;
-        hi = h;
         g = clamp_g(g);
         k = inv_four_pi_v<T> * ((T(1) - g) * (T(1) + g));
         base = g >= T(0) ? (T(1) - g) * (T(1) - g) : (T(1) + g) * (T(1) + g);
         slope = T(2) * (g >= T(0) ? g : -g);
         sign = g >= T(0) ? T(-1) : T(1);  // 1 - mu for g >= 0, 1 + mu for g < 0
     }
-    CLOUDMATH_ALWAYS_INLINE T operator()(T mu) const noexcept {
-        mu = mu > lo ? mu : lo;  // maxps / minps (see exp_kernel)
-        mu = mu < hi ? mu : hi;
+    // mu clamped to [-1, 1], as maxps / minps (see exp_kernel).
+    CLOUDMATH_ALWAYS_INLINE T clamp_mu(T mu) const noexcept {
+        mu = mu > lo ? mu : lo;
+        return mu < hi ? mu : hi;
+    }
+    CLOUDMATH_ALWAYS_INLINE T operator()(T mu) const noexcept { return at_clamped(clamp_mu(mu)); }
+    // HG for an already clamped mu (loops that need the clamped value themselves).
+    CLOUDMATH_ALWAYS_INLINE T at_clamped(T mu) const noexcept {
         const T d = base + slope * (T(1) + sign * mu);
         // d^(-1/2) without std::sqrt: with the default -fmath-errno GCC guards sqrt with an
         // errno branch that keeps the loop scalar. fast_math: fast::rsqrt as is (the same
@@ -127,9 +120,8 @@ void phase_cornette_shanks(const T* mu, std::size_t n, T g, T* out) noexcept {
     // CS = HG * 3 (1 + mu^2) / (2 (2 + g^2)).
     const T factor = T(3) / (T(2) * (T(2) + gc * gc));
     for (std::size_t i = 0; i < n; ++i) {
-        const T lo_clamped = mu[i] > hg.lo ? mu[i] : hg.lo;
-        const T m = lo_clamped < hg.hi ? lo_clamped : hg.hi;
-        out[i] = hg(m) * factor * (T(1) + m * m);
+        const T m = hg.clamp_mu(mu[i]);
+        out[i] = hg.at_clamped(m) * factor * (T(1) + m * m);
     }
 }
 
@@ -143,9 +135,8 @@ void phase_mie_approx(const T* mu, std::size_t n, const mie_approx_parameters<T>
     // Draine = HG(g_D) (1 + alpha mu^2) / (1 + alpha (1 + 2 g_D^2) / 3).
     const T draine_norm = T(1) / (T(1) + alpha * (T(1) + T(2) * gd * gd) / T(3));
     for (std::size_t i = 0; i < n; ++i) {
-        const T lo_clamped = mu[i] > hg.lo ? mu[i] : hg.lo;
-        const T m = lo_clamped < hg.hi ? lo_clamped : hg.hi;
-        out[i] = (T(1) - p.w_draine) * hg(m) + p.w_draine * hd(m) * (T(1) + alpha * m * m) * draine_norm;
+        const T m = hg.clamp_mu(mu[i]);
+        out[i] = (T(1) - p.w_draine) * hg.at_clamped(m) + p.w_draine * hd.at_clamped(m) * (T(1) + alpha * m * m) * draine_norm;
     }
 }
 

@@ -41,6 +41,9 @@ struct cone_light_config {
 
 namespace detail {
 
+// The golden angle pi (3 - sqrt 5), the angular step of the Vogel spiral.
+template <class T> inline constexpr T golden_angle_v = T(2.399963229728653322231555506633613853L);
+
 template <class T>
 constexpr bool has_far_sample(const cone_light_config<T>& cfg) noexcept {
     return cfg.far_distance > T(0) && cfg.sample_count > 0;
@@ -74,7 +77,7 @@ template <class T>
 [[nodiscard]] inline glm::vec<2, T> cone_kernel_offset(int i, int n) noexcept {
     const int count = n > 0 ? n : 1;
     const int k = ((i % count) + count) % count;
-    const T golden_angle = T(2.399963229728653322231555506633613853L);
+    const T golden_angle = detail::golden_angle_v<T>;
     const T radius = std::sqrt((T(k) + T(0.5)) / T(count));
     const T angle = T(k) * golden_angle;
     return glm::vec<2, T>(radius * std::cos(angle), radius * std::sin(angle));
@@ -131,7 +134,7 @@ template <class T, glm::qualifier Q, class Extinction>
     // The Vogel angles k * golden_angle advance by a rotation, so the loop takes two trig
     // calls per call instead of two per sample (the cost of the cone was in them). After 16
     // samples the rotated directions are within 2e-6 (float) of cone_kernel_offset's.
-    const T golden_angle = T(2.399963229728653322231555506633613853L);
+    const T golden_angle = detail::golden_angle_v<T>;
     const T step_cos = std::cos(golden_angle), step_sin = std::sin(golden_angle);
     T dir_cos = T(1), dir_sin = T(0);
     T tau = T(0);

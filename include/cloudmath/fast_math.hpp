@@ -45,7 +45,6 @@ namespace detail {
 template <class T> struct exp_constants;
 template <> struct exp_constants<float> {
     using bits = std::uint32_t;
-    using sbits = std::int32_t;
     static constexpr float log2e = 1.44269504088896341f;
     static constexpr float ln2_hi = 0.693145751953125f;     // ln 2 to 16 bits: n * ln2_hi is exact
     static constexpr float ln2_lo = 1.42860682030941723e-6f; // ln 2 - ln2_hi
@@ -58,7 +57,6 @@ template <> struct exp_constants<float> {
 };
 template <> struct exp_constants<double> {
     using bits = std::uint64_t;
-    using sbits = std::int64_t;
     static constexpr double log2e = 1.44269504088896340736;
     static constexpr double ln2_hi = 6.93147180369123816490e-01;  // 32 significant bits
     static constexpr double ln2_lo = 1.90821492927058770002e-10;
@@ -115,10 +113,6 @@ inline double exp_reduced(double r) noexcept {
     return p;
 }
 
-}  // namespace detail
-
-namespace detail {
-
 // Hides a value from the optimiser (GCC, Clang); elsewhere a no-op.
 template <class T>
 inline void opaque(T& v) noexcept {
@@ -127,6 +121,15 @@ inline void opaque(T& v) noexcept {
 #else
     (void)v;
 #endif
+}
+
+// A copy of v whose value the optimiser cannot see: for loop-invariant limits (see
+// exp_kernel). Only the local copy's address escapes, never the caller's object's, so
+// stores through a loop's output pointer cannot alias what it is assigned to.
+template <class T>
+inline T runtime_constant(T v) noexcept {
+    opaque(v);
+    return v;
 }
 
 // exp with the range clamp and polynomial of exp_vectorizable / fast::exp. In loops
@@ -142,13 +145,8 @@ struct exp_kernel {
     T hi = exp_constants<T>::max_x;
     explicit exp_kernel(T upper = exp_constants<T>::max_x, bool hide_limits = true) noexcept : hi(upper) {
         if (hide_limits) {
-            // Hide copies, then assign: taking the members' own addresses would let stores
-            // through the loop's output pointer alias them, which also blocks vectorisation.
-            T l = lo, h = hi;
-            opaque(l);
-            opaque(h);
-            lo = l;
-            hi = h;
+            lo = runtime_constant(lo);
+            hi = runtime_constant(hi);
         }
     }
     CLOUDMATH_ALWAYS_INLINE T operator()(T x_in) const noexcept {
