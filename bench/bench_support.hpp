@@ -26,6 +26,7 @@
 #define CLOUDMATH_BENCH_SUPPORT_HPP
 
 #include <benchmark/benchmark.h>
+#include <cloudmath/batch.hpp>
 
 #include <algorithm>
 #include <cstddef>
@@ -228,8 +229,29 @@ public:
 
     // run(arrays) processes batch_count elements into arrays.out (through call_alone).
     // tolerance < 0: unchecked (the naive forms differ from the library on purpose).
+    // The variant "exact" (the default policy) is registered twice: as users get it (the
+    // instruction set that batch.hpp's run-time dispatch picks on this CPU, named in the
+    // label) and as "exact_baseline", restricted to the code compiled for the translation
+    // unit's flags (SSE2 here), so both copies are timed in the same run.
     template <class Run>
     const batch_function& add(const std::string& variant, const std::string& label, double tolerance, Run run) const {
+        if (variant == "exact") {
+            const cloudmath::batch::isa dispatched = cloudmath::batch::active_isa();
+            add_one(variant, label + " (" + cloudmath::batch::isa_name(dispatched) + ", dispatched)", tolerance, run);
+            if (dispatched != cloudmath::batch::isa::baseline)
+                add_one("exact_baseline", label + " (baseline code only)", tolerance, [run](batch_arrays<T>& a) {
+                    cloudmath::batch::restrict_to_baseline(true);
+                    run(a);
+                    cloudmath::batch::restrict_to_baseline(false);
+                });
+            return *this;
+        }
+        return add_one(variant, label, tolerance, run);
+    }
+
+private:
+    template <class Run>
+    const batch_function& add_one(const std::string& variant, const std::string& label, double tolerance, Run run) const {
         const std::string type = type_name<T>();
         const std::string key = name_ + "/" + variant + "/" + type;
         const std::string naive_key = name_ + "/naive_loop/" + type;
@@ -261,7 +283,6 @@ public:
         return *this;
     }
 
-private:
     std::string name_;
     Reference reference_;
 };

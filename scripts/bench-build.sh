@@ -13,5 +13,14 @@ cloudmath_build_bench() {
         cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
             -DCLOUDMATH_BUILD_TESTS=OFF -DCLOUDMATH_BUILD_BENCH=ON -DCLOUDMATH_BUILD_EXAMPLES=OFF >/dev/null
     fi
-    cmake --build "$build" --target "$@" >/dev/null
+    # Quiet on success; the compiler's messages on failure (ninja prints them to stdout).
+    local log
+    log=$(mktemp)
+    if ! cmake --build "$build" --target "$@" > "$log" 2>&1; then
+        cat "$log" >&2
+        rm -f "$log"
+        echo "bench: the build failed" >&2
+        return 1
+    fi
+    rm -f "$log"
 }

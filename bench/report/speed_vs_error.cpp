@@ -39,6 +39,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include <cloudmath/batch.hpp>
 #include <cloudmath/cloudmath.hpp>
 #include <cloudmath/fast_math.hpp>
 
@@ -1108,7 +1109,9 @@ void write_markdown(const std::string& path, const std::deque<variant>& rows, co
         << "[bench/report/kernels.cpp](../bench/report/kernels.cpp)); the same data as\n"
         << "[speed_vs_error.csv](speed_vs_error.csv), plotted in [speed_vs_error.svg](speed_vs_error.svg).\n\n"
         << "Machine: " << m.cpu << ", " << m.cores << " hardware threads. Compiler: " << m.compiler << ", flags `" << m.flags
-        << "`" << (m.flags.find("-march") == std::string::npos ? " (no `-march`: 128-bit SSE2 vectors on x86-64)" : "") << ". Date: " << m.date << ".\n\n"
+        << "`" << (m.flags.find("-march") == std::string::npos ? " (no `-march`: SSE2 code on x86-64)" : "")
+        << "; the batch forms ran their " << cloudmath::batch::isa_name(cloudmath::batch::active_isa())
+        << " copy (batch.hpp picks it at run time). Date: " << m.date << ".\n\n"
         << "![speed against error](speed_vs_error.svg)\n\n"
         << "## How it is measured\n\n"
         << "- **Time**: float, nanoseconds per evaluation, median of " << rounds << " rounds. Each round times every\n"
@@ -1217,8 +1220,8 @@ void write_markdown(const std::string& path, const std::deque<variant>& rows, co
         out << "| " << md_escape(v->name) << " | " << fmt_ns(v->scalar_ns) << " | " << batch_cell(*v) << " | " << fmt_error(v->err.max())
             << " |\n";
     }
-    out << "\nMachine: " << m.cpu << ", " << m.cores << " hardware threads; " << m.compiler << " `" << m.flags << "`; " << m.date
-        << ".\n";
+    out << "\nMachine: " << m.cpu << ", " << m.cores << " hardware threads; " << m.compiler << " `" << m.flags << "`, batch forms "
+        << cloudmath::batch::isa_name(cloudmath::batch::active_isa()) << " (run-time dispatch); " << m.date << ".\n";
 }
 
 // Log-log scatter plot: x = float ns/eval, y = max relative error (floored), colour per
