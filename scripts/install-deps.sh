@@ -13,6 +13,7 @@ packages=(
   libegl-dev libgl-dev libopengl-dev             # GLSL tests: EGL + GL headers, libOpenGL
   libegl-mesa0 libgl1-mesa-dri                   # GLSL tests: Mesa EGL, llvmpipe (no GPU)
   glslang-tools spirv-tools                      # GLSL tests: glslangValidator, spirv-val
+  libglfw3-dev                                   # examples/cloud_renderer: the window mode
 )
 
 missing=()

@@ -1,0 +1,477 @@
+#include "gl_renderer.hpp"
+
+#include "clouds_frag.hpp"
+
+#include <cloudmath/glsl.hpp>
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/glcorearb.h>
+
+#include <cstring>
+#include <map>
+#include <vector>
+
+namespace cloud_renderer {
+
+// ---------------------------------------------------------------------------------------
+// Shader sources.
+
+std::string vertex_shader_source() {
+    // One triangle that covers the screen; no vertex buffer.
+    return "#version 410 core\n"
+           "void main() {\n"
+           "    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n"
+           "    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);\n"
+           "}\n";
+}
+
+std::string fragment_shader_source(const variant& v, bool compile_time) {
+    std::string head = "#version 410 core\n";
+    if (compile_time) {
+        head += "#define CR_PARAM(type, name)\n";
+        const auto constant = [&head](const char* n, int value) {
+            head += std::string("const int ") + n + " = " + std::to_string(value) + ";\n";
+        };
+        constant("u_phase_model", static_cast<int>(v.phase));
+        constant("u_octaves", v.octaves);
+        constant("u_powder", v.powder ? 1 : 0);
+        constant("u_light_mode", static_cast<int>(v.light));
+        constant("u_cone_samples", v.cone_samples);
+        constant("u_light_steps", v.light_steps);
+        constant("u_integration", static_cast<int>(v.integration));
+        constant("u_view_steps", v.view_steps);
+        constant("u_jitter", v.jitter ? 1 : 0);
+    } else {
+        head += "#define CR_PARAM(type, name) uniform type name;\n";
+    }
+    std::string body = clouds_frag_text;
+    const std::string include_line = "\n#include \"cloudmath.glsl\"\n";  // the line itself, not the comment
+    const std::size_t at = body.find(include_line);
+    if (at != std::string::npos) body.replace(at, include_line.size(), "\n" + cloudmath::glsl_source("cloudmath") + "\n");
+    return head + body;
+}
+
+// ---------------------------------------------------------------------------------------
+// GL entry points, loaded at run time (no loader library).
+
+#define CR_GL_FUNCTIONS(X)                                      \
+    X(PFNGLGETERRORPROC, GetError)                              \
+    X(PFNGLGETSTRINGPROC, GetString)                            \
+    X(PFNGLGETINTEGERVPROC, GetIntegerv)                        \
+    X(PFNGLCREATESHADERPROC, CreateShader)                      \
+    X(PFNGLSHADERSOURCEPROC, ShaderSource)                      \
+    X(PFNGLCOMPILESHADERPROC, CompileShader)                    \
+    X(PFNGLGETSHADERIVPROC, GetShaderiv)                        \
+    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)              \
+    X(PFNGLDELETESHADERPROC, DeleteShader)                      \
+    X(PFNGLCREATEPROGRAMPROC, CreateProgram)                    \
+    X(PFNGLATTACHSHADERPROC, AttachShader)                      \
+    X(PFNGLLINKPROGRAMPROC, LinkProgram)                        \
+    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                      \
+    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)            \
+    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                    \
+    X(PFNGLUSEPROGRAMPROC, UseProgram)                          \
+    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)          \
+    X(PFNGLUNIFORM1IPROC, Uniform1i)                            \
+    X(PFNGLUNIFORM1FPROC, Uniform1f)                            \
+    X(PFNGLUNIFORM2FPROC, Uniform2f)                            \
+    X(PFNGLUNIFORM3FPROC, Uniform3f)                            \
+    X(PFNGLGENTEXTURESPROC, GenTextures)                        \
+    X(PFNGLDELETETEXTURESPROC, DeleteTextures)                  \
+    X(PFNGLBINDTEXTUREPROC, BindTexture)                        \
+    X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                    \
+    X(PFNGLTEXIMAGE2DPROC, TexImage2D)                          \
+    X(PFNGLTEXIMAGE3DPROC, TexImage3D)                          \
+    X(PFNGLTEXPARAMETERIPROC, TexParameteri)                    \
+    X(PFNGLPIXELSTOREIPROC, PixelStorei)                        \
+    X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                \
+    X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)          \
+    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                \
+    X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)      \
+    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)  \
+    X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                \
+    X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)          \
+    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                \
+    X(PFNGLDRAWARRAYSPROC, DrawArrays)                          \
+    X(PFNGLVIEWPORTPROC, Viewport)                              \
+    X(PFNGLREADPIXELSPROC, ReadPixels)                          \
+    X(PFNGLFINISHPROC, Finish)                                  \
+    X(PFNGLGENQUERIESPROC, GenQueries)                          \
+    X(PFNGLDELETEQUERIESPROC, DeleteQueries)                    \
+    X(PFNGLQUERYCOUNTERPROC, QueryCounter)                      \
+    X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)
+
+struct gl_api {
+#define CR_GL_DECLARE(type, name) type name = nullptr;
+    CR_GL_FUNCTIONS(CR_GL_DECLARE)
+#undef CR_GL_DECLARE
+    // Empty on success, else the first missing function.
+    std::string load(gl_renderer::proc_loader get) {
+#define CR_GL_LOAD(type, name)                                   \
+    name = reinterpret_cast<type>(get("gl" #name));               \
+    if (name == nullptr) return "gl" #name;
+        CR_GL_FUNCTIONS(CR_GL_LOAD)
+#undef CR_GL_LOAD
+        return {};
+    }
+};
+
+namespace {
+
+std::string egl_error() {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "EGL error 0x%04x", static_cast<unsigned>(eglGetError()));
+    return buf;
+}
+
+bool has_extension(const char* list, const char* name) {
+    if (list == nullptr) return false;
+    const std::size_t len = std::strlen(name);
+    for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += len)
+        if ((p == list || p[-1] == ' ') && (p[len] == ' ' || p[len] == '\0')) return true;
+    return false;
+}
+
+void* egl_proc(const char* name) { return reinterpret_cast<void*>(eglGetProcAddress(name)); }
+
+}  // namespace
+
+struct gl_renderer::state {
+    // EGL objects, only for the headless context this class created.
+    EGLDisplay dpy = EGL_NO_DISPLAY;
+    EGLContext ctx = EGL_NO_CONTEXT;
+    EGLSurface surf = EGL_NO_SURFACE;
+
+    gl_api gl;
+    GLuint vao = 0, queries[2] = {0, 0};  // GL_TIMESTAMP before and after the draw
+    GLuint textures[3] = {0, 0, 0};  // base, detail, weather
+    GLuint fbo = 0, target = 0;      // offscreen float target for render()
+    int target_w = 0, target_h = 0;
+    std::map<std::string, GLuint> programs;  // "" for the run-time program, else the variant spec
+
+    std::string gl_errors(const char* where) const {
+        std::string text;
+        for (int i = 0; i < 8; ++i) {
+            const GLenum e = gl.GetError();
+            if (e == GL_NO_ERROR) break;
+            char buf[16];
+            std::snprintf(buf, sizeof buf, "0x%04x", e);
+            text += (text.empty() ? std::string("GL error after ") + where + ": " : ", ") + buf;
+        }
+        return text;
+    }
+
+    GLuint compile(GLenum kind, const std::string& source, std::string& why) const {
+        const GLuint sh = gl.CreateShader(kind);
+        const char* text = source.c_str();
+        gl.ShaderSource(sh, 1, &text, nullptr);
+        gl.CompileShader(sh);
+        GLint ok = 0;
+        gl.GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+        if (!ok) {
+            GLint len = 0;
+            gl.GetShaderiv(sh, GL_INFO_LOG_LENGTH, &len);
+            std::string log(static_cast<std::size_t>(len > 1 ? len : 1), '\0');
+            gl.GetShaderInfoLog(sh, len, nullptr, log.data());
+            why = std::string(kind == GL_VERTEX_SHADER ? "vertex" : "fragment") + " shader does not compile:\n" + log;
+            gl.DeleteShader(sh);
+            return 0;
+        }
+        return sh;
+    }
+
+    GLuint program_for(const variant& v, bool compile_time, std::string& why) {
+        const std::string key = compile_time ? variant_spec(v) : std::string();
+        const auto found = programs.find(key);
+        if (found != programs.end()) return found->second;
+        const GLuint vs = compile(GL_VERTEX_SHADER, vertex_shader_source(), why);
+        if (vs == 0) return 0;
+        const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment_shader_source(v, compile_time), why);
+        if (fs == 0) {
+            gl.DeleteShader(vs);
+            return 0;
+        }
+        const GLuint p = gl.CreateProgram();
+        gl.AttachShader(p, vs);
+        gl.AttachShader(p, fs);
+        gl.LinkProgram(p);
+        gl.DeleteShader(vs);
+        gl.DeleteShader(fs);
+        GLint ok = 0;
+        gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
+        if (!ok) {
+            char log[4096] = {0};
+            gl.GetProgramInfoLog(p, sizeof log, nullptr, log);
+            why = std::string("shader program does not link:\n") + log;
+            gl.DeleteProgram(p);
+            return 0;
+        }
+        programs[key] = p;
+        return p;
+    }
+
+    void release_gl() {
+        if (gl.DeleteProgram == nullptr) return;  // loading failed: nothing was created
+        for (auto& [key, p] : programs) gl.DeleteProgram(p);
+        programs.clear();
+        gl.DeleteTextures(3, textures);
+        if (target) gl.DeleteTextures(1, &target);
+        if (fbo) gl.DeleteFramebuffers(1, &fbo);
+        if (vao) gl.DeleteVertexArrays(1, &vao);
+        if (queries[0]) gl.DeleteQueries(2, queries);
+    }
+
+    ~state() {
+        if (ctx != EGL_NO_CONTEXT) {
+            if (eglMakeCurrent(dpy, surf, surf, ctx) == EGL_TRUE) release_gl();
+            eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            eglDestroyContext(dpy, ctx);
+        }
+        if (surf != EGL_NO_SURFACE) eglDestroySurface(dpy, surf);
+        if (dpy != EGL_NO_DISPLAY) eglTerminate(dpy);
+    }
+};
+
+namespace {
+
+// Loads the GL functions and creates the objects every draw needs; checks the version.
+bool init_gl(gl_renderer::state& s, gl_renderer::proc_loader load, std::string& why) {
+    const std::string missing = s.gl.load(load);
+    if (!missing.empty()) {
+        why = "OpenGL function " + missing + " not available";
+        return false;
+    }
+    GLint major = 0, minor = 0;
+    s.gl.GetIntegerv(GL_MAJOR_VERSION, &major);
+    s.gl.GetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major * 10 + minor < 41) {
+        why = "OpenGL " + std::to_string(major) + "." + std::to_string(minor) + " context; the renderer needs 4.1 core";
+        return false;
+    }
+    s.gl.GenVertexArrays(1, &s.vao);
+    s.gl.GenQueries(2, s.queries);
+    s.gl.GenTextures(3, s.textures);
+    why = s.gl_errors("context setup");
+    return why.empty();
+}
+
+// Creates a 4.1 core context on one EGL display; false with the reason.
+bool open_display(gl_renderer::state& s, EGLDisplay dpy, std::string& why) {
+    if (dpy == EGL_NO_DISPLAY) return why = "no display (" + egl_error() + ")", false;
+    if (eglInitialize(dpy, nullptr, nullptr) != EGL_TRUE) return why = "eglInitialize failed (" + egl_error() + ")", false;
+    s.dpy = dpy;
+    if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) return why = "no desktop OpenGL (" + egl_error() + ")", false;
+    const char* exts = eglQueryString(dpy, EGL_EXTENSIONS);
+    const bool surfaceless = has_extension(exts, "EGL_KHR_surfaceless_context");
+    EGLConfig config = nullptr;
+    if (!has_extension(exts, "EGL_KHR_no_config_context") || !surfaceless) {
+        const EGLint want[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, surfaceless ? 0 : EGL_PBUFFER_BIT,
+                               EGL_NONE};
+        EGLint count = 0;
+        if (eglChooseConfig(dpy, want, &config, 1, &count) != EGL_TRUE || count < 1)
+            return why = "no OpenGL EGL config (" + egl_error() + ")", false;
+    }
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 1,
+                              EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    s.ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, attribs);
+    if (s.ctx == EGL_NO_CONTEXT) return why = "no OpenGL 4.1 core context (" + egl_error() + ")", false;
+    if (!surfaceless) {
+        const EGLint size[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
+        s.surf = eglCreatePbufferSurface(dpy, config, size);
+        if (s.surf == EGL_NO_SURFACE) return why = "eglCreatePbufferSurface failed (" + egl_error() + ")", false;
+    }
+    if (eglMakeCurrent(dpy, s.surf, s.surf, s.ctx) != EGL_TRUE) return why = "eglMakeCurrent failed (" + egl_error() + ")", false;
+    return init_gl(s, &egl_proc, why);
+}
+
+}  // namespace
+
+gl_renderer::gl_renderer(std::unique_ptr<state> s) : s_(std::move(s)) {}
+gl_renderer::~gl_renderer() {
+    if (s_ && s_->ctx == EGL_NO_CONTEXT) s_->release_gl();  // the caller's context: still current
+}
+
+std::unique_ptr<gl_renderer> gl_renderer::create_headless(std::string& why) {
+    const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    std::string tried;
+    const auto attempt = [&](const char* name, auto get_display) -> std::unique_ptr<gl_renderer> {
+        auto s = std::make_unique<state>();
+        std::string reason;
+        if (open_display(*s, get_display(), reason)) return std::unique_ptr<gl_renderer>(new gl_renderer(std::move(s)));
+        tried += (tried.empty() ? "" : "; ") + std::string(name) + ": " + reason;
+        return nullptr;
+    };
+    if (has_extension(client, "EGL_MESA_platform_surfaceless")) {
+        if (auto r = attempt("surfaceless", [] {
+                return eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+            }))
+            return r;
+    }
+    if (has_extension(client, "EGL_EXT_platform_device")) {
+        const auto query = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+        EGLDeviceEXT devices[8];
+        EGLint count = 0;
+        if (query != nullptr && query(8, devices, &count) == EGL_TRUE)
+            for (EGLint i = 0; i < count; ++i)
+                if (auto r = attempt("device", [&] { return eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr); }))
+                    return r;
+    }
+    if (auto r = attempt("default display", [] { return eglGetDisplay(EGL_DEFAULT_DISPLAY); })) return r;
+    why = "no OpenGL context could be created (" + tried + ")";
+    return nullptr;
+}
+
+std::unique_ptr<gl_renderer> gl_renderer::create_for_current_context(proc_loader load, std::string& why) {
+    auto s = std::make_unique<state>();
+    if (!init_gl(*s, load, why)) return nullptr;
+    return std::unique_ptr<gl_renderer>(new gl_renderer(std::move(s)));
+}
+
+std::string gl_renderer::device() const {
+    const auto text = [this](GLenum e) {
+        const GLubyte* t = s_->gl.GetString(e);
+        return t ? std::string(reinterpret_cast<const char*>(t)) : std::string("?");
+    };
+    return text(GL_RENDERER) + ", OpenGL " + text(GL_VERSION);
+}
+
+bool gl_renderer::upload_textures(const cloud_textures& t, std::string& why) {
+    const gl_api& gl = s_->gl;
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    const auto setup = [&gl](GLenum target) {
+        gl.TexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        gl.TexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        gl.TexParameteri(target, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        gl.TexParameteri(target, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        gl.TexParameteri(target, GL_TEXTURE_WRAP_R, GL_REPEAT);
+    };
+    gl.BindTexture(GL_TEXTURE_3D, s_->textures[0]);
+    gl.TexImage3D(GL_TEXTURE_3D, 0, GL_RGBA8, t.base_size, t.base_size, t.base_size, 0, GL_RGBA, GL_UNSIGNED_BYTE, t.base.data());
+    setup(GL_TEXTURE_3D);
+    gl.BindTexture(GL_TEXTURE_3D, s_->textures[1]);
+    gl.TexImage3D(GL_TEXTURE_3D, 0, GL_RGB8, t.detail_size, t.detail_size, t.detail_size, 0, GL_RGB, GL_UNSIGNED_BYTE,
+                  t.detail.data());
+    setup(GL_TEXTURE_3D);
+    gl.BindTexture(GL_TEXTURE_2D, s_->textures[2]);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, t.weather_size, t.weather_size, 0, GL_RGB, GL_UNSIGNED_BYTE, t.weather.data());
+    setup(GL_TEXTURE_2D);
+    why = s_->gl_errors("texture upload");
+    return why.empty();
+}
+
+bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, unsigned fbo, int width, int height,
+                       double* gpu_ms, std::string& why) {
+    const gl_api& gl = s_->gl;
+    const GLuint program = s_->program_for(v, compile_time, why);
+    if (program == 0) return false;
+    gl.UseProgram(program);
+    const auto loc = [&](const char* n) { return gl.GetUniformLocation(program, n); };
+    const auto set1i = [&](const char* n, int x) { gl.Uniform1i(loc(n), x); };
+    const auto set1f = [&](const char* n, float x) { gl.Uniform1f(loc(n), x); };
+    const auto set3f = [&](const char* n, const glm::vec3& x) { gl.Uniform3f(loc(n), x.x, x.y, x.z); };
+    if (!compile_time) {
+        set1i("u_phase_model", static_cast<int>(v.phase));
+        set1i("u_octaves", v.octaves);
+        set1i("u_powder", v.powder ? 1 : 0);
+        set1i("u_light_mode", static_cast<int>(v.light));
+        set1i("u_cone_samples", v.cone_samples);
+        set1i("u_light_steps", v.light_steps);
+        set1i("u_integration", static_cast<int>(v.integration));
+        set1i("u_view_steps", v.view_steps);
+        set1i("u_jitter", v.jitter ? 1 : 0);
+    }
+    const frame_constants k = make_frame_constants(sc);
+    gl.Uniform2f(loc("u_resolution"), float(width), float(height));
+    set3f("u_forward", k.forward);
+    set3f("u_right", k.right);
+    set3f("u_up", k.up);
+    set1f("u_tan_half_fov", k.tan_half_fov);
+    set1f("u_cam_altitude", sc.camera_altitude);
+    set1f("u_planet_radius", sc.planet_radius);
+    set1f("u_layer_bottom", sc.layer_bottom);
+    set1f("u_layer_top", sc.layer_top);
+    set3f("u_sun_dir", k.sun_dir);
+    set3f("u_sun_radiance", k.sun_radiance);
+    set3f("u_ambient_top", k.ambient_top);
+    set3f("u_ambient_bottom", k.ambient_bottom);
+    set3f("u_sky_zenith", k.sky_zenith);
+    set3f("u_sky_horizon", k.sky_horizon);
+    set3f("u_ground", k.ground);
+    set1f("u_sun_cos_radius", k.sun_cos_radius);
+    set1f("u_coverage", sc.coverage);
+    set1f("u_cloud_type", sc.cloud_type);
+    set1f("u_extinction", sc.extinction);
+    set1f("u_albedo", sc.albedo);
+    set1f("u_max_distance", sc.max_distance);
+    set1f("u_base_tile", sc.base_tile);
+    set1f("u_detail_tile", sc.detail_tile);
+    set1f("u_weather_tile", sc.weather_tile);
+    gl.Uniform2f(loc("u_wind"), sc.wind.x, sc.wind.y);
+    set1f("u_exposure", sc.exposure);
+    set1f("u_phase_g", k.phase_g);
+    set1f("u_phase_g_back", k.phase_g_back);
+    set1f("u_phase_w", k.phase_w);
+    set1f("u_droplet_diameter", k.droplet_diameter);
+    set1f("u_ms_a", k.ms_a);
+    set1f("u_ms_b", k.ms_b);
+    set1f("u_ms_c", k.ms_c);
+    set1f("u_cone_step", k.cone_step);
+    set1f("u_cone_spread", k.cone_spread);
+    set1f("u_cone_far_distance", k.cone_far_distance);
+    set1f("u_cone_far_length", k.cone_far_length);
+    set1f("u_light_march_max", k.light_march_max);
+    set1f("u_min_transmittance", k.min_transmittance);
+    const char* samplers[3] = {"u_base", "u_detail", "u_weather"};
+    const GLenum kinds[3] = {GL_TEXTURE_3D, GL_TEXTURE_3D, GL_TEXTURE_2D};
+    for (int i = 0; i < 3; ++i) {
+        gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + i));
+        gl.BindTexture(kinds[i], s_->textures[i]);
+        set1i(samplers[i], i);
+    }
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    gl.Viewport(0, 0, width, height);
+    gl.BindVertexArray(s_->vao);
+    // Two GPU timestamps around the draw rather than a GL_TIME_ELAPSED query: Mesa 22's
+    // llvmpipe returns a timestamp, not a duration, for the latter.
+    gl.QueryCounter(s_->queries[0], GL_TIMESTAMP);
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    gl.QueryCounter(s_->queries[1], GL_TIMESTAMP);
+    GLuint64 start = 0, end = 0;
+    gl.GetQueryObjectui64v(s_->queries[0], GL_QUERY_RESULT, &start);
+    gl.GetQueryObjectui64v(s_->queries[1], GL_QUERY_RESULT, &end);  // waits for the draw
+    if (gpu_ms != nullptr) *gpu_ms = end > start ? double(end - start) * 1e-6 : 0.0;
+    why = s_->gl_errors("draw");
+    return why.empty();
+}
+
+bool gl_renderer::render(const scene& sc, const variant& v, bool compile_time, int width, int height, image& out,
+                         double* gpu_ms, std::string& why) {
+    const gl_api& gl = s_->gl;
+    if (s_->fbo == 0 || s_->target_w != width || s_->target_h != height) {
+        if (s_->fbo == 0) gl.GenFramebuffers(1, &s_->fbo);
+        if (s_->target == 0) gl.GenTextures(1, &s_->target);
+        gl.BindTexture(GL_TEXTURE_2D, s_->target);
+        gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, s_->fbo);
+        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, s_->target, 0);
+        if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+            why = "the float render target is not supported (framebuffer incomplete)";
+            return false;
+        }
+        s_->target_w = width;
+        s_->target_h = height;
+    }
+    if (!draw(sc, v, compile_time, s_->fbo, width, height, gpu_ms, why)) return false;
+    out.width = width;
+    out.height = height;
+    out.pixels.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), glm::vec4(0.0f));
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, out.pixels.data());
+    why = s_->gl_errors("read back");
+    return why.empty();
+}
+
+}  // namespace cloud_renderer

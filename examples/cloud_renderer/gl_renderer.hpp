@@ -1,0 +1,57 @@
+// The GPU renderer: compiles shaders/clouds.frag with the cloudmath GLSL includes, uploads
+// the baked textures and draws the full-screen pass, timed with GL timer queries.
+// It runs on a context it creates itself (headless: EGL, no display needed; Mesa llvmpipe
+// on a machine without a GPU) or on one the caller made current (the GLFW window).
+#ifndef CLOUD_RENDERER_GL_RENDERER_HPP
+#define CLOUD_RENDERER_GL_RENDERER_HPP
+
+#include "image.hpp"
+#include "scene.hpp"
+#include "textures.hpp"
+
+#include <memory>
+#include <string>
+
+namespace cloud_renderer {
+
+// The fragment shader for a variant, as compiled: #version, the variant block (uniforms, or
+// constants when compile_time), the shader file with cloudmath.glsl resolved in.
+std::string fragment_shader_source(const variant& v, bool compile_time);
+std::string vertex_shader_source();
+
+class gl_renderer {
+public:
+    using proc_loader = void* (*)(const char* name);
+
+    // An OpenGL 4.1+ core context without any window: EGL's surfaceless platform (Mesa), then
+    // EGL devices (NVIDIA), then the default display. nullptr and the reason on failure.
+    static std::unique_ptr<gl_renderer> create_headless(std::string& why);
+    // Uses the context current on this thread; `load` returns GL entry points.
+    static std::unique_ptr<gl_renderer> create_for_current_context(proc_loader load, std::string& why);
+    ~gl_renderer();
+    gl_renderer(const gl_renderer&) = delete;
+    gl_renderer& operator=(const gl_renderer&) = delete;
+
+    // "renderer name, OpenGL version" of the driver.
+    std::string device() const;
+    bool upload_textures(const cloud_textures& t, std::string& why);
+
+    // Draws into framebuffer `fbo` (0: the window) over (0, 0, width, height). compile_time:
+    // the variant is baked into the shader as constants (one program per variant, cached).
+    // gpu_ms (optional) receives the GPU time of the draw from a timer query.
+    bool draw(const scene& s, const variant& v, bool compile_time, unsigned fbo, int width, int height, double* gpu_ms,
+              std::string& why);
+    // Draws offscreen into a float target and reads it back.
+    bool render(const scene& s, const variant& v, bool compile_time, int width, int height, image& out, double* gpu_ms,
+                std::string& why);
+
+    struct state;
+
+private:
+    explicit gl_renderer(std::unique_ptr<state> s);
+    std::unique_ptr<state> s_;
+};
+
+}  // namespace cloud_renderer
+
+#endif  // CLOUD_RENDERER_GL_RENDERER_HPP

@@ -1,0 +1,259 @@
+// cloudmath_cloud_renderer: a Nubis-style cloudscape drawn with cloudmath's GLSL includes
+// (gl_renderer.cpp + shaders/clouds.frag), next to a CPU reference drawn with the C++
+// functions (cpu_renderer.cpp). Modes and options: options.cpp (--help).
+#include "cpu_renderer.hpp"
+#include "gl_renderer.hpp"
+#include "image.hpp"
+#include "options.hpp"
+#include "textures.hpp"
+#include "window.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+using namespace cloud_renderer;
+
+namespace {
+
+std::string default_cache_dir() {
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg != nullptr && *xdg != '\0') return std::string(xdg) + "/cloudmath";
+    if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0') {
+        const std::string cache = std::string(home) + "/.cache";
+        std::system(("mkdir -p '" + cache + "' 2>/dev/null").c_str());
+        return cache + "/cloudmath";
+    }
+    return {};
+}
+
+bool load_textures(const options& o, cloud_textures& t) {
+    std::string why;
+    const std::string dir = o.cache_dir == "none" ? std::string() : (o.cache_dir.empty() ? default_cache_dir() : o.cache_dir);
+    if (!load_or_bake_textures(dir, o.quiet, t, why)) {
+        std::fprintf(stderr, "error: %s\n", why.c_str());
+        return false;
+    }
+    return true;
+}
+
+std::unique_ptr<gl_renderer> open_gpu(const options& o, const cloud_textures& t) {
+    std::string why;
+    auto gpu = gl_renderer::create_headless(why);
+    if (!gpu) {
+        std::fprintf(stderr,
+                     "error: cannot render on the GPU: %s.\n"
+                     "       The headless mode needs an EGL driver (Debian: libegl-mesa0 and libgl1-mesa-dri for\n"
+                     "       Mesa's software renderer); --cpu renders the same image without OpenGL.\n",
+                     why.c_str());
+        return nullptr;
+    }
+    if (!o.quiet) std::fprintf(stderr, "OpenGL: %s\n", gpu->device().c_str());
+    if (!gpu->upload_textures(t, why)) {
+        std::fprintf(stderr, "error: %s\n", why.c_str());
+        return nullptr;
+    }
+    return gpu;
+}
+
+std::string with_suffix(const std::string& path, const char* suffix) {
+    const std::size_t dot = path.rfind(".png");
+    return dot == std::string::npos ? path + suffix + ".png" : path.substr(0, dot) + suffix + path.substr(dot);
+}
+
+bool save(const image& img, const std::string& path) {
+    if (!write_png(path, img)) {
+        std::fprintf(stderr, "error: cannot write %s\n", path.c_str());
+        return false;
+    }
+    std::printf("wrote %s (%d x %d)\n", path.c_str(), img.width, img.height);
+    return true;
+}
+
+void print_stats(const char* who, const image& img) {
+    const image_stats s = statistics(img);
+    std::printf("%s: mean brightness %.3f, cloud pixels %.1f%%, NaN pixels %d\n", who, s.mean_brightness,
+                100.0 * s.cloud_fraction, s.nan_pixels);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+int run_headless(const options& o) {
+    cloud_textures t;
+    if (!load_textures(o, t)) return 1;
+    auto gpu = open_gpu(o, t);
+    if (!gpu) return 1;
+    image img;
+    std::string why;
+    double ms = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    if (!gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &ms, why)) {
+        std::fprintf(stderr, "error: %s\n", why.c_str());
+        return 1;
+    }
+    std::printf("GPU: preset %s, %d x %d, %s%s: %.1f ms (GL timer; %.2f s with shader compilation)\n", o.sc.name.c_str(),
+                o.width, o.height, variant_spec(o.var).c_str(), o.compile_time ? " (compile-time)" : "", ms,
+                seconds_since(t0));
+    print_stats("GPU image", img);
+    return save(img, o.out.empty() ? "clouds.png" : o.out) ? 0 : 1;
+}
+
+int run_cpu(const options& o) {
+    cloud_textures t;
+    if (!load_textures(o, t)) return 1;
+    const auto t0 = std::chrono::steady_clock::now();
+    const image img = render_cpu(o.sc, o.var, t, o.width, o.height);
+    std::printf("CPU: preset %s, %d x %d, %s: %.2f s\n", o.sc.name.c_str(), o.width, o.height, variant_spec(o.var).c_str(),
+                seconds_since(t0));
+    print_stats("CPU image", img);
+    return save(img, o.out.empty() ? "clouds_cpu.png" : o.out) ? 0 : 1;
+}
+
+int run_compare(const options& o) {
+    cloud_textures t;
+    if (!load_textures(o, t)) return 1;
+    auto gpu = open_gpu(o, t);
+    if (!gpu) return 1;
+    image g;
+    std::string why;
+    double ms = 0;
+    if (!gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, g, &ms, why)) {
+        std::fprintf(stderr, "error: %s\n", why.c_str());
+        return 1;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    const image c = render_cpu(o.sc, o.var, t, o.width, o.height);
+    const double cpu_s = seconds_since(t0);
+    const image_difference d = compare(g, c);
+    std::printf("preset %s, %d x %d, %s: GPU %.1f ms, CPU %.2f s\n", o.sc.name.c_str(), o.width, o.height,
+                variant_spec(o.var).c_str(), ms, cpu_s);
+    print_stats("GPU image", g);
+    print_stats("CPU image", c);
+    std::printf("GPU vs CPU: PSNR %.2f dB, max difference %.4f, RMS %.5f\n", d.psnr_db, d.max_abs, d.rms);
+    const std::string out = o.out.empty() ? "clouds.png" : o.out;
+    if (!save(g, out) || !save(c, with_suffix(out, "_cpu"))) return 1;
+    if (o.min_psnr > 0 && !(d.psnr_db >= o.min_psnr)) {
+        std::fprintf(stderr, "error: PSNR %.2f dB is below --min-psnr %.2f\n", d.psnr_db, o.min_psnr);
+        return 1;
+    }
+    return 0;
+}
+
+// The variants of --bench: each is the default with one change; the first is the reference
+// that the PSNR column is measured against (many steps, full light march, Mie phase).
+struct bench_row {
+    const char* label;
+    const char* spec;
+    bool compile_time;
+};
+const std::vector<bench_row>& bench_rows() {
+    static const std::vector<bench_row> rows = {
+        {"reference: 256 steps, light march 32 steps, Mie phase, no jitter",
+         "steps=256,light=march,light-steps=32,phase=mie,jitter=off", false},
+        {"default: 64 steps, cone 6 samples, dual-lobe HG, 3 octaves, powder", "", false},
+        {"default, variant compiled in as constants", "", true},
+        {"phase: HG", "phase=hg", false},
+        {"phase: Cornette-Shanks", "phase=cs", false},
+        {"phase: Mie fit", "phase=mie", false},
+        {"octaves: 1", "octaves=1", false},
+        {"octaves: 2", "octaves=2", false},
+        {"octaves: 4", "octaves=4", false},
+        {"octaves: 8", "octaves=8", false},
+        {"powder off", "powder=off", false},
+        {"cone: 4 samples", "cone-samples=4", false},
+        {"light march: 8 steps", "light=march,light-steps=8", false},
+        {"light march: 32 steps", "light=march,light-steps=32", false},
+        {"naive (Riemann) integration", "integration=naive", false},
+        {"view steps: 32", "steps=32", false},
+        {"view steps: 128", "steps=128", false},
+        {"jitter off", "jitter=off", false},
+    };
+    return rows;
+}
+
+int run_bench(const options& o) {
+    cloud_textures t;
+    if (!load_textures(o, t)) return 1;
+    auto gpu = open_gpu(o, t);
+    if (!gpu) return 1;
+    std::ostringstream table;
+    table << "Preset `" << o.sc.name << "`, " << o.width << " x " << o.height << ", " << gpu->device() << ". Time: median GPU time "
+          << "(GL timer query) of " << o.frames << " frames after one warm-up frame. PSNR: against the first row.\n\n"
+          << "| Variant | --variant | ms per frame | PSNR against the reference (dB) |\n|---|---|---:|---:|\n";
+    image reference;
+    for (std::size_t r = 0; r < bench_rows().size(); ++r) {
+        const bench_row& row = bench_rows()[r];
+        variant v = o.var;
+        std::string why = apply_variant_spec(row.spec, v);
+        image img;
+        std::vector<double> times;
+        for (int f = 0; f <= o.frames && why.empty(); ++f) {
+            double ms = 0;
+            if (!gpu->render(o.sc, v, row.compile_time, o.width, o.height, img, &ms, why)) break;
+            if (f > 0) times.push_back(ms);
+        }
+        if (!why.empty()) {
+            std::fprintf(stderr, "error: variant '%s': %s\n", row.spec, why.c_str());
+            return 1;
+        }
+        std::sort(times.begin(), times.end());
+        const double median = times[times.size() / 2];
+        if (r == 0) reference = img;
+        const double psnr = compare(img, reference).psnr_db;
+        char psnr_text[32];
+        if (r == 0) std::snprintf(psnr_text, sizeof psnr_text, "reference");
+        else if (std::isinf(psnr)) std::snprintf(psnr_text, sizeof psnr_text, "identical");
+        else std::snprintf(psnr_text, sizeof psnr_text, "%.1f", psnr);
+        char line[512];
+        std::snprintf(line, sizeof line, "| %s | `%s`%s | %.1f | %s |\n", row.label, *row.spec ? row.spec : "(default)",
+                      row.compile_time ? " `--compile-time`" : "", median, psnr_text);
+        table << line;
+        if (!o.quiet) std::fprintf(stderr, "bench: %s: %.1f ms\n", row.label, median);
+    }
+    std::printf("%s", table.str().c_str());
+    if (!o.bench_out.empty()) {
+        std::ofstream out(o.bench_out);
+        out << table.str();
+        if (!out) {
+            std::fprintf(stderr, "error: cannot write %s\n", o.bench_out.c_str());
+            return 1;
+        }
+        std::printf("wrote %s\n", o.bench_out.c_str());
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    options o;
+    const std::string error = parse_options(argc, argv, o);
+    if (!error.empty()) {
+        std::fprintf(stderr, "cloudmath_cloud_renderer: %s\n", error.c_str());
+        return 2;
+    }
+    switch (o.mode) {
+    case run_mode::help: std::printf("%s", usage_text()); return 0;
+    case run_mode::list_presets:
+        for (const scene& s : presets())
+            std::printf("%-11s %s (camera %g m, pitch %g, sun elevation %g, coverage %g, type %g)\n", s.name.c_str(),
+                        s.description.c_str(), double(s.camera_altitude), double(s.pitch), double(s.sun_elevation),
+                        double(s.coverage), double(s.cloud_type));
+        return 0;
+    case run_mode::dump_shader: std::printf("%s", fragment_shader_source(o.var, o.compile_time).c_str()); return 0;
+    case run_mode::headless: return run_headless(o);
+    case run_mode::cpu: return run_cpu(o);
+    case run_mode::compare: return run_compare(o);
+    case run_mode::bench: return run_bench(o);
+    case run_mode::window: break;
+    }
+    cloud_textures t;
+    if (!load_textures(o, t)) return 1;
+    return run_window(o, t);
+}

@@ -1,0 +1,138 @@
+#include "options.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <vector>
+
+namespace cloud_renderer {
+namespace {
+
+bool to_number(const std::string& text, double lo, double hi, double& out) {
+    if (text.empty()) return false;
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (*end != '\0' || !std::isfinite(v) || v < lo || v > hi) return false;
+    out = v;
+    return true;
+}
+
+std::string range_text(double lo, double hi) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "a number from %g to %g", lo, hi);
+    return buf;
+}
+
+}  // namespace
+
+const char* usage_text() {
+    return "usage: cloudmath_cloud_renderer [mode] [options]\n"
+           "modes (default: a window):\n"
+           "  --headless          render once on the GPU without a window (EGL), write a PNG\n"
+           "  --cpu               render with the C++ reference on all cores, write a PNG\n"
+           "  --compare           render on both, print PSNR and max difference, write both PNGs\n"
+           "  --bench             render every lighting variant, print ms per frame and PSNR\n"
+           "                      against the reference variant as a markdown table\n"
+           "  --list-presets      print the scene presets\n"
+           "  --dump-shader       print the fragment shader as compiled for the variant\n"
+           "options:\n"
+           "  --preset NAME       scene preset (default: ground; see --list-presets)\n"
+           "  --variant SPEC      lighting variant, e.g. phase=mie,octaves=4,powder=off,light=march,\n"
+           "                      light-steps=32,cone-samples=6,integration=naive,steps=128,jitter=off\n"
+           "  --compile-time      bake the variant into the shader as constants (else uniforms)\n"
+           "  --width N, --height N   image size (default 1280 x 720; 16 to 8192)\n"
+           "  --out FILE          PNG to write (default clouds.png; --cpu: clouds_cpu.png;\n"
+           "                      --compare: FILE and FILE with _cpu before .png)\n"
+           "  --bench-out FILE    also write the --bench table to FILE\n"
+           "  --frames N          --bench: timed frames per variant, after one warm-up (1 to 100, default 3)\n"
+           "  --min-psnr DB       --compare: exit with status 1 if the PSNR is below DB\n"
+           "  --cache DIR         texture cache directory (default ~/.cache/cloudmath; none: off)\n"
+           "  --altitude M, --yaw DEG, --pitch DEG, --fov DEG          camera\n"
+           "  --sun-elevation DEG, --sun-azimuth DEG                   sun\n"
+           "  --coverage X, --cloud-type X (0 stratus .. 1 cumulus), --exposure X\n"
+           "  --quiet             no progress lines\n"
+           "  --help              this text\n";
+}
+
+std::string parse_options(int argc, const char* const* argv, options& o) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    bool mode_given = false;
+    const auto set_mode = [&](run_mode m, const std::string& flag) -> std::string {
+        if (mode_given && o.mode != m) return "choose one mode; " + flag + " conflicts with an earlier mode flag";
+        o.mode = m;
+        mode_given = true;
+        return {};
+    };
+    // The preset first, wherever it is, so that scene flags always override it.
+    for (std::size_t i = 0; i + 1 < args.size(); ++i)
+        if (args[i] == "--preset") {
+            const scene* p = find_preset(args[i + 1]);
+            if (p == nullptr) {
+                std::string names;
+                for (const scene& s : presets()) names += (names.empty() ? "" : ", ") + s.name;
+                return "unknown preset '" + args[i + 1] + "' (known: " + names + ")";
+            }
+            o.sc = *p;
+        }
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        const auto value = [&](std::string& v) -> bool {
+            if (i + 1 >= args.size()) return false;
+            v = args[++i];
+            return true;
+        };
+        // A numeric option in [lo, hi]; writes the value through `store`.
+        const auto number = [&](double lo, double hi, auto store) -> std::string {
+            std::string v;
+            if (!value(v)) return a + " needs a value (" + range_text(lo, hi) + ")";
+            double x = 0;
+            if (!to_number(v, lo, hi, x)) return a + " must be " + range_text(lo, hi) + ", not '" + v + "'";
+            store(x);
+            return {};
+        };
+        std::string err;
+        if (a == "--headless") err = set_mode(run_mode::headless, a);
+        else if (a == "--cpu") err = set_mode(run_mode::cpu, a);
+        else if (a == "--compare") err = set_mode(run_mode::compare, a);
+        else if (a == "--bench") err = set_mode(run_mode::bench, a);
+        else if (a == "--list-presets") err = set_mode(run_mode::list_presets, a);
+        else if (a == "--dump-shader") err = set_mode(run_mode::dump_shader, a);
+        else if (a == "--help" || a == "-h") err = set_mode(run_mode::help, a);
+        else if (a == "--compile-time") o.compile_time = true;
+        else if (a == "--quiet") o.quiet = true;
+        else if (a == "--preset") {
+            std::string v;
+            if (!value(v)) return "--preset needs a name (see --list-presets)";  // applied above
+        } else if (a == "--variant") {
+            std::string v;
+            if (!value(v)) return "--variant needs a spec such as phase=mie,octaves=4";
+            err = apply_variant_spec(v, o.var);
+            if (!err.empty()) return "--variant: " + err;
+        } else if (a == "--width") err = number(16, 8192, [&](double x) { o.width = static_cast<int>(x); });
+        else if (a == "--height") err = number(16, 8192, [&](double x) { o.height = static_cast<int>(x); });
+        else if (a == "--frames") err = number(1, 100, [&](double x) { o.frames = static_cast<int>(x); });
+        else if (a == "--min-psnr") err = number(0, 200, [&](double x) { o.min_psnr = x; });
+        else if (a == "--altitude") err = number(0, 100000, [&](double x) { o.sc.camera_altitude = float(x); });
+        else if (a == "--yaw") err = number(-360, 360, [&](double x) { o.sc.yaw = float(x); });
+        else if (a == "--pitch") err = number(-89, 89, [&](double x) { o.sc.pitch = float(x); });
+        else if (a == "--fov") err = number(10, 120, [&](double x) { o.sc.fov_y = float(x); });
+        else if (a == "--sun-elevation") err = number(-10, 90, [&](double x) { o.sc.sun_elevation = float(x); });
+        else if (a == "--sun-azimuth") err = number(-360, 360, [&](double x) { o.sc.sun_azimuth = float(x); });
+        else if (a == "--coverage") err = number(0, 1, [&](double x) { o.sc.coverage = float(x); });
+        else if (a == "--cloud-type") err = number(0, 1, [&](double x) { o.sc.cloud_type = float(x); });
+        else if (a == "--exposure") err = number(0.01, 100, [&](double x) { o.sc.exposure = float(x); });
+        else if (a == "--out" || a == "--bench-out" || a == "--cache") {
+            std::string v;
+            if (!value(v) || v.empty()) return a + " needs a path";
+            (a == "--out" ? o.out : a == "--bench-out" ? o.bench_out : o.cache_dir) = v;
+        } else {
+            return "unknown option '" + a + "' (see --help)";
+        }
+        if (!err.empty()) return err;
+        // Whole-number options given a fraction: say so rather than truncate silently.
+        if ((a == "--width" || a == "--height" || a == "--frames") && args[i].find_first_not_of("0123456789") != std::string::npos)
+            return a + " must be a whole number, not '" + args[i] + "'";
+    }
+    return {};
+}
+
+}  // namespace cloud_renderer

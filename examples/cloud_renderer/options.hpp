@@ -1,0 +1,35 @@
+// Command line of the cloud renderer.
+#ifndef CLOUD_RENDERER_OPTIONS_HPP
+#define CLOUD_RENDERER_OPTIONS_HPP
+
+#include "scene.hpp"
+
+#include <string>
+
+namespace cloud_renderer {
+
+enum class run_mode { window, headless, cpu, compare, bench, list_presets, dump_shader, help };
+
+struct options {
+    run_mode mode = run_mode::window;
+    scene sc = presets().front();
+    variant var;
+    bool compile_time = false;   // variant as shader constants instead of uniforms
+    int width = 1280, height = 720;
+    std::string out;             // PNG path (headless, cpu, compare); empty: the mode's default
+    std::string bench_out;       // markdown table of --bench; empty: stdout only
+    std::string cache_dir;       // texture cache; "none" disables
+    int frames = 3;              // --bench: timed frames per variant (after one warm-up)
+    double min_psnr = 0;         // --compare: fail below this (0: never)
+    bool quiet = false;
+};
+
+// Parses argv into `out`. Returns an empty string on success, else a one-line message for
+// the user (unknown flag, missing or out-of-range value, ...). Scene flags override the
+// preset's values wherever they stand.
+std::string parse_options(int argc, const char* const* argv, options& out);
+const char* usage_text();
+
+}  // namespace cloud_renderer
+
+#endif  // CLOUD_RENDERER_OPTIONS_HPP

@@ -1,0 +1,184 @@
+#include "scene.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace cloud_renderer {
+namespace {
+
+constexpr float degrees = 3.14159265358979f / 180.0f;
+
+scene make(const char* name, const char* description, float altitude, float yaw, float pitch, float sun_elevation,
+           float sun_azimuth, float coverage, float cloud_type) {
+    scene s;
+    s.name = name;
+    s.description = description;
+    s.camera_altitude = altitude;
+    s.yaw = yaw;
+    s.pitch = pitch;
+    s.sun_elevation = sun_elevation;
+    s.sun_azimuth = sun_azimuth;
+    s.coverage = coverage;
+    s.cloud_type = cloud_type;
+    return s;
+}
+
+// Unit vector of a compass heading and an elevation (frame of scene.hpp).
+glm::vec3 direction(float heading_deg, float elevation_deg) {
+    const float h = heading_deg * degrees, e = elevation_deg * degrees;
+    return {std::cos(e) * std::sin(h), std::sin(e), -std::cos(e) * std::cos(h)};
+}
+
+// Parses an integer in [lo, hi]; false if it is not one.
+bool parse_int(const std::string& text, int lo, int hi, int& out) {
+    if (text.empty()) return false;
+    char* end = nullptr;
+    const long v = std::strtol(text.c_str(), &end, 10);
+    if (*end != '\0' || v < lo || v > hi) return false;
+    out = static_cast<int>(v);
+    return true;
+}
+
+bool parse_switch(const std::string& text, bool& out) {
+    if (text == "on" || text == "1" || text == "true") return out = true, true;
+    if (text == "off" || text == "0" || text == "false") return out = false, true;
+    return false;
+}
+
+}  // namespace
+
+const std::vector<scene>& presets() {
+    static const std::vector<scene> all = [] {
+        std::vector<scene> v;
+        v.push_back(make("ground", "on the ground looking up, sun high", 2, 0, 28, 50, 140, 0.3f, 0.65f));
+        v.push_back(make("horizon", "on the ground at the horizon, low sun ahead", 2, 250, 12, 6, 265, 0.3f, 0.7f));
+        v.push_back(make("sun_behind", "looking away from a low sun", 2, 70, 15, 15, 250, 0.32f, 0.7f));
+        v.push_back(make("inside", "inside the layer, looking across it", 2700, 20, 0, 30, 160, 0.28f, 0.6f));
+        v.push_back(make("above", "above the clouds looking down, low sun", 7000, 200, -18, 10, 230, 0.33f, 0.75f));
+        v.push_back(make("stratus", "overcast stratus from the ground", 2, 40, 22, 35, 100, 0.6f, 0.0f));
+        v.push_back(make("cumulus", "scattered cumulus, sun high", 2, 300, 18, 60, 180, 0.27f, 1.0f));
+        return v;
+    }();
+    return all;
+}
+
+const scene* find_preset(const std::string& name) {
+    for (const scene& s : presets())
+        if (s.name == name) return &s;
+    return nullptr;
+}
+
+frame_constants make_frame_constants(const scene& s) {
+    frame_constants f{};
+    const float pitch = s.pitch > 89.0f ? 89.0f : (s.pitch < -89.0f ? -89.0f : s.pitch);
+    f.forward = direction(s.yaw, pitch);
+    f.right = glm::normalize(glm::vec3(std::cos(s.yaw * degrees), 0.0f, std::sin(s.yaw * degrees)));
+    f.up = glm::cross(f.right, f.forward);
+    f.tan_half_fov = std::tan(0.5f * s.fov_y * degrees);
+    f.sun_dir = direction(s.sun_azimuth, s.sun_elevation);
+
+    // Sunlight reddens toward the horizon: Beer-Lambert through the Kasten-Young air mass
+    // with a per-channel optical depth (a look, not a sky model).
+    const float e = s.sun_elevation < -2.0f ? -2.0f : s.sun_elevation;
+    const float air_mass = 1.0f / (std::sin(std::fmax(e, 0.0f) * degrees) + 0.50572f * std::pow(e + 6.07995f + 2.0f, -1.6364f));
+    const glm::vec3 tau_air(0.06f, 0.13f, 0.30f);
+    const glm::vec3 sun = glm::vec3(std::exp(-tau_air.x * air_mass), std::exp(-tau_air.y * air_mass),
+                                    std::exp(-tau_air.z * air_mass));
+    const float day = glm::clamp((s.sun_elevation + 4.0f) / 14.0f, 0.05f, 1.0f);  // dims the sky at dusk
+    f.sun_radiance = sun * 12.0f;
+    f.sky_zenith = glm::vec3(0.16f, 0.30f, 0.62f) * day;
+    f.sky_horizon = glm::mix(glm::vec3(0.62f, 0.72f, 0.86f), glm::vec3(0.85f, 0.62f, 0.45f), 1.0f - day) * day;
+    f.ground = glm::vec3(0.12f, 0.11f, 0.09f) * day;
+    f.ambient_top = glm::mix(f.sky_zenith, f.sky_horizon, 0.4f) * 1.1f;
+    f.ambient_bottom = f.ground * 1.5f + 0.25f * f.ambient_top;
+    f.sun_cos_radius = std::cos(0.6f * degrees);  // drawn larger than the real 0.27 degrees
+
+    f.phase_g = 0.8f;
+    f.phase_g_back = -0.25f;
+    f.phase_w = 0.2f;
+    f.droplet_diameter = 15.0f;
+    f.ms_a = 0.5f;
+    f.ms_b = 0.5f;
+    f.ms_c = 0.5f;
+    f.cone_step = 120.0f;
+    f.cone_spread = 0.4f;
+    f.cone_far_distance = 1800.0f;
+    f.cone_far_length = 900.0f;
+    f.light_march_max = 6000.0f;
+    f.min_transmittance = 0.01f;
+    return f;
+}
+
+const char* name(phase_model p) {
+    switch (p) {
+    case phase_model::hg: return "hg";
+    case phase_model::dual_hg: return "dual_hg";
+    case phase_model::cornette_shanks: return "cs";
+    case phase_model::mie: return "mie";
+    }
+    return "?";
+}
+const char* name(light_mode l) { return l == light_mode::cone ? "cone" : "march"; }
+const char* name(integration_mode i) { return i == integration_mode::analytic ? "analytic" : "naive"; }
+
+std::string apply_variant_spec(const std::string& spec, variant& v) {
+    variant out = v;
+    std::stringstream items(spec);
+    std::string item;
+    while (std::getline(items, item, ',')) {
+        if (item.empty()) continue;
+        const std::size_t eq = item.find('=');
+        if (eq == std::string::npos) return "variant item '" + item + "' is not key=value";
+        const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
+        bool ok = true;
+        if (key == "phase") {
+            if (value == "hg") out.phase = phase_model::hg;
+            else if (value == "dual_hg" || value == "dual") out.phase = phase_model::dual_hg;
+            else if (value == "cs" || value == "cornette_shanks") out.phase = phase_model::cornette_shanks;
+            else if (value == "mie") out.phase = phase_model::mie;
+            else return "phase must be hg, dual_hg, cs or mie, not '" + value + "'";
+        } else if (key == "octaves") {
+            ok = parse_int(value, 1, 8, out.octaves);
+            if (!ok) return "octaves must be an integer from 1 to 8, not '" + value + "'";
+        } else if (key == "powder") {
+            if (!parse_switch(value, out.powder)) return "powder must be on or off, not '" + value + "'";
+        } else if (key == "light") {
+            if (value == "cone") out.light = light_mode::cone;
+            else if (value == "march") out.light = light_mode::march;
+            else return "light must be cone or march, not '" + value + "'";
+        } else if (key == "cone-samples") {
+            if (!parse_int(value, 2, 16, out.cone_samples))
+                return "cone-samples must be an integer from 2 to 16, not '" + value + "'";
+        } else if (key == "light-steps") {
+            if (!parse_int(value, 1, 256, out.light_steps))
+                return "light-steps must be an integer from 1 to 256, not '" + value + "'";
+        } else if (key == "integration") {
+            if (value == "analytic") out.integration = integration_mode::analytic;
+            else if (value == "naive") out.integration = integration_mode::naive;
+            else return "integration must be analytic or naive, not '" + value + "'";
+        } else if (key == "steps") {
+            if (!parse_int(value, 8, 1024, out.view_steps))
+                return "steps must be an integer from 8 to 1024, not '" + value + "'";
+        } else if (key == "jitter") {
+            if (!parse_switch(value, out.jitter)) return "jitter must be on or off, not '" + value + "'";
+        } else {
+            return "unknown variant key '" + key +
+                   "' (known: phase, octaves, powder, light, cone-samples, light-steps, integration, steps, jitter)";
+        }
+    }
+    v = out;
+    return {};
+}
+
+std::string variant_spec(const variant& v) {
+    std::ostringstream s;
+    s << "phase=" << name(v.phase) << ",octaves=" << v.octaves << ",powder=" << (v.powder ? "on" : "off")
+      << ",light=" << name(v.light) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
+      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",jitter=" << (v.jitter ? "on" : "off");
+    return s.str();
+}
+
+}  // namespace cloud_renderer

@@ -1,0 +1,102 @@
+// The scene and the lighting variant of the cloud renderer: plain data shared by the GPU
+// renderer (which turns it into shader uniforms or constants) and the CPU reference (which
+// reads it directly), so both draw exactly the same thing.
+//
+// Frame:  the camera sits at the origin, altitude `camera_altitude` above a planet whose
+//         centre is straight below it; +y is up at the camera, -z is north, +x east.
+//         Positions are camera-relative (metres); the cloud textures are looked up at
+//         (x + wind.x, altitude, z + wind.y), so the clouds follow the planet's curvature and
+//         stay put when the camera climbs.
+#ifndef CLOUD_RENDERER_SCENE_HPP
+#define CLOUD_RENDERER_SCENE_HPP
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <string>
+#include <vector>
+
+namespace cloud_renderer {
+
+enum class phase_model { hg, dual_hg, cornette_shanks, mie };
+enum class light_mode { cone, march };
+enum class integration_mode { analytic, naive };
+
+// What the issue calls a lighting variant. Defaults: the production choice (cone light with
+// the far sample, 3 octaves, dual-lobe HG, powder, energy-conserving steps, jitter).
+struct variant {
+    phase_model phase = phase_model::dual_hg;
+    int octaves = 3;                 // Wrenninge octaves, 1..8
+    bool powder = true;              // Schneider's powder term
+    light_mode light = light_mode::cone;
+    int cone_samples = 6;            // cone: samples toward the sun, the far one included (2..16)
+    int light_steps = 16;            // march: midpoint steps to the top of the layer (1..256)
+    integration_mode integration = integration_mode::analytic;
+    int view_steps = 64;             // steps along the view ray through the layer (8..1024)
+    bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
+};
+
+// The picture: camera, sun, sky, clouds. Angles in degrees, lengths in metres.
+struct scene {
+    std::string name = "custom";
+    std::string description;
+    float camera_altitude = 2.0f;
+    float yaw = 0.0f;                // compass heading of the view, 0 = north (-z), 90 = east
+    float pitch = 10.0f;             // elevation of the view above the horizon
+    float fov_y = 60.0f;             // vertical field of view
+    float sun_elevation = 30.0f;
+    float sun_azimuth = 30.0f;       // compass heading of the sun
+    float coverage = 0.3f;           // mean cloud coverage, 0..1 (shifts the weather map)
+    float cloud_type = 0.6f;         // 0 stratus, 0.5 stratocumulus, 1 cumulus
+    float planet_radius = 6371000.0f;
+    float layer_bottom = 1500.0f;
+    float layer_top = 4000.0f;
+    float extinction = 0.04f;        // sigma_t (1/m) at density 1
+    float albedo = 0.99f;            // sigma_s / sigma_t
+    float max_distance = 35000.0f;   // the view march stops this far from where it enters
+    float base_tile = 12000.0f;      // metres covered by one repeat of the base volume
+    float detail_tile = 1500.0f;     // ... of the detail volume
+    float weather_tile = 60000.0f;   // ... of the weather map
+    glm::vec2 wind{1200.0f, -800.0f};  // offset of the textures (animate it for wind)
+    float exposure = 1.0f;
+};
+
+// Every preset, in the order --list-presets prints them; the first is the default.
+const std::vector<scene>& presets();
+// The preset with this name, or nullptr.
+const scene* find_preset(const std::string& name);
+
+// Derived values both renderers use, computed once on the CPU in float (so the GPU gets the
+// very same numbers as uniforms): the camera basis, the sun direction and colours, and the
+// light and phase parameters.
+struct frame_constants {
+    glm::vec3 forward, right, up;    // camera basis (camera frame as described above)
+    float tan_half_fov;
+    glm::vec3 sun_dir;               // unit, toward the sun
+    glm::vec3 sun_radiance;          // colour * intensity of direct sunlight
+    glm::vec3 ambient_top, ambient_bottom;  // isotropic sky light at the layer top / bottom
+    glm::vec3 sky_zenith, sky_horizon, ground;
+    float sun_cos_radius;            // cosine of the sun disc's angular radius
+    float phase_g, phase_g_back, phase_w;   // HG / Cornette-Shanks g; dual lobe second g, weight
+    float droplet_diameter;          // Mie fit, micrometres
+    float ms_a, ms_b, ms_c;          // octave factors (attenuation, contribution, eccentricity)
+    float cone_step, cone_spread, cone_far_distance, cone_far_length;
+    float light_march_max;           // the light march covers at most this far
+    float min_transmittance;         // early exit of the view march
+};
+
+frame_constants make_frame_constants(const scene& s);
+
+// "phase=mie,octaves=4,powder=off,light=march,light-steps=32,integration=naive,steps=128,
+// jitter=off" (any subset, applied over `v`). Returns an empty string on success, else the
+// message for the user.
+std::string apply_variant_spec(const std::string& spec, variant& v);
+// The same notation back, every field.
+std::string variant_spec(const variant& v);
+const char* name(phase_model p);
+const char* name(light_mode l);
+const char* name(integration_mode i);
+
+}  // namespace cloud_renderer
+
+#endif  // CLOUD_RENDERER_SCENE_HPP

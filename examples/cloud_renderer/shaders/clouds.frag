@@ -1,0 +1,175 @@
+// clouds.frag: one full-screen pass that ray-marches a spherical cloud layer. Every piece of
+// cloud math is a cloudmath GLSL function (cm_*); this file is the glue: the camera ray, the
+// textures, the march loop and the switches between lighting variants. cpu_renderer.cpp is
+// the same program in C++ with cloudmath's C++ functions, line for line.
+//
+// The host (gl_renderer.cpp) prepends, in this order:
+//   #version 410 core
+//   the variant block: for run-time variants `#define CR_PARAM(type, name) uniform type name;`,
+//     for compile-time variants `const int u_phase_model = 3;` ... and an empty CR_PARAM,
+//     so the driver folds the switches away;
+// and replaces the line `#include "cloudmath.glsl"` below with cloudmath::glsl_source().
+// Frame and units: see scene.hpp (camera at the origin, +y up, metres).
+
+// The lighting variant (values in scene.hpp's `variant`).
+CR_PARAM(int, u_phase_model)      // 0 HG, 1 dual-lobe HG, 2 Cornette-Shanks, 3 Mie fit
+CR_PARAM(int, u_octaves)          // Wrenninge octaves
+CR_PARAM(int, u_powder)           // 0 off, 1 on
+CR_PARAM(int, u_light_mode)       // 0 cone, 1 full light march
+CR_PARAM(int, u_cone_samples)
+CR_PARAM(int, u_light_steps)
+CR_PARAM(int, u_integration)      // 0 energy-conserving (analytic), 1 naive Riemann sum
+CR_PARAM(int, u_view_steps)
+CR_PARAM(int, u_jitter)
+
+// The scene (scene.hpp's `scene` and `frame_constants`).
+uniform vec2 u_resolution;
+uniform vec3 u_forward, u_right, u_up;
+uniform float u_tan_half_fov;
+uniform float u_cam_altitude, u_planet_radius, u_layer_bottom, u_layer_top;
+uniform vec3 u_sun_dir, u_sun_radiance, u_ambient_top, u_ambient_bottom;
+uniform vec3 u_sky_zenith, u_sky_horizon, u_ground;
+uniform float u_sun_cos_radius;
+uniform float u_coverage, u_cloud_type, u_extinction, u_albedo, u_max_distance;
+uniform float u_base_tile, u_detail_tile, u_weather_tile;
+uniform vec2 u_wind;
+uniform float u_exposure;
+uniform float u_phase_g, u_phase_g_back, u_phase_w, u_droplet_diameter;
+uniform float u_ms_a, u_ms_b, u_ms_c;
+uniform float u_cone_step, u_cone_spread, u_cone_far_distance, u_cone_far_length;
+uniform float u_light_march_max, u_min_transmittance;
+
+uniform sampler3D u_base;      // 128^3 RGBA8: Perlin-Worley + Worley fBm (noise_bake.hpp)
+uniform sampler3D u_detail;    // 32^3 RGB8: Worley fBm
+uniform sampler2D u_weather;   // 256^2 RGB8: R coverage (G type and B rain unused here)
+
+out vec4 out_color;  // rgb: display colour in [0, 1]; a: cloud opacity
+
+// cloudmath calls these back (declared before the include, defined below).
+float cr_cone_extinction(vec3 p, int i);
+float cr_phase(float mu, float scale);
+#define CM_CONE_EXTINCTION cr_cone_extinction
+#define CM_MS_PHASE cr_phase
+#include "cloudmath.glsl"
+
+CmMieApproxParams cr_mie;  // set once per pixel in main()
+
+// Altitude of a camera-relative point, without |p - centre| - R's cancellation.
+float cr_altitude(vec3 p) {
+    float t = length(p);
+    return t > 0.0 ? cm_altitude_along_ray(u_cam_altitude, p.y / t, u_planet_radius, t) : u_cam_altitude;
+}
+
+// Nubis density at p, step by step so that the detail volume is read only where the base
+// cloud survives coverage (what cm_nubis_density computes in one call).
+float cr_density(vec3 p, float altitude) {
+    float h = cm_height_fraction(altitude, u_layer_bottom, u_layer_top);
+    if (h <= 0.0 || h >= 1.0) return 0.0;
+    vec3 q = vec3(p.x + u_wind.x, altitude, p.z + u_wind.y);
+    float coverage = cm_saturate(texture(u_weather, q.xz / u_weather_tile).r - 0.5 + u_coverage);
+    vec4 base = texture(u_base, q / u_base_tile);
+    float shaped = cm_nubis_base_cloud(base) * cm_height_gradient_for_type(h, u_cloud_type);
+    float covered = cm_apply_coverage(shaped, coverage);
+    if (covered <= 0.0) return 0.0;
+    vec3 detail = texture(u_detail, q / u_detail_tile).rgb;
+    return cm_erode(covered, cm_nubis_detail_erosion(detail, h));
+}
+
+float cr_cone_extinction(vec3 p, int i) { return u_extinction * cr_density(p, cr_altitude(p)); }
+
+// The phase model with eccentricities scaled by `scale` (c^i of octave i).
+float cr_phase(float mu, float scale) {
+    if (u_phase_model == 0) return cm_phase_hg(mu, scale * u_phase_g);
+    if (u_phase_model == 1) return cm_phase_hg_dual(mu, scale * u_phase_g, scale * u_phase_g_back, u_phase_w);
+    if (u_phase_model == 2) return cm_phase_cornette_shanks(mu, scale * u_phase_g);
+    CmMieApproxParams m = cr_mie;
+    m.g_hg *= scale;
+    m.g_draine *= scale;
+    return cm_phase_mie_approx(mu, m);
+}
+
+// Optical depth from p toward the sun.
+float cr_light_optical_depth(vec3 p, float altitude) {
+    if (u_light_mode == 0) {
+        CmConeLightConfig cone = CmConeLightConfig(u_cone_samples, u_cone_step, u_cone_spread,
+                                                   u_cone_far_distance, u_cone_far_length);
+        return cm_cone_optical_depth(p, u_sun_dir, cone);
+    }
+    // Full march: midpoint steps up to where the sun ray leaves the layer.
+    vec3 up = normalize(vec3(p.x, p.y + (u_planet_radius + u_cam_altitude), p.z));
+    vec2 seg = cm_cloud_layer_segment(altitude, dot(u_sun_dir, up), u_planet_radius, u_layer_bottom, u_layer_top);
+    float length_to_exit = seg.y > seg.x ? min(seg.y, u_light_march_max) : 0.0;
+    float ds = length_to_exit / float(u_light_steps);
+    float tau = 0.0;
+    for (int i = 0; i < u_light_steps; ++i)
+        tau += cr_cone_extinction(p + u_sun_dir * ((float(i) + 0.5) * ds), i) * ds;
+    return tau;
+}
+
+// Radiance scattered toward the camera per unit scattering coefficient: sunlight through
+// the octaves (phase and transmittance), the powder term, and isotropic sky light.
+vec3 cr_in_scattering(float tau_light, float mu, float h) {
+    float sun = cm_multiple_scattering_with(tau_light, mu, u_ms_a, u_ms_b, u_ms_c, u_octaves);
+    if (u_powder != 0) {
+        // Schneider 2015's Beer-Powder factor 2 (1 - e^(-2 tau)), strongest looking away
+        // from the sun and gone looking into it (where the dark edges are not seen).
+        sun *= mix(2.0 * cm_powder(tau_light, 2.0), 1.0, 0.5 + 0.5 * mu);
+    }
+    return u_sun_radiance * sun + mix(u_ambient_bottom, u_ambient_top, h);
+}
+
+vec3 cr_background(vec3 dir) {
+    vec2 ground = cm_ray_sphere_intersect_altitude(u_cam_altitude, dir.y, u_planet_radius, 0.0);
+    if (ground.x >= 0.0 && ground.y > ground.x) return u_ground;
+    float mu = dot(dir, u_sun_dir);
+    vec3 sky = mix(u_sky_horizon, u_sky_zenith, sqrt(cm_saturate(dir.y)));
+    sky += u_sun_radiance * (0.05 * cm_phase_hg(mu, 0.75));  // glow around the sun
+    if (mu >= u_sun_cos_radius) sky += u_sun_radiance * 4.0;
+    return sky;
+}
+
+// Exposure, 1 - e^-x tone curve, display gamma 2.2.
+vec3 cr_tonemap(vec3 c) { return pow(vec3(1.0) - exp(-c * u_exposure), vec3(1.0 / 2.2)); }
+
+// Start offset of the march in [0, 1) steps: a hash of the pixel (24 bits, exact in float).
+float cr_jitter(vec2 pixel) {
+    uint h = cm_noise_hash(uint(pixel.x) + uint(pixel.y) * 8192u);
+    return float(h >> 8u) * (1.0 / 16777216.0);
+}
+
+void main() {
+    vec2 ndc = gl_FragCoord.xy / u_resolution * 2.0 - 1.0;
+    float aspect = u_resolution.x / u_resolution.y;
+    vec3 dir = normalize(u_forward + u_right * (ndc.x * aspect * u_tan_half_fov) + u_up * (ndc.y * u_tan_half_fov));
+    cr_mie = cm_mie_approx_params(u_droplet_diameter);
+
+    CmMarchAccumulator acc = cm_march_accumulator();
+    vec2 seg = cm_cloud_layer_segment(u_cam_altitude, dir.y, u_planet_radius, u_layer_bottom, u_layer_top);
+    if (seg.y > seg.x) {
+        float t1 = min(seg.y, seg.x + u_max_distance);
+        float ds = (t1 - seg.x) / float(u_view_steps);
+        float offset = u_jitter != 0 ? cr_jitter(gl_FragCoord.xy) : 0.5;
+        float mu = dot(dir, u_sun_dir);
+        for (int i = 0; i < u_view_steps; ++i) {
+            float t = seg.x + (float(i) + offset) * ds;
+            float altitude = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, t);
+            float density = cr_density(dir * t, altitude);
+            if (density <= 0.0) continue;
+            float sigma_t = u_extinction * density;
+            float tau_light = cr_light_optical_depth(dir * t, altitude);
+            float h = cm_height_fraction(altitude, u_layer_bottom, u_layer_top);
+            vec3 S = (u_albedo * sigma_t) * cr_in_scattering(tau_light, mu, h);
+            if (u_integration == 0) {
+                cm_march_add_segment(acc, S, sigma_t, ds);
+            } else {
+                // The textbook Riemann sum, kept as a variant to show its error: the source
+                // is taken at full strength over the whole step, ignoring the decay within it.
+                acc.luminance += acc.transmittance * S * ds;
+                acc.transmittance *= cm_beer_lambert(sigma_t * ds);
+            }
+            if (cm_march_is_opaque(acc, u_min_transmittance)) break;
+        }
+    }
+    vec3 color = cr_background(dir) * acc.transmittance + acc.luminance;
+    out_color = vec4(cr_tonemap(color), 1.0 - (acc.transmittance.r + acc.transmittance.g + acc.transmittance.b) / 3.0);
+}

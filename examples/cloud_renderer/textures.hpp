@@ -1,0 +1,27 @@
+// The baked cloud textures (cloudmath/noise_bake.hpp) and their cache on disk.
+#ifndef CLOUD_RENDERER_TEXTURES_HPP
+#define CLOUD_RENDERER_TEXTURES_HPP
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cloud_renderer {
+
+// Texel layout of noise_bake.hpp: x fastest, then y, then z; channels interleaved; UNORM8.
+struct cloud_textures {
+    int base_size = 0;     // base volume: base_size^3 RGBA
+    int detail_size = 0;   // detail volume: detail_size^3 RGB
+    int weather_size = 0;  // weather map: weather_size^2 RGB
+    std::vector<std::uint8_t> base, detail, weather;
+};
+
+// Reads the textures from `cache_dir` if a cache file with the same sizes, seed and format is
+// there and its checksum matches; otherwise bakes them with every core (a progress line on
+// stderr unless quiet) and writes the cache (failing to write it is only a warning).
+// An empty cache_dir disables the cache. Returns false with a message only if baking fails.
+bool load_or_bake_textures(const std::string& cache_dir, bool quiet, cloud_textures& out, std::string& why);
+
+}  // namespace cloud_renderer
+
+#endif  // CLOUD_RENDERER_TEXTURES_HPP
