@@ -8,6 +8,7 @@
 #include <EGL/eglext.h>
 #include <GL/glcorearb.h>
 
+#include <chrono>
 #include <cstring>
 #include <map>
 #include <vector>
@@ -361,7 +362,7 @@ bool gl_renderer::upload_textures(const cloud_textures& t, std::string& why) {
 }
 
 bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, unsigned fbo, int width, int height,
-                       double* gpu_ms, std::string& why) {
+                       frame_timing* timing, std::string& why) {
     const gl_api& gl = s_->gl;
     const GLuint program = s_->program_for(v, compile_time, why);
     if (program == 0) return false;
@@ -434,19 +435,26 @@ bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, uns
     gl.BindVertexArray(s_->vao);
     // Two GPU timestamps around the draw rather than a GL_TIME_ELAPSED query: Mesa 22's
     // llvmpipe returns a timestamp, not a duration, for the latter.
+    gl.Finish();  // nothing earlier in the wall time
+    const auto wall_start = std::chrono::steady_clock::now();
     gl.QueryCounter(s_->queries[0], GL_TIMESTAMP);
     gl.DrawArrays(GL_TRIANGLES, 0, 3);
     gl.QueryCounter(s_->queries[1], GL_TIMESTAMP);
+    gl.Finish();
+    const double wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall_start).count();
     GLuint64 start = 0, end = 0;
     gl.GetQueryObjectui64v(s_->queries[0], GL_QUERY_RESULT, &start);
-    gl.GetQueryObjectui64v(s_->queries[1], GL_QUERY_RESULT, &end);  // waits for the draw
-    if (gpu_ms != nullptr) *gpu_ms = end > start ? double(end - start) * 1e-6 : 0.0;
+    gl.GetQueryObjectui64v(s_->queries[1], GL_QUERY_RESULT, &end);
+    if (timing != nullptr) {
+        timing->gpu_ms = end > start ? double(end - start) * 1e-6 : 0.0;
+        timing->wall_ms = wall_ms;
+    }
     why = s_->gl_errors("draw");
     return why.empty();
 }
 
 bool gl_renderer::render(const scene& sc, const variant& v, bool compile_time, int width, int height, image& out,
-                         double* gpu_ms, std::string& why) {
+                         frame_timing* timing, std::string& why) {
     const gl_api& gl = s_->gl;
     if (s_->fbo == 0 || s_->target_w != width || s_->target_h != height) {
         if (s_->fbo == 0) gl.GenFramebuffers(1, &s_->fbo);
@@ -464,7 +472,7 @@ bool gl_renderer::render(const scene& sc, const variant& v, bool compile_time, i
         s_->target_w = width;
         s_->target_h = height;
     }
-    if (!draw(sc, v, compile_time, s_->fbo, width, height, gpu_ms, why)) return false;
+    if (!draw(sc, v, compile_time, s_->fbo, width, height, timing, why)) return false;
     out.width = width;
     out.height = height;
     out.pixels.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), glm::vec4(0.0f));

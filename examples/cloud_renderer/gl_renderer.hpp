@@ -1,5 +1,5 @@
 // The GPU renderer: compiles shaders/clouds.frag with the cloudmath GLSL includes, uploads
-// the baked textures and draws the full-screen pass, timed with GL timer queries.
+// the baked textures and draws the full-screen pass, timed (frame_timing).
 // It runs on a context it creates itself (headless: EGL, no display needed; Mesa llvmpipe
 // on a machine without a GPU) or on one the caller made current (the GLFW window).
 #ifndef CLOUD_RENDERER_GL_RENDERER_HPP
@@ -18,6 +18,15 @@ namespace cloud_renderer {
 // constants when compile_time), the shader file with cloudmath.glsl resolved in.
 std::string fragment_shader_source(const variant& v, bool compile_time);
 std::string vertex_shader_source();
+
+// Time of one draw: from GL timestamp queries around it (the GPU's own clock; what a real
+// GPU's profiler shows), and on the host from before the draw to the end of glFinish()
+// (includes driver overhead; the meaningful one on Mesa's llvmpipe, whose timestamps are
+// taken when the draw is queued, not when it runs).
+struct frame_timing {
+    double gpu_ms = 0;
+    double wall_ms = 0;
+};
 
 class gl_renderer {
 public:
@@ -38,12 +47,12 @@ public:
 
     // Draws into framebuffer `fbo` (0: the window) over (0, 0, width, height). compile_time:
     // the variant is baked into the shader as constants (one program per variant, cached).
-    // gpu_ms (optional) receives the GPU time of the draw from a timer query.
-    bool draw(const scene& s, const variant& v, bool compile_time, unsigned fbo, int width, int height, double* gpu_ms,
+    // timing (optional) receives the time of the draw.
+    bool draw(const scene& s, const variant& v, bool compile_time, unsigned fbo, int width, int height, frame_timing* timing,
               std::string& why);
     // Draws offscreen into a float target and reads it back.
-    bool render(const scene& s, const variant& v, bool compile_time, int width, int height, image& out, double* gpu_ms,
-                std::string& why);
+    bool render(const scene& s, const variant& v, bool compile_time, int width, int height, image& out,
+                frame_timing* timing, std::string& why);
 
     struct state;
 

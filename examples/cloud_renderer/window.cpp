@@ -124,15 +124,15 @@ int run_window(const options& o, const cloud_textures& textures) {
             while (!glfwWindowShouldClose(w)) {
                 int fw = 0, fh = 0;
                 glfwGetFramebufferSize(w, &fw, &fh);
-                double ms = 0;
-                if (fw > 0 && fh > 0 && !gpu->draw(st.o.sc, st.o.var, st.o.compile_time, 0, fw, fh, &ms, why)) {
+                frame_timing ft;
+                if (fw > 0 && fh > 0 && !gpu->draw(st.o.sc, st.o.var, st.o.compile_time, 0, fw, fh, &ft, why)) {
                     std::fprintf(stderr, "error: %s\n", why.c_str());
                     status = 1;
                     break;
                 }
                 glfwSwapBuffers(w);
                 glfwPollEvents();
-                sum_ms += ms;
+                sum_ms += ft.gpu_ms > 0 ? ft.gpu_ms : ft.wall_ms;
                 ++frames;
                 if (st.changed) {
                     std::printf("variant %s%s\n", variant_spec(st.o.var).c_str(), st.o.compile_time ? " (compile-time)" : "");
