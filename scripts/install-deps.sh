@@ -14,6 +14,7 @@ packages=(
   libegl-mesa0 libgl1-mesa-dri                   # GLSL tests: Mesa EGL, llvmpipe (no GPU)
   glslang-tools spirv-tools                      # GLSL tests: glslangValidator, spirv-val
   libglfw3-dev                                   # examples/cloud_renderer: the window mode
+  xvfb xauth                                     # its test: the window on a virtual X server
 )
 
 missing=()

@@ -43,7 +43,8 @@ const char* usage_text() {
            "  --out FILE          PNG to write (default clouds.png; --cpu: clouds_cpu.png;\n"
            "                      --compare: FILE and FILE with _cpu before .png)\n"
            "  --bench-out FILE    also write the --bench table to FILE\n"
-           "  --frames N          --bench: timed frames per variant, after one warm-up (1 to 100, default 3)\n"
+           "  --frames N          --bench: timed frames per variant, after one warm-up (default 3);\n"
+           "                      window: close after N frames (default: when closed)\n"
            "  --min-psnr DB       --compare: exit with status 1 if the PSNR is below DB\n"
            "  --cache DIR         texture cache directory (default ~/.cache/cloudmath; none: off)\n"
            "  --altitude M, --yaw DEG, --pitch DEG, --fov DEG          camera\n"
@@ -109,7 +110,7 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
             if (!err.empty()) return "--variant: " + err;
         } else if (a == "--width") err = number(16, 8192, [&](double x) { o.width = static_cast<int>(x); });
         else if (a == "--height") err = number(16, 8192, [&](double x) { o.height = static_cast<int>(x); });
-        else if (a == "--frames") err = number(1, 100, [&](double x) { o.frames = static_cast<int>(x); });
+        else if (a == "--frames") err = number(1, 100000, [&](double x) { o.frames = static_cast<int>(x); o.frames_given = true; });
         else if (a == "--min-psnr") err = number(0, 200, [&](double x) { o.min_psnr = x; });
         else if (a == "--altitude") err = number(0, 100000, [&](double x) { o.sc.camera_altitude = float(x); });
         else if (a == "--yaw") err = number(-360, 360, [&](double x) { o.sc.yaw = float(x); });

@@ -19,7 +19,9 @@ struct options {
     std::string out;             // PNG path (headless, cpu, compare); empty: the mode's default
     std::string bench_out;       // markdown table of --bench; empty: stdout only
     std::string cache_dir;       // texture cache; "none" disables
-    int frames = 3;              // --bench: timed frames per variant (after one warm-up)
+    int frames = 3;              // --bench: timed frames per variant (after one warm-up);
+                                 // window: close after this many frames, if frames_given
+    bool frames_given = false;
     double min_psnr = 0;         // --compare: fail below this (0: never)
     bool quiet = false;
 };
