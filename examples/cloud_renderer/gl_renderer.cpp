@@ -27,22 +27,34 @@ std::string vertex_shader_source() {
            "}\n";
 }
 
+namespace {
+
+// The variant's values under the shader's names (the CR_PARAM declarations of clouds.frag):
+// one list for both ways of passing them, constants and uniforms.
+struct shader_int {
+    const char* name;
+    int value;
+};
+std::vector<shader_int> variant_values(const variant& v) {
+    return {{"u_phase_model", static_cast<int>(v.phase)},
+            {"u_octaves", v.octaves},
+            {"u_powder", v.powder ? 1 : 0},
+            {"u_light_mode", static_cast<int>(v.light)},
+            {"u_cone_samples", v.cone_samples},
+            {"u_light_steps", v.light_steps},
+            {"u_integration", static_cast<int>(v.integration)},
+            {"u_view_steps", v.view_steps},
+            {"u_jitter", v.jitter ? 1 : 0}};
+}
+
+}  // namespace
+
 std::string fragment_shader_source(const variant& v, bool compile_time) {
     std::string head = "#version 410 core\n";
     if (compile_time) {
         head += "#define CR_PARAM(type, name)\n";
-        const auto constant = [&head](const char* n, int value) {
-            head += std::string("const int ") + n + " = " + std::to_string(value) + ";\n";
-        };
-        constant("u_phase_model", static_cast<int>(v.phase));
-        constant("u_octaves", v.octaves);
-        constant("u_powder", v.powder ? 1 : 0);
-        constant("u_light_mode", static_cast<int>(v.light));
-        constant("u_cone_samples", v.cone_samples);
-        constant("u_light_steps", v.light_steps);
-        constant("u_integration", static_cast<int>(v.integration));
-        constant("u_view_steps", v.view_steps);
-        constant("u_jitter", v.jitter ? 1 : 0);
+        for (const shader_int& c : variant_values(v))
+            head += std::string("const int ") + c.name + " = " + std::to_string(c.value) + ";\n";
     } else {
         head += "#define CR_PARAM(type, name) uniform type name;\n";
     }
@@ -371,17 +383,8 @@ bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, uns
     const auto set1i = [&](const char* n, int x) { gl.Uniform1i(loc(n), x); };
     const auto set1f = [&](const char* n, float x) { gl.Uniform1f(loc(n), x); };
     const auto set3f = [&](const char* n, const glm::vec3& x) { gl.Uniform3f(loc(n), x.x, x.y, x.z); };
-    if (!compile_time) {
-        set1i("u_phase_model", static_cast<int>(v.phase));
-        set1i("u_octaves", v.octaves);
-        set1i("u_powder", v.powder ? 1 : 0);
-        set1i("u_light_mode", static_cast<int>(v.light));
-        set1i("u_cone_samples", v.cone_samples);
-        set1i("u_light_steps", v.light_steps);
-        set1i("u_integration", static_cast<int>(v.integration));
-        set1i("u_view_steps", v.view_steps);
-        set1i("u_jitter", v.jitter ? 1 : 0);
-    }
+    if (!compile_time)
+        for (const shader_int& u : variant_values(v)) set1i(u.name, u.value);
     const frame_constants k = make_frame_constants(sc);
     gl.Uniform2f(loc("u_resolution"), float(width), float(height));
     set3f("u_forward", k.forward);

@@ -23,11 +23,7 @@ namespace {
 
 std::string default_cache_dir() {
     if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg != nullptr && *xdg != '\0') return std::string(xdg) + "/cloudmath";
-    if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0') {
-        const std::string cache = std::string(home) + "/.cache";
-        std::system(("mkdir -p '" + cache + "' 2>/dev/null").c_str());
-        return cache + "/cloudmath";
-    }
+    if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0') return std::string(home) + "/.cache/cloudmath";
     return {};
 }
 

@@ -48,8 +48,15 @@ bool read_cache(const std::string& path, cloud_textures& t) {
     return in.peek() == std::char_traits<char>::eof() && checksum_of(t) == h.checksum;
 }
 
+// mkdir -p: every missing directory of `dir` (existing ones are fine; failures show when
+// the file is written).
+void make_directories(const std::string& dir) {
+    for (std::size_t i = 1; i <= dir.size(); ++i)
+        if (i == dir.size() || dir[i] == '/') ::mkdir(dir.substr(0, i).c_str(), 0755);
+}
+
 bool write_cache(const std::string& dir, const std::string& path, const cloud_textures& t) {
-    ::mkdir(dir.c_str(), 0755);  // one level; an existing directory is fine
+    make_directories(dir);
     const std::string tmp = path + ".tmp";
     {
         std::ofstream out(tmp, std::ios::binary);

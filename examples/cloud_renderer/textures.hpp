@@ -18,7 +18,8 @@ struct cloud_textures {
 
 // Reads the textures from `cache_dir` if a cache file with the same sizes, seed and format is
 // there and its checksum matches; otherwise bakes them with every core (a progress line on
-// stderr unless quiet) and writes the cache (failing to write it is only a warning).
+// stderr unless quiet) and writes the cache, creating missing directories (failing to
+// write it is only a warning).
 // An empty cache_dir disables the cache. Returns false with a message only if baking fails.
 bool load_or_bake_textures(const std::string& cache_dir, bool quiet, cloud_textures& out, std::string& why);
 

@@ -86,11 +86,21 @@ __attribute__((target("avx2,fma"))) void run_avx2_fma(const Body& body) noexcept
 }
 #endif
 
+// True when the batch functions run their AVX2 + FMA copy: compiled in, present on this CPU,
+// and allowed by restrict_to_baseline.
+inline bool use_avx2_fma() noexcept {
+#if CLOUDMATH_BATCH_DISPATCH
+    return !baseline_only().load(std::memory_order_relaxed) && cpu_has_avx2_fma();
+#else
+    return false;
+#endif
+}
+
 // Runs body with the widest instruction set this CPU has (and restrict_to_baseline allows).
 template <class Body>
 CLOUDMATH_ALWAYS_INLINE void dispatch(const Body& body) noexcept {
 #if CLOUDMATH_BATCH_DISPATCH
-    if (!baseline_only().load(std::memory_order_relaxed) && cpu_has_avx2_fma()) {
+    if (use_avx2_fma()) {
         run_avx2_fma(body);
         return;
     }
@@ -175,12 +185,7 @@ struct hg_kernel {
 namespace batch {
 
 // The instruction set the batch functions run with on this machine, now.
-[[nodiscard]] inline isa active_isa() noexcept {
-#if CLOUDMATH_BATCH_DISPATCH
-    if (!detail::baseline_only().load(std::memory_order_relaxed) && detail::cpu_has_avx2_fma()) return isa::avx2_fma;
-#endif
-    return isa::baseline;
-}
+[[nodiscard]] inline isa active_isa() noexcept { return detail::use_avx2_fma() ? isa::avx2_fma : isa::baseline; }
 
 // A short name for reports: "baseline" or "avx2+fma".
 [[nodiscard]] inline const char* isa_name(isa i) noexcept { return i == isa::avx2_fma ? "avx2+fma" : "baseline"; }
