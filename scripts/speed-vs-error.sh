@@ -27,4 +27,5 @@ cloudmath_build_bench "$root" cloudmath_speed_vs_error
 
 mkdir -p "$out"
 "$build/bench/report/cloudmath_speed_vs_error" --out-dir "$out" --glsl-cost "$root/docs/glsl_cost.md" \
+    --phase-error "$root/docs/phase_error.csv" --lighting-error "$root/docs/lighting_error.csv" \
     --command "bash scripts/speed-vs-error.sh" "${extra[@]}"

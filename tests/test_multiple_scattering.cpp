@@ -101,3 +101,40 @@ TEST_CASE_TEMPLATE("multiple_scattering sweep: finite and non-negative over the 
     const T tiny = std::numeric_limits<T>::denorm_min();
     CHECK(cm_test::same_value(multiple_scattering(tiny, tiny, T(0.8), T(0.5), T(0.5), T(0.5), 1), phase_hg(T(0), T(0.8))));
 }
+
+TEST_CASE_TEMPLATE("multiple_scattering with a preset equals the explicit parameters", T, float, double) {
+    // The presets' documented error is reproduced by tools/reference/test_lighting_presets.cpp
+    // from the Monte Carlo reference; here: the overload uses exactly the preset's numbers.
+    for (const multiple_scattering_preset& p : ms_preset::all)
+        for (T tau : {T(0), T(0.5), T(8), T(100)})
+            for (T mu : {T(-1), T(0.2), T(1)}) {
+                CAPTURE(p.name);
+                CHECK(multiple_scattering(tau, mu, T(0.85), p) ==
+                      multiple_scattering(tau, mu, T(0.85), T(p.a), T(p.b), T(p.c), p.octaves));
+            }
+    CHECK(multiple_scattering(T(2), T(0.3), T(0.85), ms_preset::production) ==
+          multiple_scattering<3>(T(2), T(0.3), T(0.85), T(0.5), T(0.5), T(0.5)));
+}
+
+TEST_CASE("multiple_scattering presets: parameters in range, measured error documented") {
+    for (const multiple_scattering_preset& p : ms_preset::all) {
+        CAPTURE(p.name);
+        CHECK(p.a > 0.0f);
+        CHECK(p.a <= 1.0f);
+        CHECK(p.b > 0.0f);
+        CHECK(p.b < 1.0f);
+        CHECK(p.c > 0.0f);
+        CHECK(p.c <= 1.0f);
+        CHECK(p.octaves >= 1);
+        CHECK(p.octaves <= 8);
+        CHECK(p.tau_min < p.tau_max);
+        CHECK(p.rms_error > 0.0f);
+        CHECK(p.max_error >= p.rms_error);
+    }
+    // The fitted presets are better than the production values over their ranges.
+    CHECK(ms_preset::fitted.rms_error < ms_preset::production.rms_error);
+    CHECK(ms_preset::thin.rms_error < ms_preset::production.rms_error);
+    CHECK(ms_preset::thick.rms_error < ms_preset::production.rms_error);
+    CHECK(ms_preset::cheap.rms_error < ms_preset::production.rms_error);
+    CHECK(ms_preset::cheap.octaves < ms_preset::production.octaves);
+}

@@ -5,9 +5,12 @@
 // its hard cases. Writes docs/speed_vs_error.md (table), .csv (the same data) and .svg (a
 // log-log plot with the Pareto front of each family of interchangeable variants).
 //
-// Usage: cloudmath_speed_vs_error [--out-dir DIR] [--glsl-cost FILE] [--command TEXT] [--quick]
+// Usage: cloudmath_speed_vs_error [--out-dir DIR] [--glsl-cost FILE] [--phase-error FILE]
+//                                 [--lighting-error FILE] [--command TEXT] [--quick]
 //   --out-dir    where speed_vs_error.{md,csv,svg} go (default: <source>/docs)
 //   --glsl-cost  docs/glsl_cost.md, parsed for the SPIR-V instruction counts
+//   --phase-error, --lighting-error  docs/phase_error.csv and docs/lighting_error.csv, the
+//                errors against the physical references (tools/reference)
 //   --command    the command line quoted in the report (scripts/speed-vs-error.sh passes it)
 //   --quick      fewer timing rounds (for a smoke test; the numbers are noisier)
 // scripts/speed-vs-error.sh builds this in a Release tree and runs it.
@@ -21,6 +24,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <deque>
 #include <fstream>
@@ -248,7 +252,8 @@ struct variant {
     std::string family;  // variants that compute the same quantity and can replace each other
     std::string name;    // table name
     std::string label;   // short plot label
-    bool phase = false;  // phase rows get the "error vs Mie table" column
+    bool phase = false;  // a phase-function row
+    std::string physical = "-";  // error against the physical reference (fill_physical_column)
     // GPU cost: the first line of docs/glsl_cost.md for this GLSL function whose expression
     // contains glsl_expression; cost_suffix is appended (e.g. "/step").
     std::string glsl_function, glsl_expression, cost_suffix;
@@ -1020,9 +1025,87 @@ const std::map<std::string, std::string> group_header = {
     {"phase", "phase.hpp"},       {"transmittance", "transmittance.hpp"},
     {"integration", "integration.hpp"}, {"geometry", "geometry.hpp"},
     {"multiple_scattering", "multiple_scattering.hpp"}, {"cone_sampling", "cone_sampling.hpp"}};
-const char* mie_column_text = "n/a until the Lorenz-Mie reference exists";
+// ---------------------------------------------------------------------------------------
+// The physical reference column: each model's error against ground truth no one here wrote
+// the answer to, read from the reports of tools/reference: phase rows against the Lorenz-Mie
+// phase function of Deirmendjian's C.1 droplets at 0.55 um (docs/phase_error.csv, the
+// fraction of scattered light sent in wrong directions); multiple-scattering rows against
+// the Monte Carlo path tracer (docs/lighting_error.csv, rms image error over optical
+// thickness 1-100). Approximations of a model (textbook and fast:: forms) share the model's
+// entry: their own error, in the other columns, is orders of magnitude smaller.
+const char* physical_table = "mie_c1_0.55um";
 
-std::string mie_cell(const variant& v) { return v.phase ? mie_column_text : "-"; }
+std::string physical_key(const variant& v) {
+    if (v.name.rfind("phase_hg_schlick", 0) == 0) return "phase:schlick_moment";
+    if (v.family == "Henyey-Greenstein") return "phase:hg_moment";
+    if (v.family == "Cornette-Shanks") return "phase:cs_moment";
+    if (v.family == "Draine") return "phase:draine_fit";
+    if (v.family == "Mie fit (Jendersie-d'Eon)") return "phase:mie_approx_d2reff";
+    if (v.group == "multiple_scattering") {
+        // The a = b = c = 0.5 rows: "default_beer" at 3 octaves, "default_beer_N" otherwise.
+        const int n = std::atoi(v.family.c_str());
+        if (n == 1) return "lighting:single";
+        if (n == 3) return "lighting:default_beer";
+        if (n > 1) return "lighting:default_beer_" + std::to_string(n);
+    }
+    return "";
+}
+
+std::vector<std::string> split_csv_line(const std::string& line) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) f.push_back(cell);
+    return f;
+}
+
+// Rows of a CSV (after its '#' lines) as column name -> value maps.
+std::vector<std::map<std::string, std::string>> read_csv_table(const std::string& path) {
+    std::ifstream in(path);
+    std::vector<std::map<std::string, std::string>> rows;
+    std::vector<std::string> header;
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        const std::vector<std::string> f = split_csv_line(line);
+        if (header.empty()) {
+            header = f;
+            continue;
+        }
+        std::map<std::string, std::string> row;
+        for (std::size_t i = 0; i < f.size() && i < header.size(); ++i) row[header[i]] = f[i];
+        rows.push_back(std::move(row));
+    }
+    return rows;
+}
+
+// Returns how many rows got a value; rows whose key is missing from the files say so.
+int fill_physical_column(std::deque<variant>& rows, const std::string& phase_csv, const std::string& lighting_csv) {
+    std::map<std::string, std::string> text;
+    for (const auto& r : read_csv_table(phase_csv)) {
+        const auto t = r.find("table"), id = r.find("variant"), e = r.find("misdirected_energy");
+        if (t == r.end() || id == r.end() || e == r.end() || t->second != physical_table) continue;
+        text["phase:" + id->second] = printf_string("%.2f of the light misdirected", std::stod(e->second));
+    }
+    for (const auto& r : read_csv_table(lighting_csv)) {
+        const auto kind = r.find("kind"), id = r.find("id"), sub = r.find("subset"), rms = r.find("rms");
+        if (kind == r.end() || id == r.end() || sub == r.end() || rms == r.end()) continue;
+        if (kind->second != "variant" || sub->second != "all") continue;
+        text["lighting:" + id->second] = printf_string("image rms %.0f%% vs Monte Carlo", 100.0 * std::stod(rms->second));
+    }
+    int filled = 0;
+    for (variant& v : rows) {
+        const std::string key = physical_key(v);
+        if (key.empty()) continue;
+        const auto it = text.find(key);
+        if (it == text.end()) {
+            v.physical = "n/a (" + key + " not in the tools/reference reports)";
+            std::cerr << "speed-vs-error: no " << key << " in " << phase_csv << " or " << lighting_csv << '\n';
+        } else {
+            v.physical = it->second;
+            ++filled;
+        }
+    }
+    return filled;
+}
 
 std::string csv_quote(const std::string& s) {
     if (s.find_first_of(",\"\n") == std::string::npos) return s;
@@ -1059,13 +1142,13 @@ std::string md_escape(const std::string& s) {
 void write_csv(const std::string& path, const std::deque<variant>& rows) {
     std::ofstream out(path);
     out << "variant,group,family,float_ns_per_eval,batch_ns_per_eval,max_rel_error,rms_rel_error,"
-           "batch_max_rel_error,batch_rms_rel_error,error_vs_mie_table,gpu_spirv_instructions,pareto_front,"
+           "batch_max_rel_error,batch_rms_rel_error,error_vs_physical_reference,gpu_spirv_instructions,pareto_front,"
            "error_points,max_error_at,error_reference_note,batch_note\n";
     for (const variant& v : rows) {
         auto num = [](double x, const char* f) { return std::isnan(x) ? std::string("-") : std::isinf(x) ? std::string("inf") : printf_string(f, x); };
         out << csv_quote(v.name) << ',' << v.group << ',' << csv_quote(v.family) << ',' << num(v.scalar_ns, "%.4g") << ','
             << num(v.batch_ns, "%.4g") << ',' << num(v.err.max(), "%.3e") << ',' << num(v.err.rms(), "%.3e") << ','
-            << num(v.batch_err.max(), "%.3e") << ',' << num(v.batch_err.rms(), "%.3e") << ',' << csv_quote(mie_cell(v)) << ','
+            << num(v.batch_err.max(), "%.3e") << ',' << num(v.batch_err.rms(), "%.3e") << ',' << csv_quote(v.physical) << ','
             << csv_quote(v.gpu_cost) << ',' << (v.front ? "yes" : "no") << ',' << v.err.count << ',' << csv_quote(v.err.where_text()) << ','
             << csv_quote(v.error_note) << ',' << csv_quote(v.batch_note) << '\n';
     }
@@ -1178,11 +1261,17 @@ void write_markdown(const std::string& path, const std::deque<variant>& rows, co
         << "  the variants that no other one beats in both scalar time and maximum error are in **bold**, and\n"
         << "  outlined and connected in the plot. Ties within the timing noise can fall either way (the\n"
         << "  library's `beer_lambert` and `std::exp(-tau)` are the same call).\n"
-        << "- **Error vs Mie table**: a later change adds a tabulated Lorenz-Mie phase function of a droplet\n"
-        << "  distribution as the physical reference for the phase rows; until then the column says so.\n\n";
+        << "- **Error vs physical reference**: the model's error against ground truth, from the reports of\n"
+        << "  tools/reference. Phase rows: the fraction of the scattered light the model sends in wrong\n"
+        << "  directions against the Lorenz-Mie phase function of Deirmendjian's C.1 droplets at 0.55 um, with\n"
+        << "  g = the table's mean cosine (HG, Schlick), its Cornette-Shanks equivalent, Draine fitted, or the\n"
+        << "  Jendersie-d'Eon fit at d = 2 r_eff ([phase_error.md](phase_error.md)). Multiple-scattering rows\n"
+        << "  (a = b = c = 0.5, as timed): rms error of the radiance against a Monte Carlo path tracer over spheres and\n"
+        << "  slabs of optical thickness 1-100, relative to each image's mean ([lighting_error.md](lighting_error.md)).\n"
+        << "  Textbook and `fast::` forms compute the same model and share its entry.\n\n";
 
     out << "## All variants\n\n"
-        << "| Variant | Group | Float ns/eval | Batch ns/eval | Max rel error | RMS rel error | Batch max rel error | Max error at | Error vs Mie table | GPU cost (SPIR-V) |\n"
+        << "| Variant | Group | Float ns/eval | Batch ns/eval | Max rel error | RMS rel error | Batch max rel error | Max error at | Error vs physical reference | GPU cost (SPIR-V) |\n"
         << "|---|---|---:|---:|---:|---:|---:|---|---|---:|\n";
     for (const std::string& group : group_order)
         for (const variant& v : rows) {
@@ -1193,7 +1282,7 @@ void write_markdown(const std::string& path, const std::deque<variant>& rows, co
             if (!v.error_note.empty()) at += " (" + md_escape(v.error_note) + ")";
             out << "| " << name << " | " << v.group << " | " << fmt_ns(v.scalar_ns) << " | " << batch_cell(v) << " | "
                 << fmt_error(v.err.max()) << " | " << fmt_error(v.err.rms()) << " | " << fmt_error(v.batch_err.max()) << " | " << at
-                << " | " << mie_cell(v) << " | " << v.gpu_cost << " |\n";
+                << " | " << md_escape(v.physical) << " | " << v.gpu_cost << " |\n";
         }
 
     out << "\n## Multiple scattering: truncation change from N to N + 1 octaves\n\n"
@@ -1455,16 +1544,20 @@ std::string utc_date() {
 int main(int argc, char** argv) {
     std::string out_dir = std::string(CLOUDMATH_REPORT_SOURCE_DIR) + "/docs";
     std::string cost_path = std::string(CLOUDMATH_REPORT_SOURCE_DIR) + "/docs/glsl_cost.md";
+    std::string phase_error_path = std::string(CLOUDMATH_REPORT_SOURCE_DIR) + "/docs/phase_error.csv";
+    std::string lighting_error_path = std::string(CLOUDMATH_REPORT_SOURCE_DIR) + "/docs/lighting_error.csv";
     std::string command = "build/bench/bench/report/cloudmath_speed_vs_error";
     bool quick = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--out-dir" && i + 1 < argc) out_dir = argv[++i];
         else if (a == "--glsl-cost" && i + 1 < argc) cost_path = argv[++i];
+        else if (a == "--phase-error" && i + 1 < argc) phase_error_path = argv[++i];
+        else if (a == "--lighting-error" && i + 1 < argc) lighting_error_path = argv[++i];
         else if (a == "--command" && i + 1 < argc) command = argv[++i];
         else if (a == "--quick") quick = true;
         else {
-            std::cerr << "usage: " << argv[0] << " [--out-dir DIR] [--glsl-cost FILE] [--command TEXT] [--quick]\n";
+            std::cerr << "usage: " << argv[0] << " [--out-dir DIR] [--glsl-cost FILE] [--phase-error FILE] [--lighting-error FILE] [--command TEXT] [--quick]\n";
             return 2;
         }
     }
@@ -1503,6 +1596,7 @@ int main(int argc, char** argv) {
         if (v.gpu_cost == "-") std::cerr << "speed-vs-error: no SPIR-V count for " << v.glsl_function << " in " << cost_path << '\n';
     }
     mark_pareto_fronts(rows);
+    fill_physical_column(rows, phase_error_path, lighting_error_path);
 
     machine_info m;
     m.cpu = read_cpu_model();

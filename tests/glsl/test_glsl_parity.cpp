@@ -244,6 +244,9 @@ std::vector<parity_case> make_cases() {
         add({"cm_multiple_scattering", "vec4(cm_multiple_scattering(a.x, a.y, a.z, b.x, b.y, b.z, int(a.w)), cm_multiple_scattering(a.x, a.y, a.z, 0.3, 0.75, 0.5, int(a.w)), cm_multiple_scattering(a.x, a.y, a.z, b.x, b.y, b.z), 0.0)",
              [](vec4 a, vec4 b) { return vec4(cm::multiple_scattering(a.x, a.y, a.z, b.x, b.y, b.z, int(a.w)), cm::multiple_scattering(a.x, a.y, a.z, 0.3f, 0.75f, 0.5f, int(a.w)),
                                               cm::multiple_scattering<3>(a.x, a.y, a.z, b.x, b.y, b.z), 0.0f); }, in, 3, 1e-30f});
+        add({"cm_multiple_scattering [presets]", "vec4(cm_multiple_scattering(a.x, a.y, a.z, CM_MS_PRESET_PRODUCTION), cm_multiple_scattering(a.x, a.y, a.z, CM_MS_PRESET_FITTED), cm_multiple_scattering(a.x, a.y, a.z, CM_MS_PRESET_THIN), cm_multiple_scattering(a.x, a.y, a.z, CM_MS_PRESET_THICK) + cm_multiple_scattering(a.x, a.y, a.z, CM_MS_PRESET_CHEAP))",
+             [](vec4 a, vec4) { return vec4(cm::multiple_scattering(a.x, a.y, a.z, cm::ms_preset::production), cm::multiple_scattering(a.x, a.y, a.z, cm::ms_preset::fitted),
+                                            cm::multiple_scattering(a.x, a.y, a.z, cm::ms_preset::thin), cm::multiple_scattering(a.x, a.y, a.z, cm::ms_preset::thick) + cm::multiple_scattering(a.x, a.y, a.z, cm::ms_preset::cheap)); }, in, 4, 1e-30f});
         add({"cm_multiple_scattering_with", "vec4(cm_multiple_scattering_with(a.x, a.y, b.x, b.y, b.z, int(a.w)), cm_multiple_scattering_with(a.x, a.y, b.x, b.y, b.z), 0.0, 0.0)",
              [](vec4 a, vec4 b) { return vec4(cm::multiple_scattering_with(a.x, a.y, b.x, b.y, b.z, int(a.w), cpp_test_phase),
                                               cm::multiple_scattering_with<3>(a.x, a.y, b.x, b.y, b.z, cpp_test_phase), 0.0f, 0.0f); }, in, 2, 1e-30f});

@@ -38,6 +38,31 @@ float cm_multiple_scattering(float optical_depth, float mu, float g, float a, fl
     return cm_multiple_scattering(optical_depth, mu, g, a, b, c, CM_MS_OCTAVES);
 }
 
+// Presets (the C++ multiple_scattering_preset without its name): a, b, c, octave count, the
+// optical thickness range and the error measured there against the Monte Carlo reference
+// (rms and max of (L_model - L_MC) / mean L_MC; see multiple_scattering.hpp).
+struct CmMsPreset {
+    float a;
+    float b;
+    float c;
+    int octaves;
+    float tau_min;
+    float tau_max;
+    float rms_error;
+    float max_error;
+};
+const CmMsPreset CM_MS_PRESET_PRODUCTION = CmMsPreset(0.5, 0.5, 0.5, 3, 1.0, 100.0, 1.034, 3.726);
+const CmMsPreset CM_MS_PRESET_FITTED = CmMsPreset(0.197, 0.409, 0.800, 5, 1.0, 100.0, 0.7096, 3.649);
+const CmMsPreset CM_MS_PRESET_CHEAP = CmMsPreset(0.0639, 0.582, 0.676, 2, 1.0, 100.0, 0.7394, 3.657);
+const CmMsPreset CM_MS_PRESET_THIN = CmMsPreset(0.173, 0.435, 0.805, 3, 1.0, 10.0, 0.5524, 1.311);
+const CmMsPreset CM_MS_PRESET_THICK = CmMsPreset(0.299, 0.625, 0.529, 6, 10.0, 100.0, 0.5431, 2.180);
+
+// The octave sum with a preset's a, b, c and octave count.
+float cm_multiple_scattering(float optical_depth, float mu, float g, CmMsPreset preset) {
+    return cm_multiple_scattering(optical_depth, mu, g, preset.a, preset.b, preset.c,
+                                  preset.octaves);
+}
+
 #ifdef CM_MS_PHASE
 float cm_multiple_scattering_with(float optical_depth, float mu, float a, float b, float c,
                                   int octaves) {

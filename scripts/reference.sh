@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Regenerates the physical references and the error reports built on them:
+#   docs/data/mie_*.csv            Lorenz-Mie phase tables of droplet distributions
+#                                  (cloudmath_mie; about 5 minutes on 2 cores, 3.5 of them
+#                                  for r_eff = 20 um)
+#   docs/phase_error.{md,csv}      analytic phase functions against the tables, with SVGs in
+#                                  docs/images (cloudmath_phase_error; 1 s)
+#   docs/data/lighting_reference.csv  Monte Carlo radiances of spheres and slabs
+#                                  (cloudmath_lighting_error reference; about 6.5 minutes)
+#   docs/lighting_error.{md,csv}   lighting models against it, fits, presets, with SVGs
+#                                  (cloudmath_lighting_error report; about 2 minutes)
+# Usage: bash scripts/reference.sh [--reports-only]
+#   --reports-only  keeps the tables and the Monte Carlo reference, reruns the two reports
+# Afterwards: the presets' documented errors in include/cloudmath/multiple_scattering.hpp
+# must match docs/lighting_error.md (ctest -R reference.lighting_presets checks it), and
+# bash scripts/speed-vs-error.sh refreshes the report's physical-reference column.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+reports_only=0
+for arg in "$@"; do
+    case "$arg" in
+        --reports-only) reports_only=1 ;;
+        *) echo "usage: bash scripts/reference.sh [--reports-only]" >&2; exit 2 ;;
+    esac
+done
+
+bash scripts/install-deps.sh
+cmake -S . -B build/reference -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCLOUDMATH_BUILD_TESTS=OFF -DCLOUDMATH_BUILD_BENCH=OFF -DCLOUDMATH_BUILD_EXAMPLES=ON >/dev/null
+cmake --build build/reference --target cloudmath_mie cloudmath_phase_error cloudmath_lighting_error >/dev/null
+bin=build/reference/tools/reference
+mkdir -p docs/data docs/images
+
+tables=(docs/data/mie_c1_0.55um.csv docs/data/mie_c1_0.70um.csv
+        docs/data/mie_gamma_reff5um_0.55um.csv docs/data/mie_gamma_reff10um_0.55um.csv
+        docs/data/mie_gamma_reff20um_0.55um.csv)
+if [[ $reports_only == 0 ]]; then
+    "$bin/cloudmath_mie" --distribution c1 --wavelength 0.55 --out "${tables[0]}"
+    "$bin/cloudmath_mie" --distribution c1 --wavelength 0.70 --out "${tables[1]}"
+    for r in 5 10 20; do
+        "$bin/cloudmath_mie" --distribution gamma --reff "$r" --wavelength 0.55 \
+            --out "docs/data/mie_gamma_reff${r}um_0.55um.csv"
+    done
+fi
+"$bin/cloudmath_phase_error" "${tables[@]}"
+
+if [[ $reports_only == 0 ]]; then
+    "$bin/cloudmath_lighting_error" reference --out docs/data/lighting_reference.csv
+fi
+"$bin/cloudmath_lighting_error" report

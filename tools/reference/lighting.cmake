@@ -1,0 +1,50 @@
+# Lighting models against the Monte Carlo reference (included by CMakeLists.txt).
+#   cloudmath_lighting_lib    lighting_models.cpp: the real-time models along test-medium rays;
+#                             lighting_error.cpp: the reference data set, errors and fits;
+#                             lighting_report.cpp: docs/lighting_error.md, .csv and SVGs
+#   cloudmath_lighting_error  the CLI: `reference` path-traces docs/data/lighting_reference.csv,
+#                             `report` writes the report (lighting_error_main.cpp)
+add_library(cloudmath_lighting_lib STATIC lighting_models.cpp lighting_error.cpp lighting_report.cpp)
+cloudmath_reference_target(cloudmath_lighting_lib)
+target_include_directories(cloudmath_lighting_lib PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}")
+target_link_libraries(cloudmath_lighting_lib PUBLIC cloudmath_montecarlo_lib cloudmath_phase_error_lib)
+
+add_executable(cloudmath_lighting_error lighting_error_main.cpp)
+cloudmath_reference_target(cloudmath_lighting_error)
+target_link_libraries(cloudmath_lighting_error PRIVATE cloudmath_lighting_lib)
+
+if(CLOUDMATH_BUILD_TESTS)
+  cloudmath_reference_test(lighting_models test_lighting_models.cpp)
+  target_link_libraries(cloudmath_reference_test_lighting_models PRIVATE cloudmath_lighting_lib)
+endif()
+
+if(CLOUDMATH_BUILD_TESTS)
+  cloudmath_reference_test(lighting_error test_lighting_error.cpp)
+  target_link_libraries(cloudmath_reference_test_lighting_error PRIVATE cloudmath_lighting_lib)
+  target_compile_definitions(cloudmath_reference_test_lighting_error PRIVATE
+    "CLOUDMATH_BINARY_DIR=\"${CMAKE_CURRENT_BINARY_DIR}\"")
+  cloudmath_reference_test(lighting_presets test_lighting_presets.cpp)
+  target_link_libraries(cloudmath_reference_test_lighting_presets PRIVATE cloudmath_lighting_lib)
+
+  # The CLI: bad command lines -> 2, a missing reference -> 1 naming it, and a --quick
+  # reference turned into a report (every output file written).
+  add_test(NAME reference.lighting_error_cli
+    COMMAND sh -c [=[
+      set -u
+      "$1" 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "no command: exit $s, want 2"; exit 1; }
+      "$1" report --no-such-flag 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "bad flag: exit $s, want 2"; exit 1; }
+      "$1" reference --paths x 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "bad --paths: exit $s, want 2"; exit 1; }
+      rm -rf "$2"; mkdir -p "$2/images"
+      "$1" report --reference "$2/missing.csv" --docs "$2" 2>"$2.err"; s=$?
+      [ $s -eq 1 ] || { echo "missing reference: exit $s, want 1"; exit 1; }
+      grep -q missing.csv "$2.err" || { echo "message does not name the path"; exit 1; }
+      "$1" reference --quick --threads 2 --out "$2/ref.csv" 2>/dev/null || { echo "reference --quick failed"; exit 1; }
+      [ "$(grep -c '^sphere,' "$2/ref.csv")" -eq 30 ] || { echo "quick reference: want 30 sphere rows"; exit 1; }
+      "$1" report --reference "$2/ref.csv" --docs "$2" 2>/dev/null || { echo "report failed"; exit 1; }
+      for f in lighting_error.md lighting_error.csv images/lighting_error_vs_tau.svg images/lighting_error_sphere_profile.svg; do
+        [ -s "$2/$f" ] || { echo "missing $f"; exit 1; }
+      done
+      grep -q "ms_preset::thin" "$2/lighting_error.md" || { echo "report lacks the presets"; exit 1; }
+      "$1" --help >/dev/null || { echo "--help failed"; exit 1; }
+      ]=] sh $<TARGET_FILE:cloudmath_lighting_error> "${CMAKE_CURRENT_BINARY_DIR}/lighting_error_cli_test")
+endif()

@@ -1,0 +1,163 @@
+// tools/reference/lighting_error_main.cpp: cloudmath_lighting_error, the lighting models of
+// cloudmath (single scattering, Wrenninge octaves, Beer-Powder, Nubis attenuation) against
+// the Monte Carlo reference.
+//
+//   cloudmath_lighting_error reference [--out docs/data/lighting_reference.csv] [--paths N]
+//       [--max-paths N] [--target-error 0.01] [--threads 0] [--seed 1] [--quick]
+//   cloudmath_lighting_error report [--reference docs/data/lighting_reference.csv]
+//       [--docs docs] [--images docs/images]
+//
+// `reference` path-traces the sphere and slab rays (lighting_error.hpp) and writes the CSV;
+// `report` measures every model on it, fits a, b, c per octave count and form, and writes
+// lighting_error.md, lighting_error.csv and lighting_error_*.svg. Exit status: 0 success,
+// 2 bad command line, 1 I/O or data failure (the message names the path).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <iostream>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "lighting_error.hpp"
+#include "lighting_report.hpp"
+
+namespace lm = cloudmath::reference::lighting;
+
+namespace {
+
+const char* const usage_text =
+    "usage: cloudmath_lighting_error <command> [--flag value ...]\n"
+    "\n"
+    "commands:\n"
+    "  reference  path-traces the reference: a sphere seen from 6 directions around the sun\n"
+    "             and a slab under 3 sun angles, optical thickness 1 to 100, HG g = 0.85.\n"
+    "             flags: --out docs/data/lighting_reference.csv --paths 200000\n"
+    "                    --max-paths 3200000 --target-error 0.01 --threads 0 --seed 1\n"
+    "                    --quick (3 thicknesses, 2 view angles, 1 sun, few paths: a smoke\n"
+    "                    test, not a reference)\n"
+    "  report     measures the lighting models against the reference and fits them:\n"
+    "             writes DOCS/lighting_error.md, DOCS/lighting_error.csv and\n"
+    "             IMAGES/lighting_error_*.svg.\n"
+    "             flags: --reference docs/data/lighting_reference.csv --docs docs\n"
+    "                    --images docs/images\n"
+    "Exit status: 0 ok, 1 I/O or data failure, 2 bad command line.\n";
+
+struct usage_error : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// "--name value" pairs (and bare switches), checked against what a command accepts.
+std::map<std::string, std::string> parse_flags(int argc, char** argv,
+                                               const std::set<std::string>& with_value,
+                                               const std::set<std::string>& switches) {
+    std::map<std::string, std::string> out;
+    for (int i = 2; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg.rfind("--", 0) != 0) throw usage_error("unexpected argument '" + arg + "'");
+        const std::string key = arg.substr(2);
+        if (switches.count(key)) {
+            out[key] = "1";
+        } else if (with_value.count(key)) {
+            if (i + 1 >= argc) throw usage_error("flag '" + arg + "' needs a value");
+            out[key] = argv[++i];
+        } else {
+            throw usage_error("unknown flag '" + arg + "'");
+        }
+    }
+    return out;
+}
+
+std::uint64_t to_count(const std::string& flag, const std::string& text) {
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || text[0] == '-')
+        throw usage_error("--" + flag + " needs a non-negative integer, got '" + text + "'");
+    return v;
+}
+
+double to_positive(const std::string& flag, const std::string& text) {
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !(v > 0.0) || !std::isfinite(v))
+        throw usage_error("--" + flag + " needs a positive number, got '" + text + "'");
+    return v;
+}
+
+int run_reference(int argc, char** argv) {
+    auto f = parse_flags(argc, argv, {"out", "paths", "max-paths", "target-error", "threads",
+                                      "seed"},
+                         {"quick"});
+    lm::reference_options o;
+    if (f.count("quick")) {
+        o.taus = {1, 10, 100};
+        o.sphere_view_angles_deg = {30, 120};
+        o.sphere_points = 5;
+        o.slab_sun_zenith_deg = {60};
+        o.paths = 2000;
+        o.max_paths = 8000;
+    }
+    if (f.count("paths")) o.paths = to_count("paths", f["paths"]);
+    if (f.count("max-paths")) o.max_paths = to_count("max-paths", f["max-paths"]);
+    if (f.count("target-error")) o.target_rel_error = to_positive("target-error", f["target-error"]);
+    if (f.count("threads")) o.threads = static_cast<unsigned>(to_count("threads", f["threads"]));
+    if (f.count("seed")) o.seed = to_count("seed", f["seed"]);
+    if (o.paths == 0) throw usage_error("--paths must be > 0");
+    if (o.max_paths < o.paths) o.max_paths = o.paths;
+    const std::string out = f.count("out") ? f["out"] : "docs/data/lighting_reference.csv";
+    o.log = [](const std::string& line) { std::cerr << "cloudmath_lighting_error: " << line << '\n'; };
+
+    const auto t0 = std::chrono::steady_clock::now();
+    lm::reference_set set = lm::generate_reference(o);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.0f", seconds);
+    set.metadata.emplace_back("elapsed_s", buf);
+    lm::write_reference(set, out);
+    std::cout << "cloudmath_lighting_error: wrote " << set.rows.size() << " rows to " << out
+              << " in " << buf << " s\n";
+    return 0;
+}
+
+int run_report(int argc, char** argv) {
+    auto f = parse_flags(argc, argv, {"reference", "docs", "images"}, {});
+    lm::report_options o;
+    if (f.count("reference")) o.reference_path = f["reference"];
+    if (f.count("docs")) o.docs_dir = f["docs"];
+    o.images_dir = f.count("images") ? f["images"] : o.docs_dir + "/images";
+    o.log = [](const std::string& line) { std::cerr << "cloudmath_lighting_error: " << line << '\n'; };
+    const lm::report_summary s = lm::write_report(o);
+    std::cout << "cloudmath_lighting_error: " << s.rows << " reference rows, " << s.fits
+              << " fits; wrote " << o.docs_dir << "/lighting_error.md, lighting_error.csv and "
+              << s.images << " SVGs in " << o.images_dir << '\n';
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        const std::string command = argc > 1 ? argv[1] : "";
+        if (command == "--help" || command == "-h" || command == "help") {
+            std::cout << usage_text;
+            return 0;
+        }
+        if (command == "reference") return run_reference(argc, argv);
+        if (command == "report") return run_report(argc, argv);
+        throw usage_error(command.empty() ? "no command" : "unknown command '" + command + "'");
+    } catch (const usage_error& e) {
+        std::cerr << "cloudmath_lighting_error: " << e.what() << " (--help for usage)\n";
+        return 2;
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "cloudmath_lighting_error: " << e.what() << '\n';
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "cloudmath_lighting_error: " << e.what() << '\n';
+        return 1;
+    }
+}
