@@ -15,7 +15,22 @@ packages=(
   glslang-tools spirv-tools                      # GLSL tests: glslangValidator, spirv-val
   libglfw3-dev                                   # examples/cloud_renderer: the window mode
   xvfb xauth                                     # its test: the window on a virtual X server
+  chromium                                       # web/: the WebGL2 page's browser test
 )
+# web/ needs Node.js and npm; a machine that has them (Debian's or another build) keeps them.
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
+
+# The npm packages of web/ (playwright-core and three, pinned by web/package-lock.json).
+install_npm_packages() {
+  local web
+  web="$(cd "$(dirname "${BASH_SOURCE[0]}")/../web" && pwd)"
+  if [ ! -d "$web/node_modules/playwright-core" ] || [ ! -d "$web/node_modules/three" ]; then
+    echo "install-deps: npm ci in web/"
+    (cd "$web" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+  fi
+}
 
 missing=()
 for p in "${packages[@]}"; do
@@ -23,7 +38,10 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
+if [ ${#missing[@]} -eq 0 ]; then
+  install_npm_packages
+  exit 0
+fi
 
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then
@@ -34,3 +52,4 @@ echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 $sudo apt-get update -qq >/dev/null
 $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+install_npm_packages

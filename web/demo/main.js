@@ -1,0 +1,279 @@
+// The demo page: parity of the cm_ functions (GPU against JavaScript) and the example
+// renderer's clouds, both from the cloudmath-glsl package's generated sources.
+// window.cloudmathDemo holds the results (read by web/test/browser.mjs).
+import { modules, resolve } from '../dist/index.js';
+import { cases, defaultBudget, floor } from './parity.js';
+import { scenePresets, variants, msPresets, frameConstants } from './scene.js';
+import { cloudsFrag } from './clouds_frag.js';
+
+const demo = (window.cloudmathDemo = { ready: false, error: null, parity: [], image: null, frames: [] });
+const params = new URLSearchParams(location.search);
+const baseSize = Number(params.get('base') || 64);  // base noise volume edge (the desktop renderer: 128)
+const status = (text) => { document.getElementById('status').textContent = text; };
+
+const canvas = document.getElementById('view');
+const gl = canvas.getContext('webgl2', { antialias: false, preserveDrawingBuffer: true });
+const header = '#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp sampler2D;\nprecision highp sampler3D;\n';
+const vertexSource = '#version 300 es\nvoid main() { vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0); gl_Position = vec4(p, 0.0, 1.0); }\n';
+
+function compile(type, source, what) {
+  const s = gl.createShader(type);
+  gl.shaderSource(s, source);
+  gl.compileShader(s);
+  if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(`${what}: ${gl.getShaderInfoLog(s)}`);
+  return s;
+}
+function program(fragmentSource, what) {
+  const p = gl.createProgram();
+  gl.attachShader(p, compile(gl.VERTEX_SHADER, vertexSource, what + ' (vertex)'));
+  gl.attachShader(p, compile(gl.FRAGMENT_SHADER, fragmentSource, what));
+  gl.linkProgram(p);
+  if (!gl.getProgramParameter(p, gl.LINK_STATUS)) throw new Error(`${what}: ${gl.getProgramInfoLog(p)}`);
+  return p;
+}
+const drawTriangle = () => gl.drawArrays(gl.TRIANGLES, 0, 3);
+
+// ------------------------------------------------------------------------------------------
+// Parity: inputs in an RGBA32F texture (one texel each), results in an RGBA32F target.
+function runParity() {
+  if (!gl.getExtension('EXT_color_buffer_float')) throw new Error('EXT_color_buffer_float is missing: no float render target');
+  const rows = [];
+  for (const c of cases) {
+    const n = c.inputs.length;
+    const data = new Float32Array(n * 4);
+    c.inputs.forEach((a, i) => data.set(a, 4 * i));
+    const input = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, input);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, n, 1, 0, gl.RGBA, gl.FLOAT, data);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    const target = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, target);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, n, 1, 0, gl.RGBA, gl.FLOAT, null);
+    const fbo = gl.createFramebuffer();
+    gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
+    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, target, 0);
+    const source = header + modules[c.module] +
+      `\nuniform sampler2D u_in;\nout vec4 o;\nvoid main() {\n  vec4 a = texelFetch(u_in, ivec2(gl_FragCoord.xy), 0);\n  o = vec4(${c.expr}, 0.0, 0.0, 0.0);\n}\n`;
+    const p = program(source, c.fn);
+    gl.useProgram(p);
+    gl.activeTexture(gl.TEXTURE0);
+    gl.bindTexture(gl.TEXTURE_2D, input);
+    gl.uniform1i(gl.getUniformLocation(p, 'u_in'), 0);
+    gl.viewport(0, 0, n, 1);
+    drawTriangle();
+    const out = new Float32Array(n * 4);
+    gl.readPixels(0, 0, n, 1, gl.RGBA, gl.FLOAT, out);
+    let worst = 0, nonFinite = 0, worstAt = null;
+    c.inputs.forEach((a, i) => {
+      const got = out[4 * i], want = c.ref(a);
+      if (!Number.isFinite(got)) { nonFinite++; return; }
+      const err = Math.abs(got - want) / Math.max(Math.abs(want), floor);
+      if (err > worst) { worst = err; worstAt = a; }
+    });
+    const budget = c.budget || defaultBudget;
+    rows.push({ fn: c.fn, values: n, maxError: worst, budget, nonFinite, worstAt, pass: worst <= budget && nonFinite === 0 });
+    gl.deleteFramebuffer(fbo); gl.deleteTexture(input); gl.deleteTexture(target); gl.deleteProgram(p);
+  }
+  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  const body = document.querySelector('#parity tbody');
+  for (const r of rows) {
+    const tr = document.createElement('tr');
+    tr.className = r.pass ? 'pass' : 'fail';
+    for (const v of [r.fn, r.values, r.maxError.toExponential(1), r.budget.toExponential(0), r.nonFinite]) {
+      const td = document.createElement('td'); td.textContent = v; tr.appendChild(td);
+    }
+    body.appendChild(tr);
+  }
+  return rows;
+}
+
+// ------------------------------------------------------------------------------------------
+// Noise textures, baked on the GPU with cloudmath's noise functions: the texel formulas of
+// include/cloudmath/noise_bake.hpp (bake_base_texel, bake_detail_texel, bake_weather_texel),
+// seed 0, with the renderer's cells (4, 2, 4), quantised to RGBA8 by the render target.
+const bakeSource = header + modules.noise + `
+uniform int u_kind;   // 0 base, 1 detail, 2 weather
+uniform int u_size, u_cells, u_layer;
+out vec4 o;
+uint channelSeed(uint channel) { return cm_noise_hash(0u) + channel * 0x10000000u; }
+float coord(int i) { return (float(i) + 0.5) * float(u_cells) / float(u_size); }
+void main() {
+  ivec2 ij = ivec2(gl_FragCoord.xy);
+  vec3 p = vec3(coord(ij.x), coord(ij.y), coord(u_layer));
+  int c = u_cells;
+  if (u_kind == 0) {
+    o = vec4(cm_perlin_worley(p, c, channelSeed(0u)), cm_worley_fbm_nubis(p * 2.0, 2 * c, channelSeed(1u)),
+             cm_worley_fbm_nubis(p * 4.0, 4 * c, channelSeed(2u)), cm_worley_fbm_nubis(p * 8.0, 8 * c, channelSeed(3u)));
+  } else if (u_kind == 1) {
+    o = vec4(cm_worley_fbm_nubis(p, c, channelSeed(4u)), cm_worley_fbm_nubis(p * 2.0, 2 * c, channelSeed(5u)),
+             cm_worley_fbm_nubis(p * 4.0, 4 * c, channelSeed(6u)), 1.0);
+  } else {
+    vec2 q = p.xy;
+    o = vec4(cm_saturate(0.5 + cm_perlin_fbm(q, c, 4, 2, 0.5, channelSeed(8u))),
+             cm_saturate(0.5 + cm_perlin_fbm(q, c, 2, 2, 0.5, channelSeed(9u))),
+             cm_saturate(0.5 + cm_perlin_fbm(q, c, 3, 2, 0.5, channelSeed(10u))), 1.0);
+  }
+}
+`;
+
+function bakeTextures() {
+  const p = program(bakeSource, 'noise bake');
+  gl.useProgram(p);
+  const u = (n) => gl.getUniformLocation(p, n);
+  const fbo = gl.createFramebuffer();
+  gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
+  function make(kind, size, cells, depth) {
+    const target = depth > 1 ? gl.TEXTURE_3D : gl.TEXTURE_2D;
+    const t = gl.createTexture();
+    gl.bindTexture(target, t);
+    if (depth > 1) gl.texStorage3D(target, 1, gl.RGBA8, size, size, size);
+    else gl.texStorage2D(target, 1, gl.RGBA8, size, size);
+    for (const [k, v] of [[gl.TEXTURE_MIN_FILTER, gl.LINEAR], [gl.TEXTURE_MAG_FILTER, gl.LINEAR],
+      [gl.TEXTURE_WRAP_S, gl.REPEAT], [gl.TEXTURE_WRAP_T, gl.REPEAT], [gl.TEXTURE_WRAP_R, gl.REPEAT]]) gl.texParameteri(target, k, v);
+    gl.uniform1i(u('u_kind'), kind);
+    gl.uniform1i(u('u_size'), size);
+    gl.uniform1i(u('u_cells'), cells);
+    gl.viewport(0, 0, size, size);
+    for (let z = 0; z < depth; ++z) {
+      if (depth > 1) gl.framebufferTextureLayer(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, t, 0, z);
+      else gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, t, 0);
+      gl.uniform1i(u('u_layer'), z);
+      drawTriangle();
+    }
+    return t;
+  }
+  const textures = { base: make(0, baseSize, 4, baseSize), detail: make(1, 32, 2, 32), weather: make(2, 256, 4, 1) };
+  gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));  // waits for the bake
+  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  gl.deleteFramebuffer(fbo);
+  return textures;
+}
+
+// ------------------------------------------------------------------------------------------
+// The cloud pass: clouds.frag with run-time variant uniforms (CR_PARAM) and the package's
+// resolver for its #include "cloudmath.glsl".
+let clouds = null, textures = null, target = null;
+function setupClouds() {
+  const source = header + '#define CR_PARAM(type, name) uniform type name;\n' + resolve(cloudsFrag);
+  clouds = program(source, 'clouds.frag');
+  target = { fbo: gl.createFramebuffer(), tex: gl.createTexture() };
+  gl.bindTexture(gl.TEXTURE_2D, target.tex);
+  gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA8, canvas.width, canvas.height);
+  gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
+  gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, target.tex, 0);
+  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+}
+
+function render(state) {
+  const s = { ...scenePresets.find((x) => x.name === state.scene) };
+  s.sunElevation = state.sunElevation;
+  s.coverage = state.coverage;
+  const f = frameConstants(s);
+  const v = variants[state.variant];
+  const [msA, msB, msC, msN] = msPresets[state.ms];
+  gl.useProgram(clouds);
+  const u = (n) => gl.getUniformLocation(clouds, n);
+  const i1 = (n, x) => gl.uniform1i(u(n), x), f1 = (n, x) => gl.uniform1f(u(n), x), v3 = (n, x) => gl.uniform3fv(u(n), x);
+  i1('u_phase_model', v.phase); i1('u_octaves', state.ms === 'production' ? v.octaves : msN); i1('u_powder', v.powder); i1('u_light_mode', v.light);
+  i1('u_cone_samples', v.coneSamples); i1('u_light_steps', v.lightSteps); i1('u_integration', v.integration);
+  i1('u_view_steps', v.viewSteps); i1('u_jitter', v.jitter);
+  gl.uniform2f(u('u_resolution'), canvas.width, canvas.height);
+  v3('u_forward', f.forward); v3('u_right', f.right); v3('u_up', f.up); f1('u_tan_half_fov', f.tanHalfFov);
+  f1('u_cam_altitude', s.cameraAltitude); f1('u_planet_radius', s.planetRadius); f1('u_layer_bottom', s.layerBottom); f1('u_layer_top', s.layerTop);
+  v3('u_sun_dir', f.sunDir); v3('u_sun_radiance', f.sunRadiance); v3('u_ambient_top', f.ambientTop); v3('u_ambient_bottom', f.ambientBottom);
+  v3('u_sky_zenith', f.skyZenith); v3('u_sky_horizon', f.skyHorizon); v3('u_ground', f.ground); f1('u_sun_cos_radius', f.sunCosRadius);
+  f1('u_coverage', s.coverage); f1('u_cloud_type', s.cloudType); f1('u_extinction', s.extinction); f1('u_albedo', s.albedo); f1('u_max_distance', s.maxDistance);
+  f1('u_base_tile', s.baseTile); f1('u_detail_tile', s.detailTile); f1('u_weather_tile', s.weatherTile); gl.uniform2fv(u('u_wind'), s.wind);
+  f1('u_exposure', s.exposure);
+  f1('u_phase_g', f.phaseG); f1('u_phase_g_back', f.phaseGBack); f1('u_phase_w', f.phaseW); f1('u_droplet_diameter', f.dropletDiameter);
+  f1('u_ms_a', msA); f1('u_ms_b', msB); f1('u_ms_c', msC);
+  f1('u_cone_step', f.coneStep); f1('u_cone_spread', f.coneSpread); f1('u_cone_far_distance', f.coneFarDistance); f1('u_cone_far_length', f.coneFarLength);
+  f1('u_light_march_max', f.lightMarchMax); f1('u_min_transmittance', f.minTransmittance);
+  const units = [['u_base', gl.TEXTURE_3D, textures.base], ['u_detail', gl.TEXTURE_3D, textures.detail], ['u_weather', gl.TEXTURE_2D, textures.weather]];
+  units.forEach(([name, kind, tex], i) => { gl.activeTexture(gl.TEXTURE0 + i); gl.bindTexture(kind, tex); i1(name, i); });
+
+  gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
+  gl.viewport(0, 0, canvas.width, canvas.height);
+  const pixels = new Uint8Array(canvas.width * canvas.height * 4);
+  const t0 = performance.now();
+  drawTriangle();
+  gl.readPixels(0, 0, canvas.width, canvas.height, gl.RGBA, gl.UNSIGNED_BYTE, pixels);  // waits for the frame
+  const ms = performance.now() - t0;
+  gl.bindFramebuffer(gl.READ_FRAMEBUFFER, target.fbo);
+  gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
+  gl.blitFramebuffer(0, 0, canvas.width, canvas.height, 0, 0, canvas.width, canvas.height, gl.COLOR_BUFFER_BIT, gl.NEAREST);
+  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  return { ms, stats: imageStats(pixels) };
+}
+
+// Mean and standard deviation of the luminance (0..1), the share of cloudy pixels (opacity
+// above 0.5) and the number of distinct grey levels.
+function imageStats(px) {
+  let sum = 0, sum2 = 0, cloudy = 0;
+  const levels = new Set();
+  const n = px.length / 4;
+  for (let i = 0; i < px.length; i += 4) {
+    const y = (0.2126 * px[i] + 0.7152 * px[i + 1] + 0.0722 * px[i + 2]) / 255;
+    sum += y; sum2 += y * y;
+    levels.add(Math.round(y * 255));
+    if (px[i + 3] > 127) cloudy++;
+  }
+  const mean = sum / n;
+  return { mean, std: Math.sqrt(Math.max(sum2 / n - mean * mean, 0)), cloudFraction: cloudy / n, levels: levels.size, pixels: n };
+}
+
+// ------------------------------------------------------------------------------------------
+function fillSelect(id, names, value) {
+  const el = document.getElementById(id);
+  for (const n of names) { const o = document.createElement('option'); o.value = o.textContent = n; el.appendChild(o); }
+  el.value = value;
+  return el;
+}
+
+async function main() {
+  if (!gl) throw new Error('WebGL2 is not available');
+  const dbg = gl.getExtension('WEBGL_debug_renderer_info');
+  demo.renderer = dbg ? gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
+  document.getElementById('device').textContent = `Renderer: ${demo.renderer}; ${navigator.userAgent}`;
+  status('parity...');
+  demo.parity = runParity();
+  status('baking noise textures...');
+  let t0 = performance.now();
+  textures = bakeTextures();
+  gl.finish();
+  demo.bakeMs = performance.now() - t0;
+  status('compiling the cloud shader...');
+  t0 = performance.now();
+  setupClouds();
+  demo.compileMs = performance.now() - t0;
+
+  const state = { scene: params.get('scene') || 'cumulus', variant: params.get('variant') || 'default', ms: params.get('ms') || 'production' };
+  const preset = () => scenePresets.find((x) => x.name === state.scene);
+  state.sunElevation = Number(params.get('sun') ?? preset().sunElevation);
+  state.coverage = Number(params.get('coverage') ?? preset().coverage);
+  const sun = document.getElementById('sun'), coverage = document.getElementById('coverage');
+  const draw = () => {
+    sun.value = state.sunElevation; coverage.value = state.coverage;
+    document.getElementById('sunValue').textContent = `${state.sunElevation} deg`;
+    document.getElementById('coverageValue').textContent = state.coverage.toFixed(2);
+    const r = render(state);
+    demo.image = r.stats;
+    demo.frames.push(r.ms);
+    document.getElementById('timing').textContent = `${canvas.width} x ${canvas.height}: ${r.ms.toFixed(1)} ms per frame ` +
+      `(draw to readPixels, after a warm-up draw); base volume ${baseSize}^3 baked in ${demo.bakeMs.toFixed(0)} ms`;
+  };
+  fillSelect('scene', scenePresets.map((x) => x.name), state.scene).onchange = (e) => {
+    state.scene = e.target.value; state.sunElevation = preset().sunElevation; state.coverage = preset().coverage; draw(); };
+  fillSelect('variant', Object.keys(variants), state.variant).onchange = (e) => { state.variant = e.target.value; draw(); };
+  fillSelect('ms', Object.keys(msPresets), state.ms).onchange = (e) => { state.ms = e.target.value; draw(); };
+  sun.oninput = () => { state.sunElevation = Number(sun.value); draw(); };
+  coverage.oninput = () => { state.coverage = Number(coverage.value); draw(); };
+  render(state);  // warm-up: the driver finishes compiling at the first draw
+  draw();
+  const failed = demo.parity.filter((r) => !r.pass).length;
+  status(`ready: ${demo.parity.length} parity cases, ${failed} over budget; clouds drawn`);
+  demo.ready = true;
+}
+
+main().catch((e) => { demo.error = String(e && e.message || e); status('error: ' + demo.error); console.error(e); });

@@ -1,0 +1,80 @@
+// The example renderer's scenes, lighting variants and frame constants (examples/cloud_renderer/
+// scene.hpp and scene.cpp), in JavaScript: the same numbers as the desktop renderer's uniforms.
+// Frame: camera at the origin, +y up, -z north, +x east, metres.
+
+const degrees = Math.PI / 180;
+
+export const scenePresets = [
+  // name, description, altitude, yaw, pitch, sun elevation, sun azimuth, coverage, cloud type
+  ['ground', 'on the ground looking up, sun high', 2, 0, 28, 50, 140, 0.3, 0.65],
+  ['horizon', 'on the ground at the horizon, low sun ahead', 2, 250, 12, 6, 265, 0.3, 0.7],
+  ['sun_behind', 'looking away from a low sun', 2, 70, 15, 15, 250, 0.32, 0.7],
+  ['inside', 'inside the layer, looking across it', 2700, 20, 0, 30, 160, 0.28, 0.6],
+  ['above', 'above the clouds looking down, low sun', 7000, 200, -18, 10, 230, 0.33, 0.75],
+  ['stratus', 'overcast stratus from the ground', 2, 40, 22, 35, 100, 0.6, 0.0],
+  ['cumulus', 'scattered cumulus, sun high', 2, 300, 18, 60, 180, 0.27, 1.0],
+].map(([name, description, cameraAltitude, yaw, pitch, sunElevation, sunAzimuth, coverage, cloudType]) => ({
+  name, description, cameraAltitude, yaw, pitch, fovY: 60, sunElevation, sunAzimuth, coverage, cloudType,
+  planetRadius: 6371000, layerBottom: 1500, layerTop: 4000, extinction: 0.04, albedo: 0.99,
+  maxDistance: 35000, baseTile: 12000, detailTile: 1500, weatherTile: 60000, wind: [1200, -800], exposure: 1,
+}));
+
+// Lighting variants (scene.hpp's `variant`; the names of scripts/render-docs.sh).
+const production = { phase: 1, octaves: 3, powder: 1, light: 0, coneSamples: 6, lightSteps: 16, integration: 0, viewSteps: 64, jitter: 1 };
+export const variants = {
+  default: { ...production },
+  hg: { ...production, phase: 0 },
+  mie: { ...production, phase: 3 },
+  octaves1: { ...production, octaves: 1 },
+  powder_off: { ...production, powder: 0 },
+  march: { ...production, light: 1, lightSteps: 32 },
+  naive16: { ...production, integration: 1, viewSteps: 16 },
+  analytic16: { ...production, viewSteps: 16 },
+};
+
+// Multiple-scattering presets (include/cloudmath/multiple_scattering.hpp, ms_preset): a, b, c
+// and the octave count, which replaces the variant's.
+export const msPresets = {
+  production: [0.5, 0.5, 0.5, 3],
+  fitted: [0.197, 0.409, 0.8, 5],
+  cheap: [0.0639, 0.582, 0.676, 2],
+  thin: [0.173, 0.435, 0.805, 3],
+  thick: [0.299, 0.625, 0.529, 6],
+};
+
+const f32 = Math.fround;
+function direction(heading, elevation) {
+  const h = heading * degrees, e = elevation * degrees;
+  return [Math.cos(e) * Math.sin(h), Math.sin(e), -Math.cos(e) * Math.cos(h)];
+}
+const normalize = (v) => { const l = Math.hypot(...v); return v.map((x) => x / l); };
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const mix = (a, b, t) => a.map((x, i) => x + (b[i] - x) * t);
+const scale = (a, k) => a.map((x) => x * k);
+const clamp = (x, lo, hi) => Math.min(Math.max(x, lo), hi);
+
+// make_frame_constants of scene.cpp.
+export function frameConstants(s) {
+  const pitch = clamp(s.pitch, -89, 89);
+  const f = {};
+  f.forward = direction(s.yaw, pitch);
+  f.right = normalize([Math.cos(s.yaw * degrees), 0, Math.sin(s.yaw * degrees)]);
+  f.up = cross(f.right, f.forward);
+  f.tanHalfFov = Math.tan(0.5 * s.fovY * degrees);
+  f.sunDir = direction(s.sunAzimuth, s.sunElevation);
+  const e = Math.max(s.sunElevation, -2);
+  const airMass = 1 / (Math.sin(Math.max(e, 0) * degrees) + 0.50572 * Math.pow(e + 6.07995 + 2, -1.6364));
+  const sun = [0.06, 0.13, 0.30].map((t) => Math.exp(-t * airMass));
+  const day = clamp((s.sunElevation + 4) / 14, 0.05, 1);
+  f.sunRadiance = scale(sun, 12);
+  f.skyZenith = scale([0.16, 0.30, 0.62], day);
+  f.skyHorizon = scale(mix([0.62, 0.72, 0.86], [0.85, 0.62, 0.45], 1 - day), day);
+  f.ground = scale([0.12, 0.11, 0.09], day);
+  f.ambientTop = scale(mix(f.skyZenith, f.skyHorizon, 0.4), 1.1);
+  f.ambientBottom = f.ground.map((g, i) => g * 1.5 + 0.25 * f.ambientTop[i]);
+  f.sunCosRadius = Math.cos(0.6 * degrees);
+  Object.assign(f, { phaseG: 0.8, phaseGBack: -0.25, phaseW: 0.2, dropletDiameter: 15, msA: 0.5, msB: 0.5, msC: 0.5,
+    coneStep: 120, coneSpread: 0.4, coneFarDistance: 1800, coneFarLength: 900, lightMarchMax: 6000, minTransmittance: 0.01 });
+  for (const k of Object.keys(f)) f[k] = Array.isArray(f[k]) ? f[k].map(f32) : f32(f[k]);
+  return f;
+}

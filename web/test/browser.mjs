@@ -1,0 +1,126 @@
+// web.browser: the demo page in Debian's Chromium (headless, SwiftShader's WebGL2, no GPU),
+// driven by Playwright (playwright-core) against the web/ folder served on localhost.
+// Checks: every parity case within its budget and free of NaN/Inf; the cloud image is not
+// blank (statistics in stated ranges) for two scenes and after switching variant and preset.
+//
+//   node web/test/browser.mjs [--screenshot FILE] [--markdown FILE] [--chromium PATH]
+// Exit status 0 when every check passes; each failed check is printed.
+import { createServer } from 'node:http';
+import { readFile, mkdtemp, rm, writeFile } from 'node:fs/promises';
+import { tmpdir } from 'node:os';
+import { dirname, extname, join, normalize } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const web = join(dirname(fileURLToPath(import.meta.url)), '..');
+const arg = (name, fallback) => { const i = process.argv.indexOf(name); return i > 0 ? process.argv[i + 1] : fallback; };
+const executablePath = arg('--chromium', '/usr/bin/chromium');
+const screenshot = arg('--screenshot', null);
+const markdown = arg('--markdown', null);
+
+// A static file server for web/ (what any static server does).
+const types = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.json': 'application/json', '.css': 'text/css' };
+const server = createServer(async (req, res) => {
+  const path = normalize(decodeURIComponent(new URL(req.url, 'http://x').pathname)).replace(/^(\.\.[/\\])+/, '');
+  const file = join(web, path.endsWith('/') ? path + 'index.html' : path);
+  try {
+    const body = await readFile(file);
+    res.writeHead(200, { 'content-type': types[extname(file)] || 'application/octet-stream' });
+    res.end(body);
+  } catch {
+    res.writeHead(404); res.end('not found');
+  }
+});
+await new Promise((ok) => server.listen(0, '127.0.0.1', ok));
+const base = `http://127.0.0.1:${server.address().port}`;
+
+const failures = [];
+const check = (ok, what) => { if (!ok) failures.push(what); console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`); };
+
+// The repository README shows the same three.js snippet as web/README.md (which the page runs).
+const threeBlock = (text) => [...text.matchAll(/```js\n([\s\S]*?)```/g)].map((m) => m[1]).find((b) => b.includes('THREE.ShaderMaterial'));
+const webSnippet = threeBlock(await readFile(join(web, 'README.md'), 'utf8'));
+const rootSnippet = threeBlock(await readFile(join(web, '..', 'README.md'), 'utf8'));
+check(webSnippet && webSnippet === rootSnippet, 'README.md shows the three.js snippet of web/README.md unchanged');
+const userDataDir = await mkdtemp(join(tmpdir(), 'cloudmath-chromium-'));
+const flags = ['--headless', '--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
+  '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run'];
+let context, threeRevision = '?';
+try {
+  context = await chromium.launchPersistentContext(userDataDir, { executablePath, headless: true, args: flags, viewport: { width: 1000, height: 1400 } });
+  const page = context.pages()[0] || await context.newPage();
+  const logs = [];
+  page.on('console', (m) => logs.push(`${m.type()}: ${m.text()}`));
+  page.on('pageerror', (e) => logs.push(`pageerror: ${e.message}`));
+
+  const load = async (query) => {
+    await page.goto(`${base}/demo/${query}`);
+    await page.waitForFunction(() => window.cloudmathDemo && (window.cloudmathDemo.ready || window.cloudmathDemo.error), null, { timeout: 600000, polling: 500 });
+    return page.evaluate(() => window.cloudmathDemo);
+  };
+  const imageOk = (img, what) => {
+    check(img && img.mean > 0.1 && img.mean < 0.95, `${what}: mean luminance ${img && img.mean.toFixed(3)} in (0.1, 0.95)`);
+    check(img && img.std > 0.03, `${what}: luminance standard deviation ${img && img.std.toFixed(3)} > 0.03`);
+    check(img && img.cloudFraction > 0.02 && img.cloudFraction < 0.98, `${what}: cloudy pixels ${img && img.cloudFraction.toFixed(3)} in (0.02, 0.98)`);
+    check(img && img.levels > 20, `${what}: ${img && img.levels} grey levels > 20`);
+  };
+
+  const t0 = Date.now();
+  let demo = await load('?scene=cumulus');
+  check(!demo.error, `page loads without error${demo.error ? ': ' + demo.error : ''}`);
+  console.log(`renderer: ${demo.renderer}; loaded in ${((Date.now() - t0) / 1000).toFixed(1)} s (bake ${demo.bakeMs?.toFixed(0)} ms, cloud shader ${demo.compileMs?.toFixed(0)} ms, frame ${demo.frames?.[0]?.toFixed(0)} ms)`);
+  check(typeof demo.renderer === 'string' && demo.renderer.length > 0, `WebGL2 renderer reported (${demo.renderer})`);
+  check(demo.parity.length >= 20, `${demo.parity.length} parity cases >= 20`);
+  for (const r of demo.parity)
+    check(r.pass, `parity ${r.fn}: max error ${r.maxError.toExponential(2)} <= ${r.budget}, NaN/Inf ${r.nonFinite}` + (r.pass ? '' : ` (worst at ${JSON.stringify(r.worstAt)})`));
+  imageOk(demo.image, 'cumulus, default variant');
+  if (screenshot) { await page.screenshot({ path: screenshot, fullPage: true }); console.log(`screenshot: ${screenshot}`); }
+  const parity = demo.parity, renderer = demo.renderer, firstFrame = demo.frames[0];
+
+  // The controls: another variant and multiple-scattering preset redraw a different image.
+  const before = demo.image;
+  await page.selectOption('#variant', 'hg');
+  await page.selectOption('#ms', 'cheap');
+  demo = await page.evaluate(() => window.cloudmathDemo);
+  check(demo.frames.length === 3, `variant and preset controls redraw (${demo.frames.length} frames)`);
+  imageOk(demo.image, 'cumulus, HG, ms_preset cheap');
+  check(Math.abs(demo.image.mean - before.mean) > 1e-4, `the variant changes the image (mean ${before.mean.toFixed(4)} -> ${demo.image.mean.toFixed(4)})`);
+
+  demo = await load('?scene=horizon&sun=12&coverage=0.4');
+  check(!demo.error, 'horizon scene loads');
+  imageOk(demo.image, 'horizon, sun 12 deg, coverage 0.4');
+
+  // The three.js snippet of web/README.md, run as written with three.js from npm.
+  await page.goto(`${base}/demo/three.html`);
+  await page.waitForFunction(() => window.threeDemo && (window.threeDemo.ready || window.threeDemo.error), null, { timeout: 120000, polling: 250 });
+  const three = await page.evaluate(() => window.threeDemo);
+  threeRevision = three.threeRevision;
+  check(!three.error, `three.js page runs the README snippet${three.error ? ': ' + three.error : ''}`);
+  check(three.glsl3 && three.shaderErrors && three.shaderErrors.length === 0,
+    `three.js r${three.threeRevision} compiles the snippet's GLSL3 ShaderMaterial (${JSON.stringify(three.shaderErrors)})`);
+  check(three.litFraction > 0.1 && three.levels > 30, `three.js sphere is drawn: ${three.litFraction?.toFixed(3)} of the pixels lit, ${three.levels} grey levels`);
+
+  if (markdown) {
+    const rows = parity.map((r) => `| \`${r.fn}\` | ${r.values} | ${r.maxError === 0 ? '0' : r.maxError.toExponential(1)} | ${r.budget.toExponential(0)} | ${r.nonFinite} |`);
+    await writeFile(markdown, `# GLSL parity in the browser: WebGL2 against JavaScript\n\n` +
+      `Measured by \`bash scripts/web-demo.sh\` (web/test/browser.mjs: Playwright driving Debian's Chromium, ` +
+      `headless, flags \`${flags.join(' ')}\`) on **${renderer}**, ${new Date().toISOString().slice(0, 16).replace('T', ' ')} UTC. ` +
+      `Each cm_ function runs in a GLSL ES 3.00 fragment shader (highp) into an RGBA32F target; the reference is an ` +
+      `independent JavaScript double-precision formula on the same float-rounded inputs (web/demo/parity.js). ` +
+      `Error: |GPU - JS| / max(|JS|, 1e-30).\n\n| function | values | max error | budget | NaN/Inf |\n|---|---|---|---|---|\n` +
+      rows.join('\n') + `\n\nCloud frame (cumulus preset, default variant, 320 x 180, 64 view steps, base volume 64^3): ` +
+      `${firstFrame.toFixed(0)} ms on this software renderer. The three.js snippet of web/README.md runs as written ` +
+      `(three.js r${threeRevision}, GLSL3 ShaderMaterial, no shader errors).\n\n![the demo page](images/web_demo.png)\n`);
+    console.log(`markdown: ${markdown}`);
+  }
+  if (failures.length) console.log(logs.join('\n'));
+} catch (e) {
+  failures.push(String(e && e.stack || e));
+  console.log(`FAIL ${e && e.message || e}`);
+} finally {
+  if (context) await context.close();
+  server.close();
+  await rm(userDataDir, { recursive: true, force: true });
+}
+console.log(failures.length ? `${failures.length} check(s) failed` : 'all checks passed');
+process.exit(failures.length ? 1 : 0);
