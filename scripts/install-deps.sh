@@ -22,13 +22,15 @@ if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
   packages+=(nodejs npm)
 fi
 
-# The npm packages of web/ (playwright-core and three, pinned by web/package-lock.json).
+# The npm packages of web/ (playwright-core and three, pinned by web/package-lock.json):
+# npm ci when node_modules was not installed from the current lock file.
 install_npm_packages() {
   local web
   web="$(cd "$(dirname "${BASH_SOURCE[0]}")/../web" && pwd)"
-  if [ ! -d "$web/node_modules/playwright-core" ] || [ ! -d "$web/node_modules/three" ]; then
+  if ! cmp -s "$web/package-lock.json" "$web/node_modules/.cloudmath-installed-lock.json"; then
     echo "install-deps: npm ci in web/"
     (cd "$web" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+    cp "$web/package-lock.json" "$web/node_modules/.cloudmath-installed-lock.json"
   fi
 }
 
