@@ -68,7 +68,7 @@ function runParity() {
     c.inputs.forEach((a, i) => {
       const got = out[4 * i], want = c.ref(a);
       if (!Number.isFinite(got)) { nonFinite++; return; }
-      const err = Math.abs(got - want) / Math.max(Math.abs(want), floor);
+      const err = Math.abs(got - want) / Math.max(Math.abs(want), c.floor ?? floor);
       if (err > worst) { worst = err; worstAt = a; }
     });
     const budget = c.budget || defaultBudget;

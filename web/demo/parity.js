@@ -6,7 +6,8 @@
 
 const PI = Math.PI;
 const f = Math.fround;
-const clampG = (g) => Math.min(Math.max(g, -0.9999), 0.9999);  // the library's |g| clamp
+const gMax = f(0.9999);  // the library's |g| clamp, as the float the shader holds
+const clampG = (g) => Math.min(Math.max(g, -gMax), gMax);
 const clampMu = (mu) => Math.min(Math.max(mu, -1), 1);
 
 export const hg = (mu, g) => { g = clampG(g); mu = clampMu(mu); return (1 - g * g) / (4 * PI * Math.pow(1 + g * g - 2 * g * mu, 1.5)); };
@@ -52,6 +53,28 @@ export const cases = [
   ...Object.entries(presets).map(([name, [pa, pb, pc, n]]) => ({
     fn: `cm_multiple_scattering (CM_MS_PRESET_${name})`, module: 'multiple_scattering', expr: `cm_multiple_scattering(a.x, a.y, 0.85, CM_MS_PRESET_${name})`,
     inputs: grid([0, 0.5, 5, 30], MU), ref: (a) => octaves(a[0], a[1], f(0.85), f(pa), f(pb), f(pc), n) })),
+  { fn: 'cm_smoothstep_safe', module: 'core', expr: 'cm_smoothstep_safe(a.x, a.y, a.z)', inputs: grid([0, 1], [1, 0, 2], [-1, 0.2, 0.5, 0.9, 3]),
+    ref: (a) => { const t = sat((a[2] - a[0]) / (a[1] - a[0])); return t * t * (3 - 2 * t); } },
+  { fn: 'cm_remap_clamped', module: 'core', expr: 'cm_remap_clamped(a.x, 0.0, 2.0, 10.0, 20.0)', inputs: grid([-1, 0, 0.3, 1, 2, 5]), ref: (a) => 10 + sat(a[0] / 2) * 10 },
+  { fn: 'cm_one_minus_exp_neg', module: 'core', expr: 'cm_one_minus_exp_neg(a.x)', inputs: grid([0, 1e-7, 1e-3, 0.2, 0.3, 1, 10, 50]), ref: (a) => -Math.expm1(-a[0]) },
+  { fn: 'cm_one_minus_exp_neg_over_x', module: 'core', expr: 'cm_one_minus_exp_neg_over_x(a.x)', inputs: grid([0, 1e-7, 1e-3, 0.2, 0.3, 1, 10, 50]),
+    ref: (a) => a[0] === 0 ? 1 : -Math.expm1(-a[0]) / a[0] },
+  { fn: 'cm_schlick_k_from_hg_g', module: 'phase', expr: 'cm_schlick_k_from_hg_g(a.x)', inputs: grid(G), ref: (a) => 1.55 * a[0] - 0.55 * a[0] ** 3 },
+  { fn: 'cm_phase_hg_schlick', module: 'phase', expr: 'cm_phase_hg_schlick(a.x, a.y)', inputs: grid(MU, G.slice(1, -1)),
+    ref: (a) => schlick(a[0], f(1.55 * a[1] - 0.55 * a[1] ** 3)) },
+  // HG's inverse CDF (Pharr et al., pbrt): mu = (1 + g^2 - ((1 - g^2) / (1 - g + 2 g u))^2) / (2 g),
+  // mu = 2u - 1 at g = 0; judged by the absolute error in mu (floor 1).
+  { fn: 'cm_sample_phase_hg', module: 'phase', expr: 'cm_sample_phase_hg(a.x, a.y)', floor: 1,
+    inputs: grid([-0.9, -0.5, 0, 0.3, 0.8, 0.95], [0, 0.1, 0.5, 0.9, 0.999, 1]),
+    ref: (a) => { const [g, u] = a; if (g === 0) return 2 * u - 1; const q = (1 - g * g) / (1 - g + 2 * g * u); return Math.min(Math.max((1 + g * g - q * q) / (2 * g), -1), 1); } },
+  // Far root of a ray from altitude h (cosine of zenith mu) to the sphere at altitude H over
+  // R = 6371 km: t = -r mu + sqrt((Rs - r)(Rs + r) + r^2 mu^2), r = R + h, Rs = R + H.
+  { fn: 'cm_ray_sphere_intersect_altitude', module: 'geometry', expr: 'cm_ray_sphere_intersect_altitude(a.x, a.y, 6371000.0, a.z).y',
+    inputs: grid([2, 1000], [-0.5, -0.05, 0, 0.1, 0.5, 1], [1500, 4000]),
+    ref: (a) => { const r = 6371000 + a[0], Rs = 6371000 + a[2], mu = a[1]; return -r * mu + Math.sqrt((Rs - r) * (Rs + r) + r * r * mu * mu); } },
+  { fn: 'cm_altitude_along_ray', module: 'geometry', expr: 'cm_altitude_along_ray(a.x, a.y, 6371000.0, a.z)',
+    inputs: grid([2, 1500], [-0.1, 0, 0.2, 1], [100, 5000, 50000]),
+    ref: (a) => { const R = 6371000, h = a[0], r = R + h, t = a[2], s = t * t + 2 * r * t * a[1]; return (h * (2 * R + h) + s) / (Math.sqrt(r * r + s) + R); } },
   { fn: 'cm_height_fraction', module: 'geometry', expr: 'cm_height_fraction(a.x, 1500.0, 4000.0)', inputs: grid([0, 1500, 2000, 3999, 4000, 9000]), ref: (a) => sat((a[0] - 1500) / 2500) },
 ];
 

@@ -70,7 +70,7 @@ try {
   check(!demo.error, `page loads without error${demo.error ? ': ' + demo.error : ''}`);
   console.log(`renderer: ${demo.renderer}; loaded in ${((Date.now() - t0) / 1000).toFixed(1)} s (bake ${demo.bakeMs?.toFixed(0)} ms, cloud shader ${demo.compileMs?.toFixed(0)} ms, frame ${demo.frames?.[0]?.toFixed(0)} ms)`);
   check(typeof demo.renderer === 'string' && demo.renderer.length > 0, `WebGL2 renderer reported (${demo.renderer})`);
-  check(demo.parity.length >= 20, `${demo.parity.length} parity cases >= 20`);
+  check(demo.parity.length >= 31, `${demo.parity.length} parity cases >= 31`);
   for (const r of demo.parity)
     check(r.pass, `parity ${r.fn}: max error ${r.maxError.toExponential(2)} <= ${r.budget}, NaN/Inf ${r.nonFinite}` + (r.pass ? '' : ` (worst at ${JSON.stringify(r.worstAt)})`));
   imageOk(demo.image, 'cumulus, default variant');
