@@ -407,9 +407,9 @@ report_summary write_report(const report_options& o) {
        << " leaving a slab (optical thickness " << num(taus.front()) << " to "
        << num(taus.back()) << ", sun 0, 60 and 80 deg from the zenith, reflected and "
           "transmitted views at exit cosines 1 and 0.5 toward and away from the sun). Paths per "
-          "ray: " << meta("paths_per_ray") << "; the reference's own noise (rms relative "
-          "standard error) is " << pct(noise_floor(set, select_all()))
-       << " of the image means, the floor of every error below.\n\n"
+          "ray: " << meta("paths_per_ray") << "; the reference's own noise (the rms of each "
+          "ray's standard error over its image's mean) is " << pct(noise_floor(set, select_all()))
+       << ", the floor of every error below.\n\n"
        << "**Models** (tools/reference/lighting_models.hpp): what a real-time renderer "
           "integrates along a camera ray, L = integral of T_view sigma_s M(tau_light, mu) ds with "
           "tau_light the exact optical depth toward the sun and M the sun term: single "
