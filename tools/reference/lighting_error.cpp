@@ -6,6 +6,7 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -101,6 +102,11 @@ reference_set generate_reference(const reference_options& o) {
     auto say = [&](const std::string& line) {
         if (o.log) o.log(line);
     };
+    // Adds paths to every estimate above the target error: trace(i, paths) traces ray i.
+    auto refine = [&](std::vector<mc::estimate>& L, const auto& trace) {
+        for (std::size_t i = 0; i < L.size(); ++i)
+            if (const std::uint64_t more = extra_paths(L[i], o)) L[i] = combine(L[i], trace(i, more));
+    };
     const auto start = std::chrono::steady_clock::now();
 
     for (double tau : o.taus)
@@ -110,11 +116,10 @@ reference_set generate_reference(const reference_options& o) {
             const mc::sphere_parameters sp{tau, o.albedo, cam.sun_direction};
             std::vector<mc::estimate> L =
                 mc::sphere_radiance(sp, phase, cam.rays, o.paths, options_for(2 * job));
-            for (std::size_t i = 0; i < L.size(); ++i)
-                if (const std::uint64_t more = extra_paths(L[i], o))
-                    L[i] = combine(L[i], mc::sphere_radiance(sp, phase, {cam.rays[i]}, more,
-                                                             options_for(2 * job + 1 + 2 * i))
-                                             .front());
+            refine(L, [&](std::size_t i, std::uint64_t more) {
+                return mc::sphere_radiance(sp, phase, {cam.rays[i]}, more,
+                                           options_for(2 * job + 1 + 2 * i)).front();
+            });
             for (std::size_t i = 0; i < L.size(); ++i) {
                 reference_row r;
                 r.geometry = "sphere";
@@ -144,12 +149,11 @@ reference_set generate_reference(const reference_options& o) {
             const mc::slab_parameters sp{tau, mu0, o.albedo};
             std::vector<mc::estimate> L =
                 mc::slab_radiance(sp, phase, views, o.paths, options_for(2 * job));
-            for (std::size_t i = 0; i < L.size(); ++i)
-                if (const std::uint64_t more = extra_paths(L[i], o))
-                    L[i] = combine(L[i], mc::slab_radiance(sp, phase, {views[i]}, more,
-                                                           options_for(2 * job + 1 + 2 * i))
-                                             .front());
-            const glm::dvec3 sun(std::sqrt(std::max(0.0, 1.0 - mu0 * mu0)), 0.0, mu0);
+            refine(L, [&](std::size_t i, std::uint64_t more) {
+                return mc::slab_radiance(sp, phase, {views[i]}, more,
+                                         options_for(2 * job + 1 + 2 * i)).front();
+            });
+            const glm::dvec3 sun = slab_sun_direction(mu0);
             for (std::size_t i = 0; i < L.size(); ++i) {
                 reference_row r;
                 r.geometry = views[i].transmitted ? "slab_transmitted" : "slab_reflected";
@@ -223,17 +227,15 @@ reference_set read_reference(const std::string& path) {
         if (!line.empty() && line.back() == '\r') line.pop_back();
         if (line.empty()) continue;
         if (line[0] == '#') {
-            const std::size_t colon = line.find(':');
-            if (colon == std::string::npos) fail("metadata line without ':'");
-            std::string key = line.substr(1, colon - 1), value = line.substr(colon + 1);
-            auto trim = [](std::string& s) {
-                s.erase(0, s.find_first_not_of(' '));
-                s.erase(s.find_last_not_of(' ') + 1);
-            };
-            trim(key);
-            trim(value);
+            if (line.find(':') == std::string::npos) fail("metadata line without ':'");
+            const auto [key, value] = parse_metadata_line(line);
             if (key == "phase") set.phase_spec = value;
-            if (key == "albedo") set.albedo = std::stod(value);
+            if (key == "albedo") {
+                char* end = nullptr;
+                set.albedo = std::strtod(value.c_str(), &end);
+                if (value.empty() || *end != '\0' || !(set.albedo >= 0.0 && set.albedo <= 1.0))
+                    fail("albedo '" + value + "' is not a number in [0, 1]");
+            }
             set.metadata.emplace_back(key, value);
             continue;
         }

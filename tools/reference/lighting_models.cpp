@@ -156,12 +156,16 @@ double sphere_radiance(const model& m, double tau_d, double albedo, const glm::d
     return radiance(m, sphere_quadrature(tau_d, albedo, sun, origin, dir, panel));
 }
 
+glm::dvec3 slab_sun_direction(double mu0) {
+    return {std::sqrt(std::max(0.0, 1.0 - mu0 * mu0)), 0.0, mu0};
+}
+
 ray_quadrature slab_quadrature(double tau, double mu0, double albedo,
                                const glm::dvec3& view_dir, double panel) {
     if (!(mu0 > 0.0)) throw std::invalid_argument("slab_quadrature: mu0 must be > 0");
     const double vz = view_dir.z;
     if (vz == 0.0) return {};
-    const glm::dvec3 sun(std::sqrt(std::max(0.0, 1.0 - mu0 * mu0)), 0.0, mu0);
+    const glm::dvec3 sun = slab_sun_direction(mu0);
     const double mv = std::abs(vz);
     // Optical path t along the ray from where it enters; depth below the top is t mv when
     // looking down, tau - t mv when looking up.

@@ -73,6 +73,8 @@ struct ray_quadrature {
 // (reflected light), view_dir.z > 0 looks up from below (transmitted diffuse light, the
 // direct sun excluded). sun = (sqrt(1 - mu0^2), 0, mu0). Throws std::invalid_argument for
 // mu0 <= 0.
+// The slab's unit vector toward the sun for the cosine mu0: (sqrt(1 - mu0^2), 0, mu0).
+[[nodiscard]] glm::dvec3 slab_sun_direction(double mu0);
 [[nodiscard]] ray_quadrature slab_quadrature(double tau, double mu0, double albedo,
                                              const glm::dvec3& view_dir, double panel = 0.25);
 [[nodiscard]] double slab_radiance(const model& m, double tau, double mu0, double albedo,

@@ -166,6 +166,13 @@ void write_phase_table(const std::string& path, const phase_table& table) {
     write_text_file_atomically(path, f.str());
 }
 
+std::pair<std::string, std::string> parse_metadata_line(const std::string& line) {
+    const std::string body = trim(line.substr(line.empty() ? 0 : 1));
+    const auto colon = body.find(':');
+    if (colon == std::string::npos) return {body, ""};
+    return {trim(body.substr(0, colon)), trim(body.substr(colon + 1))};
+}
+
 phase_table read_phase_table(const std::string& path) {
     std::ifstream f(path);
     if (!f) throw std::runtime_error("cannot open phase table " + path);
@@ -181,12 +188,7 @@ phase_table read_phase_table(const std::string& path) {
         line = trim(line);
         if (line.empty()) continue;
         if (line[0] == '#') {
-            const std::string body = trim(line.substr(1));
-            const auto colon = body.find(':');
-            if (colon == std::string::npos)
-                t.metadata.emplace_back(body, "");
-            else
-                t.metadata.emplace_back(trim(body.substr(0, colon)), trim(body.substr(colon + 1)));
+            t.metadata.push_back(parse_metadata_line(line));
             continue;
         }
         if (!header_seen) {

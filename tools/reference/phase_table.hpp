@@ -62,6 +62,11 @@ template <class F>
 // 0.1 on [5, 15], 0.25 on [15, 165], 0.1 on [165, 175], 0.02 on [175, 180]: 1231 angles.
 [[nodiscard]] std::vector<double> default_angles_deg();
 
+// A "# key: value" metadata line (the '#' first): key and value with the spaces, tabs and
+// carriage returns around them removed; the value is empty when there is no ':'. Every
+// reference file of the tools starts with such lines.
+[[nodiscard]] std::pair<std::string, std::string> parse_metadata_line(const std::string& line);
+
 // Writes text to path + ".tmp" and renames it over path, so that no reader ever sees half a
 // file and a failed run leaves the old file. Throws std::runtime_error naming the path.
 // Every output file of the reference tools is written through it.

@@ -124,6 +124,7 @@ TEST_CASE("reference CSV: write, read back, and clear errors") {
     };
     const std::string header = "# phase: hg:0.85\ngeometry,tau,sun_deg,view_mu,view_phi_deg,u,origin_x,origin_y,origin_z,dir_x,dir_y,dir_z,sun_x,sun_y,sun_z,radiance,std_error,paths\n";
     expect_error("# phase: hg:0.85\n", "no column header");
+    expect_error("# albedo: lots\n" + header.substr(header.find('\n') + 1), ":1: albedo 'lots' is not a number");
     expect_error(header, "no rows");
     expect_error(header + "sphere,1,2,3\n", ":3: expected 18 columns");
     expect_error(header + "cube,1,0,0,0,0,0,0,-2,0,0,1,0,0,1,0.1,0.01,10\n", "unknown geometry");
