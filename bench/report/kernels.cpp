@@ -197,6 +197,14 @@ void multiple_scattering_fast(const pass_inputs& in, int octaves) {
     const float g = in.g;
     for (std::size_t i = 0; i < in.n; ++i) sink(cm::fast::multiple_scattering(in.tau[i], in.mu[i], g, 0.5f, 0.5f, 0.5f, octaves));
 }
+void diffusion_library(const pass_inputs& in) {
+    const float g = in.g;
+    for (std::size_t i = 0; i < in.n; ++i) {
+        float behind, view;
+        diffusion_depths(in.tau, in.n, i, behind, view);
+        sink(cm::diffusion_scattering(in.tau[i], behind, view, in.mu[i], g, cm::diffusion_models::fitted));
+    }
+}
 void multiple_scattering_naive(const pass_inputs& in, int octaves) {
     const float g = in.g;
     for (std::size_t i = 0; i < in.n; ++i) sink(cm_naive::multiple_scattering(in.tau[i], in.mu[i], g, 0.5f, 0.5f, 0.5f, octaves));

@@ -54,6 +54,13 @@ struct pass_inputs {
     const float* sigma_slab = nullptr;  // homogeneous-slab extinctions, 1/m (1 km slab)
 };
 
+// The three optical depths of input i of the diffusion model's pass: tau[i] toward the sun,
+// the same array read at two other positions for behind and from the camera.
+inline void diffusion_depths(const float* tau, std::size_t n, std::size_t i, float& behind, float& view) {
+    behind = tau[(i * 7u + 3u) % n];
+    view = tau[(i * 13u + 5u) % n] * 0.25f;
+}
+
 namespace kernels {
 
 // Scalar passes: one call per input, each result kept in a register (an empty asm sink), so
@@ -95,6 +102,9 @@ void ray_sphere_haines(const pass_inputs& in);
 void multiple_scattering_library(const pass_inputs& in, int octaves);  // a = b = c = 0.5
 void multiple_scattering_fast(const pass_inputs& in, int octaves);
 void multiple_scattering_naive(const pass_inputs& in, int octaves);
+// diffusion_scattering (diffusion_models::fitted): tau_sun = tau[i], tau_behind and
+// tau_view from the same array at other indices (diffusion_depths below).
+void diffusion_library(const pass_inputs& in);
 
 void cone(const pass_inputs& in, float spread);
 void light_march(const pass_inputs& in, int steps);

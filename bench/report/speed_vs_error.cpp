@@ -770,6 +770,31 @@ struct ms_parameters {
 const ms_parameters ms_sets[2] = {{0.5f, 0.5f, 0.5f, "a = b = c = 0.5"}, {0.3f, 0.75f, 0.5f, "a = 0.3, b = 0.75, c = 0.5"}};
 constexpr int ms_max_octaves = 8;
 
+// diffusion_lighting.hpp: the fitted diffusion model in float against its own formula in
+// long double (the same table), beside the octaves it replaces; its error against the path
+// tracer is the physical-reference column.
+void add_diffusion_variants(std::deque<variant>& rows, const pass_inputs* in) {
+    variant& v = add_variant(rows, "diffusion_lighting", "3 inputs (diffusion)",
+                             "diffusion_scattering, diffusion_models::fitted (library)", "Diffusion");
+    v.glsl_function = "cm_diffusion_scattering";
+    v.glsl_expression = "CM_DIFFUSION_MODEL_FITTED)";
+    const std::vector<float> taus = tau_grid(4, 0.5f);
+    const std::vector<float> mus = mu_grid(21);
+    for (float g : {0.0f, 0.5f, 0.8f, 0.9f, 0.99f})
+        for (std::size_t i = 0; i < taus.size(); ++i)
+            for (float mu : mus) {
+                const float ts = taus[i], tb = taus[(i * 7 + 3) % taus.size()], tv = 0.25f * taus[(i * 13 + 5) % taus.size()];
+                const float got = cm::diffusion_scattering(ts, tb, tv, mu, g, cm::diffusion_models::fitted);
+                const ld ref = cm::diffusion_scattering<ld>(ts, tb, tv, mu, g, cm::diffusion_models::fitted);
+                v.err.add(got, ref, [&] {
+                    return "g = " + fmt_input(g) + ", tau_sun = " + fmt_input(ts) + ", tau_behind = " + fmt_input(tb) +
+                           ", tau_view = " + fmt_input(tv) + ", mu = " + fmt_input(mu);
+                });
+            }
+    v.scalar_pass = [in] { kernels::diffusion_library(*in); };
+    v.scalar_evals = static_cast<double>(in->n);
+}
+
 std::vector<truncation_row> add_multiple_scattering_variants(std::deque<variant>& rows, const pass_inputs* in) {
     const std::vector<float> taus = tau_grid(4, 0.5f);
     const std::vector<float> mus = mu_grid(41);
@@ -1041,6 +1066,7 @@ std::string physical_key(const variant& v) {
     if (v.family == "Cornette-Shanks") return "phase:cs_moment";
     if (v.family == "Draine") return "phase:draine_fit";
     if (v.family == "Mie fit (Jendersie-d'Eon)") return "phase:mie_approx_d2reff";
+    if (v.group == "diffusion_lighting") return "lighting:preset_diffusion_fitted";
     if (v.group == "multiple_scattering") {
         // The a = b = c = 0.5 rows: "default_beer" at 3 octaves, "default_beer_N" otherwise.
         const int n = std::atoi(v.family.c_str());
@@ -1572,6 +1598,7 @@ int main(int argc, char** argv) {
     add_integration_variants(rows, view);
     add_geometry_variants(rows, view);
     const std::vector<truncation_row> truncation = add_multiple_scattering_variants(rows, view);
+    add_diffusion_variants(rows, view);
     add_light_variants(rows, view);
     std::cout << "speed-vs-error: errors of " << rows.size() << " variants done in "
               << printf_string("%.1f", seconds_of(std::chrono::steady_clock::now() - start)) << " s; timing" << std::endl;

@@ -7,6 +7,8 @@
 #include "transmittance.hpp"
 #include "integration.hpp"
 #include "multiple_scattering.hpp"
+#include "diffusion_lighting.hpp"
+#include "lighting_choice.hpp"
 #include "cone_sampling.hpp"
 #include "geometry.hpp"
 #include "density.hpp"

@@ -8,6 +8,7 @@
 //           header): no file I/O, no paths. glsl_source_from_directory() does the same from
 //           .glsl files on disk, for engines that ship or hot-reload shader files.
 // Modules:  "core", "phase", "transmittance", "integration", "multiple_scattering",
+//           "diffusion_lighting" (with its generated "diffusion_lighting_models"),
 //           "cone_sampling", "geometry", "density", "noise", and "cloudmath" (all of them).
 // Includes: a line `#include "name.glsl"` is replaced by that file's resolved text the first
 //           time it is met and dropped afterwards (what the include guards would do).

@@ -10,6 +10,13 @@ float cm_test_extinction(vec3 p, int i) {
     return cm_height_fog_density(p.y, 0.01, 1e-3) * (1.0 + 0.1 * float(i));
 }
 
+// cm_diffusion_chord_fluence's fluence plus its flux (an out parameter).
+float cm_test_chord_fluence(float x, float y, float exp_neg_x) {
+    float flux;
+    float U = cm_diffusion_chord_fluence(x, y, exp_neg_x, flux);
+    return U + flux;
+}
+
 float cm_test_sum(CmMieApproxParams p) { return p.g_hg + p.g_draine + p.alpha + p.w_draine; }
 float cm_test_sum(CmMarchAccumulator acc) { return cm_test_sum(acc.luminance + acc.transmittance); }
 

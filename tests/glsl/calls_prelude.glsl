@@ -6,6 +6,7 @@
 float cm_test_phase(float mu, float scale);
 float cm_test_extinction(vec3 p, int i);
 #define CM_MS_PHASE cm_test_phase
+#define CM_DIFFUSION_PHASE cm_test_phase
 #define CM_CONE_EXTINCTION cm_test_extinction
 
 // Vector results as one float: the sum of the components (one dot product).

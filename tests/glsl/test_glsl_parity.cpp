@@ -52,10 +52,16 @@ float cm_test_extinction(vec3 p, int i) {
     return 0.01 * (1.0 + 0.5 * sin(0.01 * p.x) * cos(0.013 * p.z)) + 0.001 * float(i);
 }
 #define CM_MS_PHASE cm_test_phase
+#define CM_DIFFUSION_PHASE cm_test_phase
 #define CM_CONE_EXTINCTION cm_test_extinction
 )";
 const char* const glsl_after = R"(
 float cm_test_phase(float mu, float scale) { return cm_phase_hg_dual(mu, 0.8 * scale, -0.5 * scale, 0.5); }
+vec4 cm_test_chord_fluence(vec4 a) {
+    float flux;
+    float U = cm_diffusion_chord_fluence(a.x, a.y, a.z, flux);
+    return vec4(U, flux, 0.0, 0.0);
+}
 vec4 cm_test_march(vec4 a, vec4 b, bool grey) {
     CmMarchAccumulator acc = cm_march_accumulator();
     for (int i = 0; i < 8; ++i) {
@@ -232,6 +238,38 @@ std::vector<parity_case> make_cases() {
         add({"cm_march_opacity", "vec4(cm_march_opacity(CmMarchAccumulator(vec3(1.0), a.xyz)), 0.0)",
              [](vec4 a, vec4) { cm::march_accumulator<vec3> acc; acc.transmittance = vec3(a); return vec4(acc.opacity(), 0.0f); },
              {{vec4(0.0f, 0.5f, 1.0f, 0), vec4(0)}, {vec4(0.25f, 0.75f, 1e-6f, 0), vec4(0)}}, 3, 1.0f});
+    }
+
+    // diffusion lighting: optical depths from 0 to 1e4 (past the 1e6 clamp is C++-tested),
+    // every mu, g from isotropic to the clamp. The sun term's floor is 1e-3 (1/sr): the
+    // diffusion's fluence cancels near a chord's back end to an absolute error of about
+    // e^z eps L, so results far below the diffusion's scale (~0.1) compare absolutely.
+    {
+        std::vector<std::pair<vec4, vec4>> in;
+        for (float ts : {0.0f, 0.3f, 2.0f, 10.0f, 60.0f, 1e4f})
+            for (float tb : {0.0f, 1.0f, 20.0f, 1e4f})
+                for (float tv : {0.0f, 0.5f, 8.0f})
+                    for (float mu : {-1.0f, -0.2f, 0.6f, 1.0f})
+                        for (float g : {0.0f, 0.75f, 0.85f, 0.999f}) in.push_back({vec4(ts, tb, tv, mu), vec4(g, 0.0f, 0.0f, 0.0f)});
+        add({"cm_diffusion_scattering", "vec4(cm_diffusion_scattering(a.x, a.y, a.z, a.w, b.x, CM_DIFFUSION_MODEL_FITTED), cm_diffusion_scattering(a.x, a.y, a.z, a.w, b.x, CM_DIFFUSION_MODEL_PHYSICAL), 0.0, 0.0)",
+             [](vec4 a, vec4 b) { return vec4(cm::diffusion_scattering(a.x, a.y, a.z, a.w, b.x, cm::diffusion_models::fitted),
+                                              cm::diffusion_scattering(a.x, a.y, a.z, a.w, b.x, cm::diffusion_models::physical), 0.0f, 0.0f); }, in, 2, 1e-3f, 1e-4});
+        add({"cm_diffusion_scattering_with", "vec4(cm_diffusion_scattering_with(a.x, a.y, a.z, a.w, b.x, CM_DIFFUSION_MODEL_FITTED), 0.0, 0.0, 0.0)",
+             [](vec4 a, vec4 b) { return vec4(cm::diffusion_scattering_with(a.x, a.y, a.z, a.w, b.x, cm::diffusion_models::fitted, cpp_test_phase), 0.0f, 0.0f, 0.0f); }, in, 1, 1e-3f, 1e-4});
+        add({"cm_diffusion_table_coordinates", "cm_diffusion_table_coordinates(a.x, a.y, a.z, a.w, b.x)",
+             [](vec4 a, vec4 b) { const auto u = cm::diffusion_table_coordinates(a.x, a.y, a.z, a.w, b.x); return vec4(u.u_sun, u.u_behind, u.u_mu, u.u_surface); }, in, 4, 1e-6f});
+        std::vector<std::pair<vec4, vec4>> fluence;
+        for (float x : {0.0f, 0.01f, 0.5f, 3.0f, 40.0f, 1e3f})
+            for (float y : {0.0f, 0.01f, 0.5f, 3.0f, 40.0f, 1e3f}) fluence.push_back({vec4(x, y, std::exp(-x), 0.0f), vec4(0.0f)});
+        add({"cm_diffusion_chord_fluence", "cm_test_chord_fluence(a)",
+             [](vec4 a, vec4) { float flux = 0.0f; const float U = cm::diffusion_chord_fluence(a.x, a.y, a.z, flux); return vec4(U, flux, 0.0f, 0.0f); }, fluence, 2, 1e-5f, 1e-4});
+        std::vector<std::pair<vec4, vec4>> coords;
+        for (float u : {0.0f, 0.13f, 0.5f, 0.77f, 1.0f})
+            for (float v : {0.0f, 0.4f, 1.0f})
+                for (float m : {0.0f, 0.25f, 0.5f, 0.9f, 1.0f})
+                    for (float d : {0.0f, 0.6f, 1.0f}) coords.push_back({vec4(u, v, m, d), vec4(0.0f)});
+        add({"cm_diffusion_table_lookup", "vec4(cm_diffusion_table_lookup(CM_DIFFUSION_MODEL_FITTED, a), 0.0, 0.0, 0.0)",
+             [](vec4 a, vec4) { return vec4(cm::diffusion_table_lookup(cm::diffusion_models::fitted, cm::diffusion_coordinates<float>{a.x, a.y, a.z, a.w}), 0.0f, 0.0f, 0.0f); }, coords, 1, 1e-5f});
     }
 
     // multiple scattering

@@ -1,10 +1,12 @@
 # Lighting models against the Monte Carlo reference (included by CMakeLists.txt).
 #   cloudmath_lighting_lib    lighting_models.cpp: the real-time models along test-medium rays;
 #                             lighting_error.cpp: the reference data set, errors and fits;
+#                             lighting_diffusion.cpp: the chord-diffusion research model's fit
 #                             lighting_report.cpp: docs/lighting_error.md, .csv and SVGs
 #   cloudmath_lighting_error  the CLI: `reference` path-traces docs/data/lighting_reference.csv,
 #                             `report` writes the report (lighting_error_main.cpp)
-add_library(cloudmath_lighting_lib STATIC lighting_models.cpp lighting_error.cpp lighting_report.cpp)
+add_library(cloudmath_lighting_lib STATIC lighting_models.cpp lighting_error.cpp lighting_diffusion.cpp
+  lighting_report.cpp)
 cloudmath_reference_target(cloudmath_lighting_lib)
 target_include_directories(cloudmath_lighting_lib PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}")
 target_link_libraries(cloudmath_lighting_lib PUBLIC cloudmath_montecarlo_lib cloudmath_phase_error_lib)
@@ -23,6 +25,8 @@ if(CLOUDMATH_BUILD_TESTS)
   target_link_libraries(cloudmath_reference_test_lighting_error PRIVATE cloudmath_lighting_lib)
   target_compile_definitions(cloudmath_reference_test_lighting_error PRIVATE
     "CLOUDMATH_BINARY_DIR=\"${CMAKE_CURRENT_BINARY_DIR}\"")
+  cloudmath_reference_test(lighting_diffusion test_lighting_diffusion.cpp)
+  target_link_libraries(cloudmath_reference_test_lighting_diffusion PRIVATE cloudmath_lighting_lib)
   cloudmath_reference_test(lighting_presets test_lighting_presets.cpp)
   target_link_libraries(cloudmath_reference_test_lighting_presets PRIVATE cloudmath_lighting_lib)
 
@@ -45,6 +49,9 @@ if(CLOUDMATH_BUILD_TESTS)
         [ -s "$2/$f" ] || { echo "missing $f"; exit 1; }
       done
       grep -q "ms_preset::thin" "$2/lighting_error.md" || { echo "report lacks the presets"; exit 1; }
+      "$1" fit-diffusion --reference "$2/ref.csv" --holdout "$2/ref.csv" >"$2/fit.txt" 2>/dev/null || { echo "fit-diffusion failed"; exit 1; }
+      grep -q "^held out" "$2/fit.txt" || { echo "fit-diffusion measured no held-out set"; exit 1; }
+      "$1" reference --quick --holdout 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "--quick --holdout: exit $s, want 2"; exit 1; }
       "$1" --help >/dev/null || { echo "--help failed"; exit 1; }
       ]=] sh $<TARGET_FILE:cloudmath_lighting_error> "${CMAKE_CURRENT_BINARY_DIR}/lighting_error_cli_test")
 endif()

@@ -73,6 +73,20 @@ glm::dvec3 slab_view_direction(const mc::slab_view& view) {
     return {s * std::cos(phi), s * std::sin(phi), view.transmitted ? view.mu : -view.mu};
 }
 
+reference_options holdout_reference_options() {
+    reference_options o;
+    o.taus = {3, 7, 15, 35, 70};
+    o.sphere_view_angles_deg = {45, 80, 110, 140};
+    o.sphere_points = 7;
+    o.slab_sun_zenith_deg = {30, 70};
+    o.slab_views = "r:0.8,90;r:0.3,0;t:0.8,90;t:0.3,180";
+    o.paths = 100000;
+    o.max_paths = 1600000;
+    o.target_rel_error = 0.015;
+    o.seed = 2;
+    return o;
+}
+
 reference_set generate_reference(const reference_options& o) {
     if (o.taus.empty() || (o.sphere_view_angles_deg.empty() && o.slab_sun_zenith_deg.empty()))
         throw std::invalid_argument("generate_reference: no optical thickness or no geometry");

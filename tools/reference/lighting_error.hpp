@@ -80,6 +80,12 @@ struct reference_options {
     std::function<void(const std::string&)> log;  // one line per finished job, may be empty
 };
 
+// The held-out split: none of its optical thicknesses, sphere view angles, slab sun angles
+// or slab views is in the default reference_options (the split models are fitted on), so
+// errors measured on it are out of sample. Run it with other phase functions too
+// (hg:0.75, hg:0.9) for the error away from the fitted g.
+[[nodiscard]] reference_options holdout_reference_options();
+
 // Throws std::invalid_argument for empty lists or values out of range.
 [[nodiscard]] reference_set generate_reference(const reference_options& options);
 // CSV with "# key: value" metadata lines; written to path + ".tmp" and renamed. Throws

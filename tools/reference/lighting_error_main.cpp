@@ -4,18 +4,27 @@
 //
 //   cloudmath_lighting_error reference [--out docs/data/lighting_reference.csv] [--paths N]
 //       [--max-paths N] [--target-error 0.01] [--threads 0] [--seed 1] [--quick]
+//       [--holdout] [--phase hg:0.85]
 //   cloudmath_lighting_error report [--reference docs/data/lighting_reference.csv]
 //       [--docs docs] [--images docs/images]
+//   cloudmath_lighting_error choice [--reference docs/data/lighting_reference.csv] [--out PATH]
+//   cloudmath_lighting_error fit-diffusion [--data docs/data] [--train A.csv,B.csv]
+//       [--holdout C.csv,D.csv]
+//       [--header include/cloudmath/diffusion_lighting_models.hpp]
+//       [--glsl include/cloudmath/glsl/diffusion_lighting_models.glsl] [--smoothing 10]
+//       [--ridge 0.001]
 //
 // `reference` path-traces the sphere and slab rays (lighting_error.hpp) and writes the CSV;
 // `report` measures every model on it, fits a, b, c per octave count and form, and writes
 // lighting_error.md, lighting_error.csv and lighting_error_*.svg. Exit status: 0 success,
 // 2 bad command line, 1 I/O or data failure (the message names the path).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <set>
@@ -23,6 +32,9 @@
 #include <string>
 #include <vector>
 
+#include <cloudmath/multiple_scattering.hpp>
+
+#include "lighting_diffusion.hpp"
 #include "lighting_error.hpp"
 #include "lighting_report.hpp"
 
@@ -40,11 +52,30 @@ const char* const usage_text =
     "                    --max-paths 3200000 --target-error 0.01 --threads 0 --seed 1\n"
     "                    --quick (3 thicknesses, 2 view angles, 1 sun, few paths: a smoke\n"
     "                    test, not a reference)\n"
+    "                    --holdout (the held-out split: thicknesses, view and sun angles\n"
+    "                    and slab views that the default set does not contain)\n"
+    "                    --phase hg:0.85 (any montecarlo.hpp phase spec)\n"
     "  report     measures the lighting models against the reference and fits them:\n"
     "             writes DOCS/lighting_error.md, DOCS/lighting_error.csv and\n"
     "             IMAGES/lighting_error_*.svg.\n"
     "             flags: --reference docs/data/lighting_reference.csv --docs docs\n"
-    "                    --images docs/images\n"
+    "                    --images docs/images --choice-header PATH (also writes the data of\n"
+    "                    cloudmath/lighting_choice.hpp there)\n"
+    "  fit-diffusion  fits the diffusion model (cloudmath/diffusion_lighting.hpp) on the\n"
+    "             training references and measures it, beside the octave presets, on them\n"
+    "             and on held-out ones; writes the generated model headers when asked.\n"
+    "             flags: --data docs/data (where the default sets are: lighting_reference,\n"
+    "                    lighting_train_g0.8 and _g0.93 to fit; lighting_holdout_g0.75,\n"
+    "                    _g0.85 and _g0.9 held out)\n"
+    "                    --train A.csv,B.csv (instead; the first is the reference the\n"
+    "                    model's rms_error is measured on) --holdout C.csv,D.csv\n"
+    "                    --header PATH.hpp --glsl PATH.glsl\n"
+    "                    --smoothing 0.1 --ridge 0.0001\n"
+    "                    --cv (instead of fitting: leave-one-set-out cross-validation of\n"
+    "                    smoothing and ridge over the training sets alone)\n"
+    "  choice     writes the measured-error table of cloudmath/lighting_choice.hpp alone.\n"
+    "             flags: --reference docs/data/lighting_reference.csv\n"
+    "                    --out include/cloudmath/lighting_choice_data.hpp\n"
     "Exit status: 0 ok, 1 I/O or data failure, 2 bad command line.\n";
 
 struct usage_error : std::runtime_error {
@@ -90,9 +121,13 @@ double to_positive(const std::string& flag, const std::string& text) {
 
 int run_reference(int argc, char** argv) {
     auto f = parse_flags(argc, argv, {"out", "paths", "max-paths", "target-error", "threads",
-                                      "seed"},
-                         {"quick"});
+                                      "seed", "phase"},
+                         {"quick", "holdout"});
     lm::reference_options o;
+    if (f.count("quick") && f.count("holdout"))
+        throw usage_error("--quick and --holdout exclude each other");
+    if (f.count("holdout")) o = lm::holdout_reference_options();
+    if (f.count("phase")) o.phase = f["phase"];
     if (f.count("quick")) {
         o.taus = {1, 10, 100};
         o.sphere_view_angles_deg = {30, 120};
@@ -125,8 +160,9 @@ int run_reference(int argc, char** argv) {
 }
 
 int run_report(int argc, char** argv) {
-    auto f = parse_flags(argc, argv, {"reference", "docs", "images"}, {});
+    auto f = parse_flags(argc, argv, {"reference", "docs", "images", "choice-header"}, {});
     lm::report_options o;
+    if (f.count("choice-header")) o.choice_header = f["choice-header"];
     if (f.count("reference")) o.reference_path = f["reference"];
     if (f.count("docs")) o.docs_dir = f["docs"];
     o.images_dir = f.count("images") ? f["images"] : o.docs_dir + "/images";
@@ -135,6 +171,66 @@ int run_report(int argc, char** argv) {
     std::cout << "cloudmath_lighting_error: " << s.rows << " reference rows, " << s.fits
               << " fits; wrote " << o.docs_dir << "/lighting_error.md, lighting_error.csv and "
               << s.images << " SVGs in " << o.images_dir << '\n';
+    return 0;
+}
+
+// Writes text to path atomically (path.tmp, then rename); throws naming the path.
+void write_text(const std::string& path, const std::string& text) {
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out << text;
+        if (!out) throw std::runtime_error(tmp + ": cannot write");
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error(path + ": cannot rename");
+}
+
+// Writes the data of cloudmath/lighting_choice.hpp alone (the report writes it too).
+int run_choice(int argc, char** argv) {
+    auto f = parse_flags(argc, argv, {"reference", "out"}, {});
+    const std::string ref = f.count("reference") ? f["reference"] : "docs/data/lighting_reference.csv";
+    const std::string out = f.count("out") ? f["out"] : "include/cloudmath/lighting_choice_data.hpp";
+    const std::size_t slash = ref.find_last_of('/');
+    write_text(out, lm::lighting_choice_header(lm::read_reference(ref), ref.substr(slash + 1)));
+    std::cout << "cloudmath_lighting_error: wrote " << out << '\n';
+    return 0;
+}
+
+// Comma-separated paths.
+std::vector<std::string> split_list(const std::string& text) {
+    std::vector<std::string> out;
+    std::size_t from = 0;
+    while (from <= text.size()) {
+        const std::size_t comma = text.find(',', from);
+        const std::string item = text.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
+        if (!item.empty()) out.push_back(item);
+        if (comma == std::string::npos) break;
+        from = comma + 1;
+    }
+    return out;
+}
+
+// Fits the diffusion model (lighting_diffusion.hpp: run_diffusion_fit), prints the report
+// and writes the generated headers when asked.
+int run_fit_diffusion(int argc, char** argv) {
+    auto f = parse_flags(argc, argv, {"data", "train", "holdout", "header", "glsl", "smoothing", "ridge"}, {"cv"});
+    const std::string data = f.count("data") ? f["data"] : "docs/data";
+    lm::diffusion_fit_options o;
+    if (f.count("smoothing")) o.smoothing = to_positive("smoothing", f["smoothing"]);
+    if (f.count("ridge")) o.ridge = to_positive("ridge", f["ridge"]);
+    const std::vector<std::string> train =
+        f.count("train") ? split_list(f["train"]) : lm::diffusion_training_paths(data);
+    const std::vector<std::string> holdout =
+        f.count("holdout") ? split_list(f["holdout"]) : lm::diffusion_holdout_paths(data);
+    if (train.empty()) throw usage_error("--train needs at least one reference CSV");
+    if (f.count("cv")) {
+        std::cout << lm::diffusion_cross_validation(train);
+        return 0;
+    }
+    const lm::diffusion_run run = lm::run_diffusion_fit(train, holdout, o);
+    std::cout << run.report;
+    if (f.count("header")) write_text(f["header"], lm::diffusion_models_cpp(run.models, run.provenance));
+    if (f.count("glsl")) write_text(f["glsl"], lm::diffusion_models_glsl(run.models, run.provenance));
     return 0;
 }
 
@@ -149,6 +245,8 @@ int main(int argc, char** argv) {
         }
         if (command == "reference") return run_reference(argc, argv);
         if (command == "report") return run_report(argc, argv);
+        if (command == "fit-diffusion") return run_fit_diffusion(argc, argv);
+        if (command == "choice") return run_choice(argc, argv);
         throw usage_error(command.empty() ? "no command" : "unknown command '" + command + "'");
     } catch (const usage_error& e) {
         std::cerr << "cloudmath_lighting_error: " << e.what() << " (--help for usage)\n";

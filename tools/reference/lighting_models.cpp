@@ -29,11 +29,12 @@ constexpr double gl_w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344
 // ray enters or leaves a sphere on its terminator, the chord toward the sun grows like the
 // square root of the distance from the surface, and this grading integrates that endpoint
 // singularity to the accuracy of the smooth panels. depth(t) gives the optical depth
-// toward the sun at t; every weight is multiplied by `scale`.
+// toward the sun at t and behind(t) the optical depth behind the point along the sun
+// direction; every weight is multiplied by `scale`.
 constexpr int graded_levels = 12;
 
-template <class Depth>
-ray_quadrature attenuated_nodes(Depth&& depth, double length, double panel, double mu,
+template <class Depth, class Behind>
+ray_quadrature attenuated_nodes(Depth&& depth, Behind&& behind, double length, double panel, double mu,
                                 double scale) {
     ray_quadrature q;
     q.mu = mu;
@@ -48,6 +49,8 @@ ray_quadrature attenuated_nodes(Depth&& depth, double length, double panel, doub
             for (double t : {mid - half * gl_x[k], mid + half * gl_x[k]}) {
                 q.weight.push_back(scale * gl_w[k] * half * std::exp(-t));
                 q.tau_light.push_back(depth(t));
+                q.tau_behind.push_back(behind(t));
+                q.tau_view.push_back(t);
             }
     };
     for (int p = 0; p < panels; ++p) {
@@ -148,7 +151,13 @@ ray_quadrature sphere_quadrature(double tau_d, double albedo, const glm::dvec3& 
         const double chord = unit_sphere_hits(p, sun, e0, e1) ? std::max(e1, 0.0) : 0.0;
         return sigma * chord;
     };
-    return attenuated_nodes(depth, sigma * (t1 - t0), panel, glm::dot(dir, sun), albedo);
+    auto behind = [&](double t) {
+        const glm::dvec3 p = origin + (t0 + t / sigma) * dir;
+        double e0 = 0.0, e1 = 0.0;
+        const double chord = unit_sphere_hits(p, -sun, e0, e1) ? std::max(e1, 0.0) : 0.0;
+        return sigma * chord;
+    };
+    return attenuated_nodes(depth, behind, sigma * (t1 - t0), panel, glm::dot(dir, sun), albedo);
 }
 
 double sphere_radiance(const model& m, double tau_d, double albedo, const glm::dvec3& sun,
@@ -173,7 +182,11 @@ ray_quadrature slab_quadrature(double tau, double mu0, double albedo,
         const double below_top = vz < 0.0 ? t * mv : tau - t * mv;
         return std::max(below_top, 0.0) / mu0;
     };
-    return attenuated_nodes(depth, tau / mv, panel, glm::dot(view_dir, sun), albedo);
+    auto behind = [&](double t) {
+        const double below_top = vz < 0.0 ? t * mv : tau - t * mv;
+        return std::max(tau - below_top, 0.0) / mu0;
+    };
+    return attenuated_nodes(depth, behind, tau / mv, panel, glm::dot(view_dir, sun), albedo);
 }
 
 double slab_radiance(const model& m, double tau, double mu0, double albedo,

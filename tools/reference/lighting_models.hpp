@@ -53,6 +53,10 @@ struct model {
 struct ray_quadrature {
     double mu = 0.0;                        // cosine of the single-scattering angle
     std::vector<double> weight, tau_light;  // albedo x quadrature weight x exp(-t); depth
+    // The inputs of the chord-diffusion model (cloudmath/diffusion_lighting.hpp) at each
+    // node: the optical depth behind the node along the sun direction (from the node away
+    // from the sun to where the medium ends) and the optical depth t from the camera side.
+    std::vector<double> tau_behind, tau_view;
 };
 // Radiance of a model along a ray: sum_k weight[k] sun_term(m, tau_light[k], mu).
 [[nodiscard]] double radiance(const model& m, const ray_quadrature& q);

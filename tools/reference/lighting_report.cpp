@@ -13,8 +13,10 @@
 #include <stdexcept>
 #include <thread>
 
+#include <cloudmath/diffusion_lighting.hpp>
 #include <cloudmath/multiple_scattering.hpp>
 
+#include "lighting_diffusion.hpp"
 #include "phase_error.hpp"  // xml_escape
 
 namespace cloudmath::reference::lighting {
@@ -32,6 +34,12 @@ std::string num(double v, int digits = 3) {
     char buf[48];
     std::snprintf(buf, sizeof buf, "%.*g", digits, v);
     return buf;
+}
+// A C++ float literal: "1.0f", "0.7094f", "1e-05f".
+std::string float_literal(double v, int digits) {
+    std::string s = num(v, digits);
+    if (s.find_first_of(".e") == std::string::npos) s += ".0";
+    return s + 'f';
 }
 std::string pct(double v) {
     if (!std::isfinite(v)) return "inf";
@@ -59,7 +67,14 @@ struct variant {
     model_spec spec;
     std::vector<double> radiance;  // per reference row
     bool in_tables = true;         // false: only in the CSV
+    // Models that are not octaves (the diffusion model): their form name and cost, which
+    // replace attenuation_name(spec.form) and model_cost(spec) when set.
+    std::string form;
+    int cost = -1;
 };
+
+std::string form_of(const variant& v) { return v.form.empty() ? attenuation_name(v.spec.form) : v.form; }
+int cost_of(const variant& v) { return v.cost >= 0 ? v.cost : model_cost(v.spec); }
 
 // ---------------------------------------------------------------------------------------
 // SVG: rms error per optical thickness, one polyline per variant; log x, log y.
@@ -329,7 +344,7 @@ report_summary write_report(const report_options& o) {
     // --- Variants of the error tables.
     std::vector<variant> vs;
     auto add = [&](const std::string& id, const std::string& label, const model_spec& s) {
-        vs.push_back({id, label, s, ev.radiance(s)});
+        vs.push_back({id, label, s, ev.radiance(s), true, {}, -1});
     };
     add("single", "single scattering", {attenuation::beer, g, 1, 1, 1, 1});
     add("default_beer_2", "octaves, a = b = c = 0.5, N = 2", {attenuation::beer, g, 0.5, 0.5, 0.5, 2});
@@ -353,6 +368,14 @@ report_summary write_report(const report_options& o) {
     for (const multiple_scattering_preset& p : ms_preset::all)
         add(std::string("preset_") + p.name, std::string("preset ms_preset::") + p.name,
             {attenuation::beer, g, double(p.a), double(p.b), double(p.c), p.octaves});
+    // The diffusion models (cloudmath/diffusion_lighting.hpp): 3 exponentials per sample and
+    // two more inputs than the octaves (tau_behind, tau_view).
+    const diffusion_evaluator dev(set);
+    for (const diffusion_model& m : diffusion_models::all) {
+        vs.push_back({std::string("preset_diffusion_") + m.name,
+                      std::string("diffusion model diffusion_models::") + m.name + " (3 inputs)",
+                      {attenuation::beer, g, 0, 0, 0, 0}, dev.radiance(m), true, "diffusion", 3});
+    }
 
     // --- CSV: every variant x subset, then every fit.
     std::ostringstream csv;
@@ -361,10 +384,10 @@ report_summary write_report(const report_options& o) {
     for (const variant& v : vs)
         for (const row_subset& sub : report_subsets()) {
             const error_summary e = measure(set, v.radiance, sub.select);
-            csv << "variant," << v.id << ',' << attenuation_name(v.spec.form) << ','
+            csv << "variant," << v.id << ',' << form_of(v) << ','
                 << v.spec.octaves << ',' << num(v.spec.a, 6) << ',' << num(v.spec.b, 6) << ','
                 << num(v.spec.c, 6) << ',' << sub.id << ',' << e.rows << ',' << num(e.rms, 6)
-                << ',' << num(e.bias, 6) << ',' << num(e.max, 6) << ',' << model_cost(v.spec)
+                << ',' << num(e.bias, 6) << ',' << num(e.max, 6) << ',' << cost_of(v)
                 << '\n';
         }
     for (const fit_job& j : jobs) {
@@ -417,7 +440,11 @@ report_summary write_report(const report_options& o) {
           "tau_light) (cloudmath::multiple_scattering); the same times the Beer-Powder factor "
           "mix(2 (1 - e^(-2 tau_light)), 1, (1 + mu)/2) as the example renderer applies it; the "
           "octaves with Nubis' attenuation max(e^(-a^i tau), 0.7 e^(-a^i tau / 4)) in every "
-          "octave. The medium's HG g = " << num(g) << " in the models and in the reference, so "
+          "octave; and the diffusion models of cloudmath/diffusion_lighting.hpp, which also see "
+          "the optical depth behind the sample along the sun and the optical depth from the "
+          "camera (fitted on this reference and two more phase functions over the same rays; "
+          "their error on a held-out split is in [lighting_research.md](lighting_research.md)). "
+          "The medium's HG g = " << num(g) << " in the models and in the reference, so "
           "the errors are those of the multiple-scattering approximation alone (the phase "
           "function's own error against Mie is in [phase_error.md](phase_error.md)). The ray "
           "integral is evaluated to 1e-7 (1e-4 with the Nubis kink), not ray-marched.\n\n"
@@ -428,7 +455,8 @@ report_summary write_report(const report_options& o) {
           "octave models are 1e9 times too dark behind thick media). *rms* = sqrt(mean e^2), "
           "*bias* = mean e (< 0: too dark), *max* = max |e|. The sphere's rays and the slab's "
           "views count half each. *Cost*: exponentials per sample (N octaves, +1 for the powder "
-          "factor, 2N with the Nubis attenuation).\n\n"
+          "factor, 2N with the Nubis attenuation, 3 for the diffusion models, which also need "
+          "the optical depth behind the sample: a second light march in a renderer).\n\n"
        << "**Fits**: a, b, c in (0, 1) minimising the rms over a range of thickness, by "
           "Nelder-Mead in logistic coordinates from three starting points (the best is kept); "
           "for each form, N is the smallest octave count within "
@@ -442,7 +470,7 @@ report_summary write_report(const report_options& o) {
         md << '\n';
         for (const variant& v : vs) {
             if (!v.in_tables) continue;
-            md << "| " << v.label << " | " << model_cost(v.spec) << " |";
+            md << "| " << v.label << " | " << cost_of(v) << " |";
             for (std::size_t k : subsets) {
                 const error_summary e = measure(set, v.radiance, report_subsets()[k].select);
                 md << ' ' << pct(e.rms) << " / " << signed_pct(e.bias) << " / " << pct(e.max) << " |";
@@ -536,19 +564,25 @@ report_summary write_report(const report_options& o) {
     }
     md << '\n';
 
+    if (!o.choice_header.empty()) {
+        const std::size_t slash = o.reference_path.find_last_of('/');
+        write_text_file_atomically(o.choice_header,
+                                   lighting_choice_header(set, o.reference_path.substr(slash + 1)));
+    }
     write_text_file_atomically(o.docs_dir + "/lighting_error.md", md.str());
     write_text_file_atomically(o.docs_dir + "/lighting_error.csv", csv.str());
 
     std::vector<variant> plot;
-    for (std::size_t v = 0; v < first_preset; ++v)
-        if (vs[v].in_tables) plot.push_back(vs[v]);
+    for (std::size_t v = 0; v < vs.size(); ++v)
+        if (vs[v].in_tables && (v < first_preset || vs[v].id == "preset_diffusion_fitted"))
+            plot.push_back(vs[v]);
     write_text_file_atomically(o.images_dir + "/lighting_error_vs_tau.svg",
                svg_error_vs_tau(set, plot, taus, "Lighting models against Monte Carlo: rms "
                                                  "error per optical thickness (sphere and slab)"));
     std::vector<variant> profile;
     for (const variant& v : vs)
         if (v.id == "single" || v.id == "default_beer" || v.id == "default_powder" ||
-            v.id == "fit_beer" || v.id == "fit_nubis")
+            v.id == "fit_beer" || v.id == "fit_nubis" || v.id == "preset_diffusion_fitted")
             profile.push_back(v);
     write_text_file_atomically(o.images_dir + "/lighting_error_sphere_profile.svg",
                svg_sphere_profile(set, profile, 10.0, 90.0));
@@ -557,6 +591,61 @@ report_summary write_report(const report_options& o) {
         num(std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count()) +
         " s");
     return summary;
+}
+
+std::string lighting_choice_header(const reference_set& set, const std::string& reference_name) {
+    std::vector<double> taus;
+    for (const reference_row& r : set.rows)
+        if (std::find(taus.begin(), taus.end(), r.tau) == taus.end()) taus.push_back(r.tau);
+    std::sort(taus.begin(), taus.end());
+    const double g = medium_g(set);
+    const evaluator ev(set);
+    const diffusion_evaluator dev(set);
+    struct entry {
+        std::string name, kind, octaves, diffusion;
+        int exponentials, extra_inputs;
+        std::vector<double> radiance;
+    };
+    std::vector<entry> models;
+    for (const multiple_scattering_preset& p : ms_preset::all)
+        models.push_back({std::string("ms_preset::") + p.name, "octaves", std::string("&ms_preset::") + p.name,
+                          "nullptr", p.octaves, 0,
+                          ev.radiance({attenuation::beer, g, double(p.a), double(p.b), double(p.c), p.octaves})});
+    for (const diffusion_model& m : diffusion_models::all)
+        models.push_back({std::string("diffusion_models::") + m.name, "diffusion", "nullptr",
+                          std::string("&diffusion_models::") + m.name, 3, 2, dev.radiance(m)});
+    std::ostringstream h;
+    h << "// cloudmath/lighting_choice_data.hpp: the measured errors behind choose_lighting_model\n"
+         "// (lighting_choice.hpp). Generated by cloudmath_lighting_error report from\n// "
+      << reference_name << " (phase " << set.phase_spec
+      << "); do not edit.\n// rms[i][t]: the rms of (L_model - L_MC) / image mean of model i over the\n"
+         "// reference's rays of optical thickness thickness[t].\n"
+         "// Included by lighting_choice.hpp between its types and its functions. Included first,\n"
+         "// it lets lighting_choice.hpp include it again in that place (the guard is set only\n"
+         "// around the data), so either header can come first.\n"
+         "#ifndef CLOUDMATH_LIGHTING_CHOICE_DATA_HPP\n#include \"lighting_choice.hpp\"\n#endif\n\n"
+         "#ifndef CLOUDMATH_LIGHTING_CHOICE_DATA_HPP\n#define CLOUDMATH_LIGHTING_CHOICE_DATA_HPP\n\n"
+         "namespace cloudmath::lighting_choice_data {\n\n"
+      << "inline constexpr int thickness_count = " << taus.size() << ";\n"
+      << "inline constexpr float thickness[thickness_count] = {";
+    for (std::size_t t = 0; t < taus.size(); ++t) h << (t ? ", " : "") << float_literal(taus[t], 6);
+    h << "};\ninline constexpr int model_count = " << models.size() << ";\n"
+      << "inline constexpr lighting_model_record models[model_count] = {\n";
+    for (const entry& e : models)
+        h << "    {\"" << e.name << "\", lighting_model_kind::" << e.kind << ", " << e.octaves << ", "
+          << e.diffusion << ", " << e.exponentials << ", " << e.extra_inputs << "},\n";
+    h << "};\ninline constexpr float rms[model_count][thickness_count] = {\n";
+    for (const entry& e : models) {
+        h << "    {";
+        for (std::size_t t = 0; t < taus.size(); ++t) {
+            const double tau = taus[t];
+            const error_summary err = measure(set, e.radiance, [tau](const reference_row& r) { return r.tau == tau; });
+            h << (t ? ", " : "") << float_literal(err.rms, 4);
+        }
+        h << "},  // " << e.name << "\n";
+    }
+    h << "};\n\n}  // namespace cloudmath::lighting_choice_data\n\n#endif  // CLOUDMATH_LIGHTING_CHOICE_DATA_HPP\n";
+    return h.str();
 }
 
 }  // namespace cloudmath::reference::lighting

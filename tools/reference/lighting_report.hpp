@@ -41,6 +41,8 @@ struct report_options {
     std::string reference_path = "docs/data/lighting_reference.csv";
     std::string docs_dir = "docs";
     std::string images_dir = "docs/images";
+    // Where to write the generated data of cloudmath/lighting_choice.hpp (empty: nowhere).
+    std::string choice_header;
     std::function<void(const std::string&)> log;  // progress lines, may be empty
 };
 struct report_summary {
@@ -48,6 +50,12 @@ struct report_summary {
 };
 // Throws std::runtime_error naming the path on unreadable input or unwritable output.
 report_summary write_report(const report_options& options);
+
+// The text of include/cloudmath/lighting_choice_data.hpp: every shipped model (the
+// ms_preset octaves, the diffusion models) with its rms error at each optical thickness of
+// the reference set, measured with the library functions.
+[[nodiscard]] std::string lighting_choice_header(const reference_set& set,
+                                                 const std::string& reference_name);
 
 }  // namespace cloudmath::reference::lighting
 

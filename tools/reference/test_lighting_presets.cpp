@@ -8,7 +8,11 @@
 
 #include <cloudmath/multiple_scattering.hpp>
 
+#include <fstream>
+#include <iterator>
+
 #include "lighting_error.hpp"
+#include "lighting_report.hpp"
 
 namespace lm = cloudmath::reference::lighting;
 
@@ -43,4 +47,14 @@ TEST_CASE("the presets' documented error is what the reference measures") {
             [lo, hi](const lm::reference_row& r) { return r.tau >= lo && r.tau <= hi; });
         CHECK(e2.rms == doctest::Approx(e.rms).epsilon(1e-9));
     }
+}
+
+TEST_CASE("the data of choose_lighting_model is what the reference measures") {
+    const lm::reference_set set =
+        lm::read_reference(std::string(CLOUDMATH_SOURCE_DIR) + "/docs/data/lighting_reference.csv");
+    std::ifstream in(std::string(CLOUDMATH_SOURCE_DIR) + "/include/cloudmath/lighting_choice_data.hpp",
+                     std::ios::binary);
+    REQUIRE(in.good());
+    const std::string stored{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    CHECK(lm::lighting_choice_header(set, "lighting_reference.csv") == stored);
 }

@@ -1,0 +1,142 @@
+// cloudmath/glsl/diffusion_lighting.glsl: GLSL twin of cloudmath/diffusion_lighting.hpp,
+// multiple scattering from diffusion along the sun's chord with a fitted correction table.
+// The formulas, their sources and the inputs are documented in the C++ header.
+//
+// Use:      float M = cm_diffusion_scattering(tau_sun, tau_behind, tau_view, mu, g,
+//                                             CM_DIFFUSION_MODEL_FITTED);
+//           // tau_behind: optical depth behind the sample along the sun direction (a second
+//           // short march away from the sun); tau_view: optical depth from the camera.
+// Configuration (#define before the include):
+//   CM_DIFFUSION_PHASE  name of a user function `float f(float mu, float scale)` returning the
+//                       phase function with eccentricities scaled by `scale` (1, 0.5, 0.8).
+//                       When defined, cm_diffusion_scattering_with(...) is available (the C++
+//                       generic form); g is then that phase function's mean cosine.
+// Models:   CM_DIFFUSION_MODEL_FITTED (the default), CM_DIFFUSION_MODEL_PHYSICAL (plain
+//           diffusion, for comparison), generated in diffusion_lighting_models.glsl.
+// GLSL 3.30 / ES 3.00: const arrays inside a struct, indexed at run time.
+#ifndef CM_DIFFUSION_LIGHTING_GLSL
+#define CM_DIFFUSION_LIGHTING_GLSL
+
+#include "core.glsl"
+#include "phase.glsl"
+
+// diffusion_layout of the C++ header.
+#define CM_DIFFUSION_SIZE_X 2
+#define CM_DIFFUSION_SIZE_Y 2
+#define CM_DIFFUSION_SIZE_MU 5
+#define CM_DIFFUSION_SIZE_D 2
+#define CM_DIFFUSION_TABLE_SIZE 40
+#define CM_DIFFUSION_PEAK_SIZE 6
+#define CM_DIFFUSION_EXTRAPOLATION 0.7104
+
+// The C++ diffusion_model without its name.
+struct CmDiffusionModel {
+    float table[CM_DIFFUSION_TABLE_SIZE];
+    float peak[CM_DIFFUSION_PEAK_SIZE];
+    float tau_min;
+    float tau_max;
+    float g_min;
+    float g_max;
+    float rms_error;
+    float max_error;
+    float holdout_rms_error;
+};
+
+#include "diffusion_lighting_models.glsl"
+
+float cmi_diffusion_depth(float tau) { return clamp(tau, 0.0, 1e6); }
+
+// Fluence U (returned) and net flux F of the chord's diffusion solution.
+float cm_diffusion_chord_fluence(float x, float y, float exp_neg_x, out float flux) {
+    float z = CM_DIFFUSION_EXTRAPOLATION;
+    float ez = exp(z);
+    float L = x + y;
+    float slope = (ez - exp(-(L + z))) / (L + 2.0 * z);
+    flux = slope - exp_neg_x;
+    return max(3.0 * (ez - exp_neg_x - slope * (x + z)), 0.0);
+}
+
+// (u_sun, u_behind, u_mu, u_surface), each in [0, 1].
+vec4 cm_diffusion_table_coordinates(float tau_sun, float tau_behind, float tau_view, float mu,
+                                    float g) {
+    float s = 1.0 - clamp(g, -0.999, 0.999);
+    float x = s * cmi_diffusion_depth(tau_sun);
+    float y = s * cmi_diffusion_depth(tau_behind);
+    float z = CM_DIFFUSION_EXTRAPOLATION;
+    float t = (x + z) * (y + z) / (x + y + 2.0 * z);
+    float d = s * cmi_diffusion_depth(tau_view) + z;
+    return vec4(x / (1.0 + x), y / (1.0 + y), 0.5 * clamp(mu, -1.0, 1.0) + 0.5, d / (d + t));
+}
+
+// Lower node and upper weight of u over n equally spaced nodes.
+void cmi_diffusion_hat(float u, int n, out int i0, out float w1) {
+    float p = clamp(u, 0.0, 1.0) * float(n - 1);
+    int i = min(int(p), n - 2);
+    i0 = i;
+    w1 = p - float(i);
+}
+
+float cm_diffusion_table_lookup(CmDiffusionModel m, vec4 u) {
+    int ix, iy, im, id;
+    float wx, wy, wm, wd;
+    cmi_diffusion_hat(u.x, CM_DIFFUSION_SIZE_X, ix, wx);
+    cmi_diffusion_hat(u.y, CM_DIFFUSION_SIZE_Y, iy, wy);
+    cmi_diffusion_hat(u.z, CM_DIFFUSION_SIZE_MU, im, wm);
+    cmi_diffusion_hat(u.w, CM_DIFFUSION_SIZE_D, id, wd);
+    float sum = 0.0;
+    for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b)
+            for (int c = 0; c < 2; ++c)
+                for (int e = 0; e < 2; ++e) {
+                    float w = (a == 1 ? wx : 1.0 - wx) * (b == 1 ? wy : 1.0 - wy) *
+                              (c == 1 ? wm : 1.0 - wm) * (e == 1 ? wd : 1.0 - wd);
+                    int index = (((ix + a) * CM_DIFFUSION_SIZE_Y + iy + b) * CM_DIFFUSION_SIZE_MU +
+                                 im + c) * CM_DIFFUSION_SIZE_D + id + e;
+                    sum += w * m.table[index];
+                }
+    return sum;
+}
+
+// The model with the three phase values it needs (scales 1, 0.5 and 0.8) given.
+float cmi_diffusion_scattering_phases(float tau_sun, float tau_behind, float tau_view, float mu,
+                                      float g, CmDiffusionModel m, float p1, float p_half,
+                                      float p_four_fifths) {
+    float mc = clamp(mu, -1.0, 1.0);
+    float gc = clamp(g, -0.999, 0.999);
+    float ts = cmi_diffusion_depth(tau_sun);
+    float x = (1.0 - gc) * ts;
+    float y = (1.0 - gc) * cmi_diffusion_depth(tau_behind);
+    float direct = exp(-ts);
+    float e_half = exp(-0.5 * x);
+    float e_one = e_half * e_half;
+    vec3 beams = max(vec3(e_half, e_one, e_one * e_one) - direct, vec3(0.0));
+    float w_half = m.peak[0] * beams.x + m.peak[2] * beams.y + m.peak[4] * beams.z;
+    float w_four_fifths = m.peak[1] * beams.x + m.peak[3] * beams.y + m.peak[5] * beams.z;
+    float peak = w_half * p_half + w_four_fifths * p_four_fifths;
+    float flux;
+    float U = cm_diffusion_chord_fluence(x, y, e_one, flux);
+    float D = max(U + 3.0 * gc * flux * mc, 0.0) * CM_INV_FOUR_PI;
+    float C = cm_diffusion_table_lookup(m, cm_diffusion_table_coordinates(ts, tau_behind, tau_view, mc, gc));
+    return max(p1 * direct + peak + D * max(C, 0.0), 0.0);
+}
+
+// With the Henyey-Greenstein phase function of asymmetry g.
+float cm_diffusion_scattering(float tau_sun, float tau_behind, float tau_view, float mu, float g,
+                              CmDiffusionModel m) {
+    float mc = clamp(mu, -1.0, 1.0);
+    return cmi_diffusion_scattering_phases(tau_sun, tau_behind, tau_view, mu, g, m,
+                                           cm_phase_hg(mc, g), cm_phase_hg(mc, 0.5 * g),
+                                           cm_phase_hg(mc, 0.8 * g));
+}
+
+#ifdef CM_DIFFUSION_PHASE
+float cm_diffusion_scattering_with(float tau_sun, float tau_behind, float tau_view, float mu,
+                                   float g, CmDiffusionModel m) {
+    float mc = clamp(mu, -1.0, 1.0);
+    return cmi_diffusion_scattering_phases(tau_sun, tau_behind, tau_view, mu, g, m,
+                                           CM_DIFFUSION_PHASE(mc, 1.0), CM_DIFFUSION_PHASE(mc, 0.5),
+                                           CM_DIFFUSION_PHASE(mc, 0.8));
+}
+#endif
+
+#endif  // CM_DIFFUSION_LIGHTING_GLSL

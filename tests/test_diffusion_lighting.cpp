@@ -1,0 +1,199 @@
+// Tests of diffusion_lighting.hpp: the chord's diffusion solution against its differential
+// equation, boundary conditions and the diffusion law of transmission; the whole model
+// against a long double evaluation of its formula; the table's interpolation; its limits
+// (no table and no peak: exact single scattering) and the hard cases (zero and huge optical
+// depths, +Inf, mu = +-1, g at and past +-1, denormals) in float and double, with and
+// without -ffast-math. The fitted numbers' documented errors are checked against the
+// stored Monte Carlo data by tools/reference/test_lighting_diffusion.cpp.
+#include <cloudmath/diffusion_lighting.hpp>
+
+#include <cmath>
+#include <initializer_list>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "test_support.hpp"
+
+using namespace cloudmath;
+using cm_test::ld;
+
+namespace {
+
+namespace L = diffusion_layout;
+const ld PI = 3.141592653589793238462643383279502884L;
+
+ld hg_ref(ld mu, ld g) {
+    g = std::fmax(std::fmin(g, 0.9999L), -0.9999L);
+    return (1 - g * g) / (4 * PI * std::pow(1 + g * g - 2 * g * mu, 1.5L));
+}
+
+ld fluence_ref(ld x, ld y, ld& flux) {
+    const ld z = L::extrapolation, Lc = x + y;
+    const ld slope = (std::exp(z) - std::exp(-(Lc + z))) / (Lc + 2 * z);
+    flux = slope - std::exp(-x);
+    return std::fmax(3 * (std::exp(z) - std::exp(-x) - slope * (x + z)), 0.0L);
+}
+
+// The model's formula (header comment) in long double, table by explicit multilinear sum.
+ld model_ref(ld ts, ld tb, ld tv, ld mu, ld g, const diffusion_model& m) {
+    ts = std::fmin(std::fmax(ts, 0.0L), 1e6L);
+    tb = std::fmin(std::fmax(tb, 0.0L), 1e6L);
+    tv = std::fmin(std::fmax(tv, 0.0L), 1e6L);
+    mu = std::fmin(std::fmax(mu, -1.0L), 1.0L);
+    const ld gc = std::fmin(std::fmax(g, -0.999L), 0.999L), s = 1 - gc;
+    const ld x = s * ts, y = s * tb, z = L::extrapolation;
+    const ld direct = std::exp(-ts);
+    ld peak = 0;
+    for (int ia = 0; ia < L::peak_a_count; ++ia)
+        for (int ic = 0; ic < L::peak_c_count; ++ic)
+            peak += ld(m.peak[ia * L::peak_c_count + ic]) * hg_ref(mu, ld(L::peak_c[ic]) * g) *
+                    std::fmax(std::exp(-ld(L::peak_a[ia]) * x) - direct, 0.0L);
+    ld flux = 0;
+    const ld U = fluence_ref(x, y, flux);
+    const ld D = std::fmax(U + 3 * gc * flux * mu, 0.0L) / (4 * PI);
+    const ld t = (x + z) * (y + z) / (x + y + 2 * z), d = s * tv + z;
+    const ld u[4] = {x / (1 + x), y / (1 + y), (mu + 1) / 2, d / (d + t)};
+    const int n[4] = {L::size_x, L::size_y, L::size_mu, L::size_d};
+    ld C = 0;
+    for (int ix = 0; ix < n[0]; ++ix)
+        for (int iy = 0; iy < n[1]; ++iy)
+            for (int im = 0; im < n[2]; ++im)
+                for (int id = 0; id < n[3]; ++id) {
+                    const int at[4] = {ix, iy, im, id};
+                    ld w = 1;
+                    for (int k = 0; k < 4; ++k) w *= std::fmax(0.0L, 1 - std::fabs(u[k] * (n[k] - 1) - at[k]));
+                    C += w * ld(m.table[L::table_index(ix, iy, im, id)]);
+                }
+    return std::fmax(hg_ref(mu, g) * direct + peak + D * std::fmax(C, 0.0L), 0.0L);
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE("diffusion_chord_fluence solves the chord's diffusion equation", T, float, double) {
+    const T z = T(L::extrapolation);
+    for (T Lc : {T(0.05), T(1), T(10), T(300)}) {
+        T flux = T(0);
+        // U vanishes at the extrapolated ends (the formula holds on [-z, L + z]).
+        CHECK(std::abs(diffusion_chord_fluence(-z, Lc + z, std::exp(z), flux)) < T(64) * cm_test::eps<T>());
+        for (T f : {T(0.1), T(0.5), T(0.9)}) {
+            const T x = f * Lc;
+            ld flux_ref = 0;
+            const ld U_ref = fluence_ref(x, Lc - x, flux_ref);
+            const T U = diffusion_chord_fluence(x, Lc - x, std::exp(-x), flux);
+            // Relative to the fluence scale 3 e^z: the formula's own cancellation.
+            CHECK(std::fabs(ld(U) - U_ref) <= 3 * std::exp(ld(z)) * 64 * ld(cm_test::eps<T>()) * (1 + Lc));
+            CHECK(std::fabs(ld(flux) - flux_ref) <= 64 * ld(cm_test::eps<T>()) * 4);
+        }
+    }
+    // The equation itself, by central differences in long double on the reference.
+    for (ld x : {0.2L, 1.0L, 5.0L}) {
+        const ld h = 1e-4L, Lc = 8;
+        ld f0, fm, fp;
+        const ld u0 = fluence_ref(x, Lc - x, f0), um = fluence_ref(x - h, Lc - x + h, fm), up = fluence_ref(x + h, Lc - x - h, fp);
+        CHECK(double(-(up - 2 * u0 + um) / (h * h) / 3) == doctest::Approx(double(std::exp(-x))).epsilon(1e-5));
+        CHECK(double(f0) == doctest::Approx(double(-(up - um) / (2 * h) / 3)).epsilon(1e-7));
+    }
+    // Deep in a thick chord the net flux is e^z / (L + 2 z): diffuse transmission.
+    T flux = T(0);
+    (void)diffusion_chord_fluence(T(90), T(10), std::exp(T(-90)), flux);
+    CHECK(double(flux) == doctest::Approx(std::exp(L::extrapolation) / (100 + 2 * L::extrapolation)).epsilon(1e-5));
+}
+
+TEST_CASE_TEMPLATE("diffusion_scattering matches its formula in long double", T, float, double) {
+    ld worst = 0;
+    for (const diffusion_model& m : diffusion_models::all)
+        for (T ts : {T(0), T(0.2), T(2), T(15), T(80)})
+            for (T tb : {T(0), T(1), T(30)})
+                for (T tv : {T(0), T(0.7), T(12)})
+                    for (T mu : {T(-1), T(-0.4), T(0.3), T(0.95), T(1)})
+                        for (T g : {T(0), T(0.75), T(0.85), T(0.9)}) {
+                            const T got = diffusion_scattering(ts, tb, tv, mu, g, m);
+                            const ld ref = model_ref(ts, tb, tv, mu, g, m);
+                            // Relative to the sum's terms' scale (the single-scattering phase
+                            // and the diffusion's 3 e^z / 4 pi), not to a result that can cancel.
+                            const ld scale = hg_ref(mu, g) + 0.5L;
+                            worst = std::fmax(worst, std::fabs(ld(got) - ref) / scale);
+                        }
+    MESSAGE(cm_test::type_name<T>() << ": diffusion_scattering worst error " << double(worst));
+    CHECK(worst <= 4096 * cm_test::eps<T>());
+}
+
+TEST_CASE_TEMPLATE("diffusion_scattering limits", T, float, double) {
+    // No table, no peak: exact single scattering.
+    diffusion_model none{};
+    none.name = "none";
+    const T mu = T(0.3), g = T(0.85);
+    for (T ts : {T(0), T(1), T(7)})
+        CHECK(diffusion_scattering(ts, T(2), T(1), mu, g, none) == doctest::Approx(phase_hg(mu, g) * std::exp(-ts)));
+    // The generic form with the HG phase equals the HG form (to rounding: -ffast-math may
+    // reassociate the two inlined copies differently).
+    const auto hg = [g](T m, T scale) { return phase_hg(m, scale * g); };
+    for (const diffusion_model& m : diffusion_models::all)
+        CHECK(diffusion_scattering_with(T(3), T(4), T(0.5), mu, g, m, hg) ==
+              doctest::Approx(diffusion_scattering(T(3), T(4), T(0.5), mu, g, m)).epsilon(64 * cm_test::eps<T>()));
+    // Negative depths count as 0, depths past 1e6 as 1e6, mu and g are clamped.
+    const diffusion_model& f = diffusion_models::fitted;
+    CHECK(diffusion_scattering(T(-5), T(-1), T(-2), mu, g, f) == diffusion_scattering(T(0), T(0), T(0), mu, g, f));
+    CHECK(diffusion_scattering(T(2e6), T(1e7), T(1e9), mu, g, f) == diffusion_scattering(T(1e6), T(1e6), T(1e6), mu, g, f));
+    CHECK(diffusion_scattering(T(1), T(1), T(1), T(3), g, f) == diffusion_scattering(T(1), T(1), T(1), T(1), g, f));
+    // Thick clouds: the single scattering is gone, the diffusion stays.
+    CHECK(diffusion_scattering(T(1e4), T(10), T(1), mu, g, diffusion_models::physical) > T(0));
+}
+
+TEST_CASE("diffusion table: exact at the nodes, multilinear between them") {
+    const diffusion_model& m = diffusion_models::fitted;
+    for (int ix = 0; ix < L::size_x; ++ix)
+        for (int iy = 0; iy < L::size_y; ++iy)
+            for (int im = 0; im < L::size_mu; ++im)
+                for (int id = 0; id < L::size_d; ++id) {
+                    const diffusion_coordinates<double> u{double(ix) / (L::size_x - 1), double(iy) / (L::size_y - 1),
+                                                          double(im) / (L::size_mu - 1), double(id) / (L::size_d - 1)};
+                    CHECK(diffusion_table_lookup(m, u) == doctest::Approx(m.table[L::table_index(ix, iy, im, id)]).epsilon(1e-12));
+                }
+    // Half way between two nodes along mu: their mean.
+    const diffusion_coordinates<double> mid{0.0, 0.0, 0.25, 0.0};
+    CHECK(diffusion_table_lookup(m, mid) ==
+          doctest::Approx(0.5 * (double(m.table[L::table_index(0, 0, 0, 0)]) + double(m.table[L::table_index(0, 0, 1, 0)]))));
+    // Coordinates: each in [0, 1], with the documented limits.
+    const auto u0 = diffusion_table_coordinates(0.0, 0.0, 0.0, -1.0, 0.85);
+    CHECK(u0.u_sun == 0.0);
+    CHECK(u0.u_behind == 0.0);
+    CHECK(u0.u_mu == 0.0);
+    CHECK(u0.u_surface == doctest::Approx(2.0 / 3.0));  // d = z, t = z / 2 on both surfaces
+    const auto u1 = diffusion_table_coordinates(1e6, 1e6, 1e6, 1.0, 0.85);
+    CHECK(u1.u_sun == doctest::Approx(1.0).epsilon(1e-4));
+    CHECK(u1.u_mu == 1.0);
+    CHECK(u1.u_surface > 0.0);
+    CHECK(u1.u_surface < 1.0);
+}
+
+TEST_CASE_TEMPLATE("diffusion_scattering: finite and >= 0 on the hard cases", T, float, double) {
+    std::vector<T> depths{T(0), std::numeric_limits<T>::denorm_min(), std::numeric_limits<T>::min(), T(1e-30), T(0.5), T(40), T(1e6), T(1e30), std::numeric_limits<T>::max()};
+    if (cm_test::ieee_build) depths.push_back(cm_test::make_inf<T>());
+    int bad = 0;
+    for (const diffusion_model& m : diffusion_models::all)
+        for (T ts : depths)
+            for (T tb : depths)
+                for (T tv : {T(0), T(3), std::numeric_limits<T>::max()})
+                    for (T mu : {T(-1), T(0), T(1)})
+                        for (T g : {T(-1), T(-0.999), T(0), T(0.85), T(0.999), T(1), T(5)}) {
+                            const T v = diffusion_scattering(ts, tb, tv, mu, g, m);
+                            if (!cm_test::finite_bits(v) || v < T(0)) ++bad;
+                        }
+    CHECK(bad == 0);
+}
+
+TEST_CASE("diffusion models: documented fit ranges and errors are consistent") {
+    for (const diffusion_model& m : diffusion_models::all) {
+        CHECK(m.tau_min > 0.0f);
+        CHECK(m.tau_max > m.tau_min);
+        CHECK(m.g_max >= m.g_min);
+        CHECK(m.rms_error > 0.0f);
+        CHECK(m.max_error >= m.rms_error);
+        CHECK(m.holdout_rms_error > 0.0f);
+    }
+    // The fitted model is the default and beats plain diffusion on its own data.
+    CHECK(std::string(diffusion_models::all[0].name) == "fitted");
+    CHECK(diffusion_models::fitted.rms_error < diffusion_models::physical.rms_error);
+}
