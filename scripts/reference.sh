@@ -9,8 +9,11 @@
 #                                  (cloudmath_lighting_error reference; about 6.5 minutes)
 #   docs/lighting_error.{md,csv}   lighting models against it, fits, presets, with SVGs
 #                                  (cloudmath_lighting_error report; about 2 minutes)
+#   docs/data/truth_*.csv, docs/lighting_truth.md  whole cloud images of the example
+#                                  renderer against their path-traced truth (scripts/truth.sh)
 # Usage: bash scripts/reference.sh [--reports-only]
-#   --reports-only  keeps the tables and the Monte Carlo reference, reruns the two reports
+#   --reports-only  keeps the tables, the Monte Carlo reference and the truth images, reruns
+#                   the three reports
 # Afterwards: the presets' documented errors in include/cloudmath/multiple_scattering.hpp
 # must match docs/lighting_error.md (ctest -R reference.lighting_presets checks it), and
 # bash scripts/speed-vs-error.sh refreshes the report's physical-reference column.
@@ -48,3 +51,9 @@ if [[ $reports_only == 0 ]]; then
     "$bin/cloudmath_lighting_error" reference --out docs/data/lighting_reference.csv
 fi
 "$bin/cloudmath_lighting_error" report
+
+# Whole cloud images against their path-traced truth (docs/lighting_truth.md; about 13
+# minutes, the report alone seconds).
+truth_args=(--build build/reference)
+if [[ $reports_only == 1 ]]; then truth_args+=(--reports-only); fi
+bash scripts/truth.sh "${truth_args[@]}"
