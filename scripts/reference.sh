@@ -52,7 +52,7 @@ if [[ $reports_only == 0 ]]; then
 fi
 "$bin/cloudmath_lighting_error" report
 
-# Whole cloud images against their path-traced truth (docs/lighting_truth.md; about 13
+# Whole cloud images against their path-traced truth (docs/lighting_truth.md; about 21
 # minutes, the report alone seconds).
 truth_args=(--build build/reference)
 if [[ $reports_only == 1 ]]; then truth_args+=(--reports-only); fi

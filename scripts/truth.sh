@@ -2,8 +2,8 @@
 # Ground truth for whole cloud images: the example renderer's presets path-traced over its
 # own density field, and its lighting variants measured against them.
 #   docs/data/truth_PRESET.csv     linear radiance and standard error per pixel
-#                                  (cloudmath_volume_truth render; 160 x 90 pixels, 768
-#                                  paths per pixel: about 3 minutes per preset on 2 cores)
+#                                  (cloudmath_volume_truth render; 160 x 90 pixels, 1536
+#                                  paths per pixel: 3 to 6 minutes per preset on 2 cores)
 #   docs/lighting_truth.md         the renderer's CPU reference (render_cpu_linear) for each
 #   docs/images/truth_PRESET.png   variant against them, with truth | model | difference
 #                                  images (cloudmath_volume_truth report; seconds)
@@ -17,7 +17,7 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 presets=(ground horizon inside above)
 variants=(default= march=light=march,light-steps=64 single=octaves=1,powder=off mie=phase=mie)
-width=160 height=90 spp=768
+width=160 height=90 spp=1536
 reports_only=0 build=""
 while [[ $# -gt 0 ]]; do
     case "$1" in

@@ -8,9 +8,10 @@
 //
 // Use:
 //   namespace vt = cloudmath::reference::volume;
-//   vt::homogeneous_sphere sphere(5.0);                 // radius 1, sigma_t 5
+//   const vt::homogeneous_sphere sphere(5.0);           // radius 1, sigma_t 5
 //   vt::lighting light; light.sun_direction = {0, 0, 1}; light.sun_irradiance = {1, 1, 1};
-//   vt::path_tracer tracer(sphere, mc::make_phase("hg:0.85"), 1.0, light);
+//   const mc::phase_model phase = mc::make_phase("hg:0.85");
+//   const vt::path_tracer tracer(sphere, phase, 1.0, light);  // keeps references to all three
 //   auto L = vt::estimate_radiance(tracer, rays, 4096, options);   // one rgb_estimate per ray
 //
 // Conventions: those of montecarlo.hpp (mu = dot(propagation direction of the path away from
