@@ -19,8 +19,11 @@
 #                                  measured on all six (cloudmath_lighting_error fit-diffusion;
 #                                  seconds); ctest -R reference.lighting_diffusion checks that
 #                                  the headers are what the stored data gives
+#   docs/data/truth_*.csv, docs/lighting_truth.md  whole cloud images of the example
+#                                  renderer against their path-traced truth (scripts/truth.sh)
 # Usage: bash scripts/reference.sh [--reports-only]
-#   --reports-only  keeps the tables and the Monte Carlo reference, reruns the two reports
+#   --reports-only  keeps the tables, the Monte Carlo reference and the truth images, reruns
+#                   the three reports
 # Afterwards: the presets' documented errors in include/cloudmath/multiple_scattering.hpp
 # must match docs/lighting_error.md (ctest -R reference.lighting_presets checks it), and
 # bash scripts/speed-vs-error.sh refreshes the report's physical-reference column.
@@ -76,3 +79,9 @@ mv docs/data/diffusion_fit.txt.tmp docs/data/diffusion_fit.txt
 # The report measures the models compiled into the tool: rebuild it with the new headers.
 cmake --build build/reference --target cloudmath_lighting_error >/dev/null
 "$bin/cloudmath_lighting_error" report --choice-header include/cloudmath/lighting_choice_data.hpp
+
+# Whole cloud images against their path-traced truth (docs/lighting_truth.md; about 21
+# minutes, the report alone seconds).
+truth_args=(--build build/reference)
+if [[ $reports_only == 1 ]]; then truth_args+=(--reports-only); fi
+bash scripts/truth.sh "${truth_args[@]}"

@@ -21,15 +21,9 @@ using namespace cloud_renderer;
 
 namespace {
 
-std::string default_cache_dir() {
-    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg != nullptr && *xdg != '\0') return std::string(xdg) + "/cloudmath";
-    if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0') return std::string(home) + "/.cache/cloudmath";
-    return {};
-}
-
 bool load_textures(const options& o, cloud_textures& t) {
     std::string why;
-    const std::string dir = o.cache_dir == "none" ? std::string() : (o.cache_dir.empty() ? default_cache_dir() : o.cache_dir);
+    const std::string dir = o.cache_dir == "none" ? std::string() : (o.cache_dir.empty() ? default_texture_cache_dir() : o.cache_dir);
     if (!load_or_bake_textures(dir, o.quiet, t, why)) {
         std::fprintf(stderr, "error: %s\n", why.c_str());
         return false;

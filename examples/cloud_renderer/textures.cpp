@@ -3,6 +3,7 @@
 #include <cloudmath/noise_bake.hpp>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sys/stat.h>
@@ -76,6 +77,12 @@ bool write_cache(const std::string& dir, const std::string& path, const cloud_te
 }
 
 }  // namespace
+
+std::string default_texture_cache_dir() {
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg != nullptr && *xdg != '\0') return std::string(xdg) + "/cloudmath";
+    if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0') return std::string(home) + "/.cache/cloudmath";
+    return {};
+}
 
 bool load_or_bake_textures(const std::string& cache_dir, bool quiet, cloud_textures& t, std::string& why) {
     t.base_size = cloudmath::base_volume_default_size;

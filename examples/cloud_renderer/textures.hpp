@@ -23,6 +23,10 @@ struct cloud_textures {
 // An empty cache_dir disables the cache. Returns false with a message only if baking fails.
 bool load_or_bake_textures(const std::string& cache_dir, bool quiet, cloud_textures& out, std::string& why);
 
+// The default cache directory: $XDG_CACHE_HOME/cloudmath, else $HOME/.cache/cloudmath, else
+// empty (no cache).
+std::string default_texture_cache_dir();
+
 }  // namespace cloud_renderer
 
 #endif  // CLOUD_RENDERER_TEXTURES_HPP

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_main.hpp"
 #include "montecarlo.hpp"
 
 namespace mc = cloudmath::reference::mc;
@@ -65,9 +66,7 @@ const char* const usage_text =
     "--max-order N keeps light scattered at most N times (1 = single scattering); 0 = all.\n"
     "--threads 0 uses every core. Exit status: 0 ok, 1 I/O failure, 2 bad command line.\n";
 
-struct usage_error : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+using cloudmath::reference::usage_error;
 
 // "--name value" pairs, checked against the flags a command accepts.
 class flags {
@@ -366,28 +365,10 @@ int run_sphere(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::cerr << usage_text;
-        return 2;
-    }
-    const std::string command = argv[1];
-    if (command == "--help" || command == "-h" || command == "help") {
-        std::cout << usage_text;
-        return 0;
-    }
-    try {
+    return cloudmath::reference::run_subcommand_tool("cloudmath_montecarlo", usage_text, argc, argv, [&](const std::string& command) {
         if (command == "slab") return run_slab(argc, argv);
         if (command == "slab-radiance") return run_slab_radiance(argc, argv);
         if (command == "sphere") return run_sphere(argc, argv);
         throw usage_error("unknown command '" + command + "' (slab, slab-radiance, sphere)");
-    } catch (const usage_error& e) {
-        std::cerr << "cloudmath_montecarlo: " << e.what() << " (see --help)\n";
-        return 2;
-    } catch (const std::invalid_argument& e) {
-        std::cerr << "cloudmath_montecarlo: " << e.what() << '\n';
-        return 2;
-    } catch (const std::exception& e) {
-        std::cerr << "cloudmath_montecarlo: " << e.what() << '\n';
-        return 1;
-    }
+    });
 }

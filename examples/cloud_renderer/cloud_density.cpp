@@ -1,0 +1,105 @@
+#include "cloud_density.hpp"
+
+#include <cloudmath/cloudmath.hpp>
+
+#include <glm/common.hpp>
+#include <glm/exponential.hpp>
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <cstddef>
+
+namespace cloud_renderer {
+namespace {
+
+namespace cm = cloudmath;
+using glm::vec2;
+using glm::vec3;
+using glm::vec4;
+
+// OpenGL's GL_REPEAT wrap of an integer texel index.
+int wrap(int i, int size) {
+    const int m = i % size;
+    return m < 0 ? m + size : m;
+}
+
+}  // namespace
+
+float linear_texture::texel(int x, int y, int z, int c) const {
+    const std::size_t i = ((static_cast<std::size_t>(z) * static_cast<std::size_t>(size) + static_cast<std::size_t>(y)) *
+                               static_cast<std::size_t>(size) +
+                           static_cast<std::size_t>(x)) *
+                              static_cast<std::size_t>(channels) +
+                          static_cast<std::size_t>(c);
+    return float(data[i]) * (1.0f / 255.0f);
+}
+
+vec4 linear_texture::sample3(vec3 uvw) const {
+    const vec3 x = uvw * float(size) - 0.5f;
+    const vec3 f0 = glm::floor(x);
+    const vec3 f = x - f0;
+    const int x0 = wrap(int(f0.x), size), y0 = wrap(int(f0.y), size), z0 = wrap(int(f0.z), size);
+    const int x1 = wrap(x0 + 1, size), y1 = wrap(y0 + 1, size), z1 = wrap(z0 + 1, size);
+    vec4 out(0.0f);
+    for (int c = 0; c < channels; ++c) {
+        const float c00 = glm::mix(texel(x0, y0, z0, c), texel(x1, y0, z0, c), f.x);
+        const float c10 = glm::mix(texel(x0, y1, z0, c), texel(x1, y1, z0, c), f.x);
+        const float c01 = glm::mix(texel(x0, y0, z1, c), texel(x1, y0, z1, c), f.x);
+        const float c11 = glm::mix(texel(x0, y1, z1, c), texel(x1, y1, z1, c), f.x);
+        out[c] = glm::mix(glm::mix(c00, c10, f.y), glm::mix(c01, c11, f.y), f.z);
+    }
+    return out;
+}
+
+vec4 linear_texture::sample2(vec2 uv) const {
+    const vec2 x = uv * float(size) - 0.5f;
+    const vec2 f0 = glm::floor(x);
+    const vec2 f = x - f0;
+    const int x0 = wrap(int(f0.x), size), y0 = wrap(int(f0.y), size);
+    const int x1 = wrap(x0 + 1, size), y1 = wrap(y0 + 1, size);
+    vec4 out(0.0f);
+    for (int c = 0; c < channels; ++c)
+        out[c] = glm::mix(glm::mix(texel(x0, y0, 0, c), texel(x1, y0, 0, c), f.x),
+                          glm::mix(texel(x0, y1, 0, c), texel(x1, y1, 0, c), f.x), f.y);
+    return out;
+}
+
+cloud_density::cloud_density(const scene& s, const cloud_textures& t)
+    : s_(s), base_{t.base.data(), t.base_size, 4}, detail_{t.detail.data(), t.detail_size, 3},
+      weather_{t.weather.data(), t.weather_size, 3} {}
+
+float cloud_density::altitude(vec3 p) const {
+    const float t = glm::length(p);
+    return t > 0.0f ? cm::altitude_along_ray(s_.camera_altitude, p.y / t, s_.planet_radius, t) : s_.camera_altitude;
+}
+
+float cloud_density::density(vec3 p, float alt) const {
+    const float h = cm::height_fraction(alt, s_.layer_bottom, s_.layer_top);
+    if (h <= 0.0f || h >= 1.0f) return 0.0f;
+    const vec3 q(p.x + s_.wind.x, alt, p.z + s_.wind.y);
+    const float coverage = cm::saturate(weather_.sample2(vec2(q.x, q.z) / s_.weather_tile).r - 0.5f + s_.coverage);
+    const vec4 b = base_.sample3(q / s_.base_tile);
+    const float shaped = cm::nubis_base_cloud(b) * cm::height_gradient_for_type(h, s_.cloud_type);
+    const float covered = cm::apply_coverage(shaped, coverage);
+    if (covered <= 0.0f) return 0.0f;
+    const vec3 d = vec3(detail_.sample3(q / s_.detail_tile));
+    return cm::erode(covered, cm::nubis_detail_erosion(d, h));
+}
+
+vec3 sky_radiance(const frame_constants& k, vec3 dir, bool sun_disc) {
+    const float mu = glm::dot(dir, k.sun_dir);
+    vec3 sky = glm::mix(k.sky_horizon, k.sky_zenith, std::sqrt(cm::saturate(dir.y)));
+    sky += k.sun_radiance * (0.05f * cm::phase_hg(mu, 0.75f));
+    if (sun_disc && mu >= k.sun_cos_radius) sky += k.sun_radiance * 4.0f;
+    return sky;
+}
+
+vec3 background(const scene& s, const frame_constants& k, vec3 dir) {
+    const vec2 ground = cm::ray_sphere_intersect_altitude(s.camera_altitude, dir.y, s.planet_radius, 0.0f);
+    if (ground.x >= 0.0f && ground.y > ground.x) return k.ground;
+    return sky_radiance(k, dir, true);
+}
+
+vec3 tonemap(vec3 c, float exposure) { return glm::pow(vec3(1.0f) - glm::exp(-c * exposure), vec3(1.0f / 2.2f)); }
+
+}  // namespace cloud_renderer

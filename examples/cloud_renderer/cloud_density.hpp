@@ -1,0 +1,71 @@
+// The cloud renderer's density field and sky, as a public class shared by the CPU reference
+// (cpu_renderer.cpp) and the volume path tracer of tools/reference (volume_truth), so the
+// real-time image and its ground truth draw the very same scene.
+//
+// Frame and units: those of scene.hpp (camera at the origin, +y up at the camera, metres).
+// Texture reads reproduce OpenGL's GL_LINEAR + GL_REPEAT filtering of the UNORM8 texels of
+// textures.hpp, as shaders/clouds.frag sees them.
+#ifndef CLOUD_RENDERER_CLOUD_DENSITY_HPP
+#define CLOUD_RENDERER_CLOUD_DENSITY_HPP
+
+#include "scene.hpp"
+#include "textures.hpp"
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+
+namespace cloud_renderer {
+
+// texture() of a UNORM8 texture with GL_LINEAR filtering and GL_REPEAT: texel centres at
+// (i + 0.5) / size, weights from the fractional part, value byte / 255. Texel layout of
+// textures.hpp (x fastest, channels interleaved); 2D textures are the z = 0 slice.
+struct linear_texture {
+    const std::uint8_t* data;
+    int size, channels;
+
+    // Texel (x, y, z) channel c in [0, 1]; indices must be in [0, size).
+    float texel(int x, int y, int z, int c) const;
+    glm::vec4 sample3(glm::vec3 uvw) const;
+    glm::vec4 sample2(glm::vec2 uv) const;
+};
+
+// The density field of shaders/clouds.frag (cr_altitude, cr_density). Keeps references to
+// the scene and the textures: both must outlive it.
+class cloud_density {
+public:
+    cloud_density(const scene& s, const cloud_textures& t);
+
+    // Altitude (metres above the planet) of the camera-relative point p.
+    float altitude(glm::vec3 p) const;
+    // Density in [0, 1] at p whose altitude is alt (0 outside the layer); the extinction is
+    // scene().extinction times it.
+    float density(glm::vec3 p, float alt) const;
+    float density(glm::vec3 p) const { return density(p, altitude(p)); }
+
+    const scene& scene_data() const { return s_; }
+    const linear_texture& base() const { return base_; }
+    const linear_texture& detail() const { return detail_; }
+    const linear_texture& weather() const { return weather_; }
+
+private:
+    const scene& s_;
+    linear_texture base_, detail_, weather_;
+};
+
+// The sky seen in direction dir (unit, camera frame): the zenith-horizon gradient by dir.y,
+// the sun's aureole 0.05 HG(mu, 0.75) sun_radiance and, with sun_disc, the drawn disc
+// (4 sun_radiance within sun_cos_radius). No ground test.
+glm::vec3 sky_radiance(const frame_constants& k, glm::vec3 dir, bool sun_disc);
+// What the camera sees behind the clouds in direction dir (cr_background): the ground colour
+// where the ray from the camera hits the planet, else sky_radiance with the disc.
+glm::vec3 background(const scene& s, const frame_constants& k, glm::vec3 dir);
+
+// The renderer's display transform: 1 - exp(-c exposure), then gamma 1/2.2.
+glm::vec3 tonemap(glm::vec3 c, float exposure);
+
+}  // namespace cloud_renderer
+
+#endif  // CLOUD_RENDERER_CLOUD_DENSITY_HPP

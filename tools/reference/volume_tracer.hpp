@@ -1,0 +1,194 @@
+// tools/reference/volume_tracer.hpp: a double-precision volumetric path tracer for
+// HETEROGENEOUS media, the ground truth of whole cloud images (docs/lighting_truth.md).
+// montecarlo.hpp traces homogeneous spheres and slabs with exact free paths; this tracer
+// takes any medium through the `medium` interface below (extinction, majorants along rays,
+// where rays leave it) and is validated against montecarlo.hpp on those same shapes
+// (tools/reference/test_volume_tracer.cpp). cloud_medium.hpp puts the example renderer's
+// cloud field behind that interface.
+//
+// Use:
+//   namespace vt = cloudmath::reference::volume;
+//   const vt::homogeneous_sphere sphere(5.0);           // radius 1, sigma_t 5
+//   vt::lighting light; light.sun_direction = {0, 0, 1}; light.sun_irradiance = {1, 1, 1};
+//   const mc::phase_model phase = mc::make_phase("hg:0.85");
+//   const vt::path_tracer tracer(sphere, phase, 1.0, light);  // keeps references to all three
+//   auto L = vt::estimate_radiance(tracer, rays, 4096, options);   // one rgb_estimate per ray
+//
+// Conventions: those of montecarlo.hpp (mu = dot(propagation direction of the path away from
+// the camera, direction toward the sun); phase functions integrate to 1). The sun is a
+// directional source of perpendicular irradiance `sun_irradiance` (rgb); radiances are in
+// the same units per steradian. The extinction is grey, the albedo a scalar, so a path's
+// throughput is a scalar and only the light it picks up is rgb.
+//
+// Methods (Woodcock et al. 1965; Novak et al., "Monte Carlo methods for volumetric light
+// transport simulation", Computer Graphics Forum 37(2), 2018, sections 4 and 5; Pharr,
+// Jakob & Humphreys, "Physically Based Rendering", 4th ed., ch. 14):
+//   - free flights by delta (Woodcock) tracking: tentative collisions at the rate of a
+//     majorant, accepted as real with probability sigma_t / majorant. The medium hands out
+//     piecewise-constant majorants along the ray, so empty space costs one lookup per
+//     stretch; any majorant >= sigma_t gives the same expectation (unbiased), a majorant
+//     below sigma_t biases it (the media here are tested for it);
+//   - next-event estimation toward the sun at every real collision, the transmittance by
+//     ratio tracking (product of 1 - sigma_t / majorant over the tentative collisions) with
+//     Russian roulette once it falls below 0.1 (survivors get 0.1: unbiased);
+//   - every order of scattering: the throughput is multiplied by the albedo and the phase
+//     sample's weight (mc::phase_model: exact for HG mixtures, p_true / p_sampled for
+//     tabulated sampling), with the Russian roulette of montecarlo.cpp below 0.2;
+//   - a path that leaves the medium picks up lighting::escaped (sky or ground radiance).
+//     A camera ray's first flight may be limited to a stretch [t_begin, t_end) with its
+//     own background (the renderer's view truncation, see cloud_medium.hpp).
+//
+// Determinism: each ray's paths run in fixed chunks of 4096 with their own xoshiro256++
+// stream keyed by (seed, ray, chunk), reduced in order (montecarlo_detail.hpp): results
+// are bit-identical for a seed whatever the thread count.
+#ifndef CLOUDMATH_TOOLS_VOLUME_TRACER_HPP
+#define CLOUDMATH_TOOLS_VOLUME_TRACER_HPP
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "montecarlo.hpp"
+#include "montecarlo_detail.hpp"
+
+namespace cloudmath::reference::volume {
+
+using mc::vec3;
+
+struct rgb {
+    double r = 0.0, g = 0.0, b = 0.0;
+};
+
+// Where a ray leaves a medium for good: its distance, and whether it ends on an opaque
+// surface (the ground) instead of escaping to the sky.
+struct medium_exit {
+    double distance = 0.0;
+    bool ground = false;
+};
+
+// visit(t0, t1, majorant): majorant >= sigma_t everywhere on the ray's stretch [t0, t1);
+// return false to stop the traversal.
+using majorant_visitor = std::function<bool(double t0, double t1, double majorant)>;
+
+// A participating medium with grey extinction. Lengths in the medium's own unit (the
+// extinction is per that unit).
+class medium {
+public:
+    virtual ~medium() = default;
+    // sigma_t at p (>= 0).
+    [[nodiscard]] virtual double extinction(const vec3& p) const = 0;
+    // Where the ray from p along the unit vector d leaves the medium (0 when it never
+    // meets it); beyond it the extinction is 0 along the ray.
+    [[nodiscard]] virtual medium_exit exit(const vec3& p, const vec3& d) const = 0;
+    // Visits stretches of [t_min, t_max) of the ray (p, d) in order with their majorants,
+    // until visit returns false. Stretches left out (or visited with majorant 0) must be
+    // empty (sigma_t = 0 there).
+    virtual void majorants(const vec3& p, const vec3& d, double t_min, double t_max,
+                           const majorant_visitor& visit) const = 0;
+};
+
+// A homogeneous body: sigma_t inside, 0 outside, handing out the majorant majorant_scale *
+// sigma_t on the ray's chord through it (majorant_scale >= 1: a looser bound, the same
+// expectation). The shapes below give the chord.
+class homogeneous_medium : public medium {
+public:
+    homogeneous_medium(double sigma_t, double majorant_scale);
+    [[nodiscard]] double extinction(const vec3& p) const override;
+    [[nodiscard]] medium_exit exit(const vec3& p, const vec3& d) const override;
+    void majorants(const vec3& p, const vec3& d, double t_min, double t_max,
+                   const majorant_visitor& visit) const override;
+
+protected:
+    [[nodiscard]] virtual bool contains(const vec3& p) const = 0;
+    // [a, b) of the ray (p, d) inside the body, t >= 0; (0, 0) when it misses.
+    [[nodiscard]] virtual std::pair<double, double> chord(const vec3& p, const vec3& d) const = 0;
+
+private:
+    double sigma_t_, majorant_;
+};
+
+// Sphere of radius 1 at the origin.
+class homogeneous_sphere final : public homogeneous_medium {
+public:
+    explicit homogeneous_sphere(double sigma_t, double majorant_scale = 1.0)
+        : homogeneous_medium(sigma_t, majorant_scale) {}
+
+private:
+    [[nodiscard]] bool contains(const vec3& p) const override;
+    [[nodiscard]] std::pair<double, double> chord(const vec3& p, const vec3& d) const override;
+};
+
+// Slab 0 <= z <= tau with sigma_t = 1 (lengths in optical depth).
+class homogeneous_slab final : public homogeneous_medium {
+public:
+    explicit homogeneous_slab(double tau, double majorant_scale = 1.0);
+
+private:
+    [[nodiscard]] bool contains(const vec3& p) const override;
+    [[nodiscard]] std::pair<double, double> chord(const vec3& p, const vec3& d) const override;
+    double tau_;
+};
+
+// The light: a directional sun and, optionally, what a path sees when it leaves the medium
+// at p along d (ground: it ends on the ground). Empty: black.
+struct lighting {
+    vec3 sun_direction{0.0, 0.0, 1.0};  // toward the sun, normalised internally
+    rgb sun_irradiance{1.0, 1.0, 1.0};  // perpendicular irradiance
+    std::function<rgb(const vec3& p, const vec3& d, bool ground)> escaped;
+};
+
+// A camera ray: its first flight meets the medium only on [t_begin, t_end) (t_end =
+// infinity: up to the medium's exit); passing it unscattered it sees `background`
+// (when t_end is finite) or lighting::escaped (when it reaches the exit).
+struct camera_ray {
+    vec3 origin;
+    vec3 direction;  // normalised internally
+    double t_begin = 0.0;
+    double t_end = std::numeric_limits<double>::infinity();
+    rgb background;
+};
+
+struct rgb_estimate {
+    mc::estimate r, g, b;
+};
+
+class path_tracer {
+public:
+    // The medium, the phase function and the light must outlive the tracer. albedo in
+    // [0, 1]; max_order = N > 0 keeps light scattered at most N times.
+    path_tracer(const medium& m, const mc::phase_model& phase, double albedo,
+                const lighting& light, unsigned max_order = 0);
+
+    // One path sample of the radiance reaching the ray's origin against its direction.
+    [[nodiscard]] rgb sample(const camera_ray& ray, mc::detail::random_stream& rng) const;
+
+    // Distance of the first real collision on [t0, t1) of the ray (p, d), or infinity
+    // (delta tracking).
+    [[nodiscard]] double free_flight(const vec3& p, const vec3& d, double t0, double t1,
+                                     mc::detail::random_stream& rng) const;
+    // Unbiased estimate of the transmittance from p along d over [0, t1) (ratio tracking
+    // with Russian roulette).
+    [[nodiscard]] double transmittance(const vec3& p, const vec3& d, double t1,
+                                       mc::detail::random_stream& rng) const;
+
+private:
+    const medium& medium_;
+    const mc::phase_model& phase_;
+    double albedo_;
+    const lighting& light_;
+    vec3 sun_;
+    unsigned max_order_;
+};
+
+// paths_per_ray path samples per ray (fixed chunks, see above): mean and standard error
+// per channel. options.max_order is ignored (set it on the tracer).
+[[nodiscard]] std::vector<rgb_estimate> estimate_radiance(const path_tracer& tracer,
+                                                          const std::vector<camera_ray>& rays,
+                                                          std::uint64_t paths_per_ray,
+                                                          const mc::run_options& options);
+
+}  // namespace cloudmath::reference::volume
+
+#endif  // CLOUDMATH_TOOLS_VOLUME_TRACER_HPP

@@ -1,0 +1,57 @@
+# tools/reference/volume_truth.cmake: ground truth for whole cloud images (included by
+# CMakeLists.txt; needs the example renderer's core, so it is built with the examples).
+#   cloudmath_volume_tracer_lib  volume_tracer.cpp: delta/ratio-tracking path tracer for
+#                                heterogeneous media; cloud_medium.cpp: the renderer's clouds,
+#                                sky and camera as its medium and light
+#   cloudmath_volume_truth       the CLI: `render` path-traces a preset into docs/data,
+#                                `report` compares the renderer's variants with it
+#                                (docs/lighting_truth.md; volume_truth_main.cpp)
+#   reference.volume_tracer      validation against montecarlo.hpp, determinism, majorants
+#   reference.volume_truth_cli   command-line errors and a tiny render + report
+add_library(cloudmath_volume_tracer_lib STATIC volume_tracer.cpp cloud_medium.cpp)
+cloudmath_reference_target(cloudmath_volume_tracer_lib)
+target_include_directories(cloudmath_volume_tracer_lib PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}")
+target_link_libraries(cloudmath_volume_tracer_lib PUBLIC cloudmath_montecarlo_lib cloud_renderer_core)
+
+add_executable(cloudmath_volume_truth volume_truth_main.cpp)
+cloudmath_reference_target(cloudmath_volume_truth)
+target_link_libraries(cloudmath_volume_truth PRIVATE cloudmath_volume_tracer_lib)
+
+if(CLOUDMATH_BUILD_TESTS)
+  cloudmath_reference_test(volume_tracer test_volume_tracer.cpp)
+  target_link_libraries(cloudmath_reference_test_volume_tracer PRIVATE cloudmath_volume_tracer_lib)
+  target_compile_definitions(cloudmath_reference_test_volume_tracer PRIVATE
+    "CLOUDMATH_TRUTH_TEST_CACHE=\"${CMAKE_CURRENT_BINARY_DIR}/truth_texture_cache\"")
+endif()
+
+if(CLOUDMATH_BUILD_TESTS)
+  # The CLI: bad command lines -> 2, a missing truth file -> 1 naming it, and a tiny render
+  # turned into a report (every output file written).
+  add_test(NAME reference.volume_truth_cli
+    COMMAND sh -c [=[
+      set -u
+      tool=$1 out=$2 cache=$3
+      "$tool" 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "no command: exit $s, want 2"; exit 1; }
+      "$tool" --help >/dev/null || { echo "--help failed"; exit 1; }
+      "$tool" render --bogus 1 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "bad flag: exit $s, want 2"; exit 1; }
+      "$tool" render --preset nowhere --out x.csv 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "bad preset: exit $s, want 2"; exit 1; }
+      "$tool" render --preset ground --phase hg:2 --out x.csv 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "bad phase: exit $s, want 2"; exit 1; }
+      "$tool" render --preset ground --spp 0 --out x.csv 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "bad spp: exit $s, want 2"; exit 1; }
+      "$tool" report --variant "x=phase=nope" 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "bad variant: exit $s, want 2"; exit 1; }
+      rm -rf "$out"; mkdir -p "$out/docs/images"
+      "$tool" report --data "$out/none" --docs "$out/docs" --cache "$cache" 2>"$out.err"; s=$?
+      [ $s -eq 1 ] || { echo "missing truth: exit $s, want 1"; exit 1; }
+      grep -q "truth_ground.csv" "$out.err" || { echo "message does not name the path"; exit 1; }
+      "$tool" render --preset ground --width 8 --height 4 --spp 2 --threads 2 --cache "$cache" --quiet \
+        --out "$out/truth_ground.csv" >/dev/null || { echo "render failed"; exit 1; }
+      [ "$(grep -c '^[0-9]' "$out/truth_ground.csv")" -eq 32 ] || { echo "want 32 pixel rows"; exit 1; }
+      grep -q '^x,y,r,g,b,se_r,se_g,se_b$' "$out/truth_ground.csv" || { echo "no header"; exit 1; }
+      "$tool" report --presets ground --variant "default=" --variant "march=light=march" --data "$out" \
+        --docs "$out/docs" --cache "$cache" --quiet >/dev/null || { echo "report failed"; exit 1; }
+      for f in lighting_truth.md images/truth_ground.png; do
+        [ -s "$out/docs/$f" ] || { echo "missing $f"; exit 1; }
+      done
+      grep -q "| march |" "$out/docs/lighting_truth.md" || { echo "report lacks the variant"; exit 1; }
+      ]=] sh $<TARGET_FILE:cloudmath_volume_truth> "${CMAKE_CURRENT_BINARY_DIR}/volume_truth_cli_test"
+        "${CMAKE_CURRENT_BINARY_DIR}/truth_texture_cache")
+endif()

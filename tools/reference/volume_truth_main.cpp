@@ -1,0 +1,468 @@
+// tools/reference/volume_truth_main.cpp: cloudmath_volume_truth, ground truth for whole
+// cloud images. `render` path-traces a preset of the example renderer with the volume
+// tracer (volume_tracer.hpp, cloud_medium.hpp: the scene definition) into a CSV of linear
+// radiance and standard error per pixel; `report` renders the renderer's CPU reference
+// (render_cpu_linear) for each lighting variant at the same size and writes
+// docs/lighting_truth.md with the errors and side-by-side PNGs.
+//
+//   cloudmath_volume_truth render --preset ground --width 160 --height 90 --spp 64
+//       --out docs/data/truth_ground.csv
+//   cloudmath_volume_truth report --presets ground,inside --variant default=
+//       --variant march=light=march,light-steps=64                          (one line each)
+//
+// Exit status: 0 success, 2 bad command line (one-line message on stderr), 1 failure (a
+// missing or malformed truth file, textures that cannot be baked, an unwritable output; the
+// message names the path). Progress on stderr. Same seed -> same numbers, whatever
+// --threads is.
+//
+// Truth CSV: "# key: value" metadata lines (preset, width, height, spp, seed, phase,
+// albedo, threads, seconds), the header x,y,r,g,b,se_r,se_g,se_b, then one row per pixel,
+// x fastest, y = 0 the BOTTOM row (cloud_renderer::image's order); r, g, b the linear
+// radiance in the renderer's units (those of sun_radiance), se_* their standard errors.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "cli_main.hpp"
+#include "cloud_medium.hpp"
+#include "cpu_renderer.hpp"
+#include "image.hpp"
+#include "phase_table.hpp"
+
+namespace mc = cloudmath::reference::mc;
+namespace vt = cloudmath::reference::volume;
+namespace cr = cloud_renderer;
+
+namespace {
+
+const char* const usage_text =
+    "usage: cloudmath_volume_truth <command> [--flag value ...]\n"
+    "\n"
+    "Ground truth for the example cloud renderer's presets: a double-precision volumetric\n"
+    "path tracer (delta tracking, every order of scattering, sun by next-event estimation,\n"
+    "the renderer's sky and ground for escaping paths) over the renderer's own density field.\n"
+    "\n"
+    "commands:\n"
+    "  render   path-trace one preset; CSV of linear rgb radiance and standard error per pixel\n"
+    "           flags: --preset NAME --out F.csv [--width 160] [--height 90] [--spp 64]\n"
+    "                  [--seed 1] [--phase SPEC] [--threads 0] [--cache DIR] [--quiet]\n"
+    "           --phase: a montecarlo phase spec (hg:G, dual_hg:G0,G1,W, cs:G, mie_approx:D,\n"
+    "           table:PATH, ...); default the renderer's dual_hg:0.8,-0.25,0.2.\n"
+    "  report   the renderer (render_cpu_linear) for each variant against the truth files\n"
+    "           flags: [--presets ground,horizon,inside,above] [--variant NAME=SPEC ...]\n"
+    "                  [--data docs/data] [--docs docs] [--threads 0] [--cache DIR] [--quiet]\n"
+    "           --variant: repeatable, SPEC as the renderer's --variant (empty = default);\n"
+    "           without any: default=, march=light=march,light-steps=64,\n"
+    "           single=octaves=1,powder=off, mie=phase=mie.\n"
+    "           Reads DATA/truth_NAME.csv, writes DOCS/lighting_truth.md and\n"
+    "           DOCS/images/truth_NAME.png (truth | first variant | difference).\n"
+    "  --cache: the renderer's texture cache (default $XDG_CACHE_HOME/cloudmath or\n"
+    "           ~/.cache/cloudmath; 'none' bakes without a cache). --threads 0: all cores.\n";
+
+using cloudmath::reference::usage_error;
+
+// --flag value pairs after the command; repeatable flags keep every value.
+struct flags {
+    std::multimap<std::string, std::string> values;
+    std::vector<std::string> switches;
+
+    flags(int argc, char** argv, const std::vector<std::string>& known, const std::vector<std::string>& known_switches) {
+        for (int i = 2; i < argc; ++i) {
+            const std::string f = argv[i];
+            if (std::find(known_switches.begin(), known_switches.end(), f) != known_switches.end()) {
+                switches.push_back(f);
+                continue;
+            }
+            if (std::find(known.begin(), known.end(), f) == known.end()) throw usage_error("unknown flag '" + f + "'");
+            if (i + 1 >= argc) throw usage_error(f + " needs a value");
+            values.emplace(f, argv[++i]);
+        }
+    }
+    bool has(const std::string& f) const { return values.count(f) != 0 || std::count(switches.begin(), switches.end(), f) != 0; }
+    std::string get(const std::string& f, const std::string& fallback) const {
+        const auto it = values.find(f);
+        return it == values.end() ? fallback : it->second;
+    }
+    long long integer(const std::string& f, long long fallback, long long lo, long long hi) const {
+        if (!has(f)) return fallback;
+        const std::string t = get(f, "");
+        char* end = nullptr;
+        const long long v = std::strtoll(t.c_str(), &end, 10);
+        if (t.empty() || *end != '\0' || v < lo || v > hi)
+            throw usage_error(f + " must be an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ", not '" +
+                              t + "'");
+        return v;
+    }
+};
+
+cr::cloud_textures load_textures(const flags& f, bool quiet) {
+    const std::string cache = f.get("--cache", "");
+    const std::string dir = cache == "none" ? std::string() : (cache.empty() ? cr::default_texture_cache_dir() : cache);
+    cr::cloud_textures t;
+    std::string why;
+    if (!cr::load_or_bake_textures(dir, quiet, t, why)) throw std::runtime_error(why);
+    return t;
+}
+
+const cr::scene& preset(const std::string& name) {
+    const cr::scene* s = cr::find_preset(name);
+    if (s == nullptr) {
+        std::string known;
+        for (const cr::scene& p : cr::presets()) known += (known.empty() ? "" : ", ") + p.name;
+        throw usage_error("unknown preset '" + name + "' (" + known + ")");
+    }
+    return *s;
+}
+
+// ---------------------------------------------------------------------------------------
+// The truth image: linear radiance and standard error per pixel (row 0 at the bottom).
+struct truth_image {
+    std::map<std::string, std::string> meta;
+    int width = 0, height = 0;
+    std::vector<vt::rgb> radiance, std_error;
+};
+
+std::string format_csv(const truth_image& t, const std::vector<std::string>& meta_order) {
+    std::ostringstream o;
+    o << "# cloudmath volume truth (tools/reference/volume_truth_main.cpp): linear radiance of a cloud_renderer preset\n";
+    for (const std::string& k : meta_order) o << "# " << k << ": " << t.meta.at(k) << '\n';
+    o << "# rows: x fastest, y = 0 the bottom row; r, g, b linear radiance (units of sun_radiance), se_* standard errors\n";
+    o << "x,y,r,g,b,se_r,se_g,se_b\n";
+    char line[256];
+    for (int y = 0; y < t.height; ++y)
+        for (int x = 0; x < t.width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(x);
+            const vt::rgb& L = t.radiance[i];
+            const vt::rgb& e = t.std_error[i];
+            std::snprintf(line, sizeof line, "%d,%d,%.6g,%.6g,%.6g,%.4g,%.4g,%.4g\n", x, y, L.r, L.g, L.b, e.r, e.g, e.b);
+            o << line;
+        }
+    return o.str();
+}
+
+truth_image read_truth(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error("cannot read the truth file " + path + " (run: cloudmath_volume_truth render)");
+    truth_image t;
+    std::string line;
+    int line_no = 0;
+    bool header = false;
+    const auto fail = [&](const std::string& why) {
+        throw std::runtime_error(path + ":" + std::to_string(line_no) + ": " + why);
+    };
+    while (std::getline(in, line)) {
+        ++line_no;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (line.empty()) continue;
+        if (line[0] == '#') {
+            const auto kv = cloudmath::reference::parse_metadata_line(line);
+            if (!kv.second.empty()) t.meta[kv.first] = kv.second;
+            continue;
+        }
+        if (!header) {
+            if (line != "x,y,r,g,b,se_r,se_g,se_b") fail("expected the header x,y,r,g,b,se_r,se_g,se_b");
+            header = true;
+            try {
+                t.width = std::stoi(t.meta.at("width"));
+                t.height = std::stoi(t.meta.at("height"));
+            } catch (const std::exception&) {
+                fail("width and height metadata missing or malformed");
+            }
+            if (t.width < 1 || t.height < 1) fail("bad image size");
+            t.radiance.assign(static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height), {});
+            t.std_error = t.radiance;
+            continue;
+        }
+        int x = 0, y = 0;
+        double v[6];
+        if (std::sscanf(line.c_str(), "%d,%d,%lf,%lf,%lf,%lf,%lf,%lf", &x, &y, &v[0], &v[1], &v[2], &v[3], &v[4], &v[5]) != 8 ||
+            x < 0 || y < 0 || x >= t.width || y >= t.height)
+            fail("malformed row");
+        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(x);
+        t.radiance[i] = {v[0], v[1], v[2]};
+        t.std_error[i] = {v[3], v[4], v[5]};
+    }
+    if (!header) fail("no data");
+    return t;
+}
+
+// ---------------------------------------------------------------------------------------
+int run_render(int argc, char** argv) {
+    const flags f(argc, argv, {"--preset", "--out", "--width", "--height", "--spp", "--seed", "--phase", "--threads", "--cache"},
+                  {"--quiet"});
+    if (!f.has("--preset")) throw usage_error("render needs --preset NAME");
+    if (!f.has("--out")) throw usage_error("render needs --out FILE.csv");
+    const cr::scene& s = preset(f.get("--preset", ""));
+    const int width = static_cast<int>(f.integer("--width", 160, 1, 4096));
+    const int height = static_cast<int>(f.integer("--height", 90, 1, 4096));
+    const auto spp = static_cast<std::uint64_t>(f.integer("--spp", 64, 1, 1 << 24));
+    mc::run_options options;
+    options.seed = static_cast<std::uint64_t>(f.integer("--seed", 1, 0, 1LL << 62));
+    options.threads = static_cast<unsigned>(f.integer("--threads", 0, 0, 1024));
+    const bool quiet = f.has("--quiet");
+    const std::string phase_spec = f.get("--phase", vt::renderer_phase_spec(s));
+    const mc::phase_model phase = mc::make_phase(phase_spec);  // invalid_argument: exit 2
+
+    const cr::cloud_textures textures = load_textures(f, quiet);
+    const auto start = std::chrono::steady_clock::now();
+    const vt::cloud_medium medium(s, textures);
+    const vt::lighting light = vt::make_cloud_lighting(s);
+    const vt::path_tracer tracer(medium, phase, s.albedo, light);
+    const std::vector<vt::camera_ray> rays = vt::make_camera_rays(s, width, height);
+    int shown = -1;
+    if (!quiet)
+        options.progress = [&](double done) {
+            const int percent = static_cast<int>(done * 100.0) / 10 * 10;
+            if (percent == shown) return;
+            shown = percent;
+            std::cerr << "render " << s.name << ": " << percent << "%\n";
+        };
+    const std::vector<vt::rgb_estimate> L = vt::estimate_radiance(tracer, rays, spp, options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    truth_image t;
+    t.width = width;
+    t.height = height;
+    for (const vt::rgb_estimate& e : L) {
+        t.radiance.push_back({e.r.mean, e.g.mean, e.b.mean});
+        t.std_error.push_back({e.r.std_error, e.g.std_error, e.b.std_error});
+    }
+    unsigned threads = options.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : options.threads;
+    char secs[32];
+    std::snprintf(secs, sizeof secs, "%.1f", seconds);
+    t.meta = {{"preset", s.name},
+              {"description", s.description},
+              {"width", std::to_string(width)},
+              {"height", std::to_string(height)},
+              {"spp", std::to_string(spp)},
+              {"seed", std::to_string(options.seed)},
+              {"phase", phase.spec()},
+              {"albedo", std::to_string(s.albedo)},
+              {"threads", std::to_string(threads)},
+              {"seconds", secs}};
+    cloudmath::reference::write_text_file_atomically(
+        f.get("--out", ""), format_csv(t, {"preset", "description", "width", "height", "spp", "seed", "phase", "albedo",
+                                           "threads", "seconds"}));
+    std::cout << "render " << s.name << ": " << width << "x" << height << ", " << spp << " spp, " << secs << " s on "
+              << threads << " threads -> " << f.get("--out", "") << '\n';
+    return 0;
+}
+
+// ---------------------------------------------------------------------------------------
+// Errors of a model image against the truth (linear rgb, every channel).
+struct image_errors {
+    double truth_mean = 0, rms = 0, bias = 0, psnr_db = 0, noise_floor = 0;
+    int worst_col = 0, worst_row = 0;  // 4 x 4 blocks, from the top left
+    double worst_rms = 0, worst_bias = 0;
+};
+
+constexpr int blocks = 4;
+
+glm::vec3 display(const vt::rgb& c, float exposure) {
+    return cr::tonemap(glm::vec3(static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b)), exposure);
+}
+
+image_errors compare(const truth_image& t, const cr::image& model, float exposure) {
+    image_errors e;
+    const std::size_t n = t.radiance.size();
+    double sum_t = 0, sum_m = 0, sq = 0, se_sq = 0, tm_sq = 0;
+    std::vector<double> block_sq(blocks * blocks, 0.0), block_diff(blocks * blocks, 0.0), block_n(blocks * blocks, 0.0);
+    for (int y = 0; y < t.height; ++y)
+        for (int x = 0; x < t.width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(x);
+            const vt::rgb& a = t.radiance[i];
+            const glm::vec4& m = model.pixels[i];
+            const double d[3] = {m.r - a.r, m.g - a.g, m.b - a.b};
+            sum_t += a.r + a.g + a.b;
+            sum_m += double(m.r) + m.g + m.b;
+            const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            sq += dd;
+            se_sq += t.std_error[i].r * t.std_error[i].r + t.std_error[i].g * t.std_error[i].g + t.std_error[i].b * t.std_error[i].b;
+            const glm::vec3 dt = display(a, exposure) - cr::tonemap(glm::vec3(m), exposure);
+            tm_sq += double(glm::dot(dt, dt));
+            const int bx = x * blocks / t.width, by = (t.height - 1 - y) * blocks / t.height;  // from the top
+            const std::size_t b = static_cast<std::size_t>(by * blocks + bx);
+            block_sq[b] += dd;
+            block_diff[b] += d[0] + d[1] + d[2];
+            block_n[b] += 3.0;
+        }
+    const double count = 3.0 * static_cast<double>(n);
+    e.truth_mean = sum_t / count;
+    e.rms = std::sqrt(sq / count) / e.truth_mean;
+    e.bias = (sum_m - sum_t) / count / e.truth_mean;
+    e.noise_floor = std::sqrt(se_sq / count) / e.truth_mean;
+    e.psnr_db = tm_sq > 0 ? 10.0 * std::log10(count / tm_sq) : INFINITY;
+    for (int b = 0; b < blocks * blocks; ++b) {
+        const auto ub = static_cast<std::size_t>(b);
+        if (block_n[ub] == 0) continue;
+        const double r = std::sqrt(block_sq[ub] / block_n[ub]) / e.truth_mean;
+        if (r >= e.worst_rms) {
+            e.worst_rms = r;
+            e.worst_bias = block_diff[ub] / block_n[ub] / e.truth_mean;
+            e.worst_col = b % blocks;
+            e.worst_row = b / blocks;
+        }
+    }
+    return e;
+}
+
+// truth | model | difference, 2-pixel gaps; difference = 0.5 + 2 (model - truth) of the
+// display images, per channel.
+void write_side_by_side(const std::string& path, const truth_image& t, const cr::image& model, float exposure) {
+    const int gap = 2;
+    cr::image img;
+    img.width = 3 * t.width + 2 * gap;
+    img.height = t.height;
+    img.pixels.assign(static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height), glm::vec4(1.0f));
+    for (int y = 0; y < t.height; ++y)
+        for (int x = 0; x < t.width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(x);
+            const glm::vec3 a = display(t.radiance[i], exposure);
+            const glm::vec3 m = cr::tonemap(glm::vec3(model.pixels[i]), exposure);
+            img.at(x, y) = glm::vec4(a, 1.0f);
+            img.at(t.width + gap + x, y) = glm::vec4(m, 1.0f);
+            img.at(2 * (t.width + gap) + x, y) = glm::vec4(glm::clamp(0.5f + 2.0f * (m - a), 0.0f, 1.0f), 1.0f);
+        }
+    const std::string tmp = path + ".tmp";
+    if (!cr::write_png(tmp, img) || std::rename(tmp.c_str(), path.c_str()) != 0)
+        throw std::runtime_error("cannot write " + path);
+}
+
+std::vector<std::string> split_list(const std::string& s) {
+    std::vector<std::string> out;
+    std::stringstream in(s);
+    std::string item;
+    while (std::getline(in, item, ','))
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+std::string fixed(double v, int digits) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%.*f", digits, v);
+    return b;
+}
+std::string percent(double v) { return fixed(100.0 * v, 1) + "%"; }
+std::string signed_percent(double v) { return (v >= 0 ? "+" : "") + fixed(100.0 * v, 1) + "%"; }
+
+int run_report(int argc, char** argv) {
+    const flags f(argc, argv, {"--presets", "--variant", "--data", "--docs", "--threads", "--cache"}, {"--quiet"});
+    const std::vector<std::string> names = split_list(f.get("--presets", "ground,horizon,inside,above"));
+    if (names.empty()) throw usage_error("--presets lists no preset");
+    for (const std::string& n : names) (void)preset(n);
+    std::vector<std::pair<std::string, cr::variant>> variants;
+    for (auto [it, end] = f.values.equal_range("--variant"); it != end; ++it) {
+        const std::size_t eq = it->second.find('=');
+        if (eq == std::string::npos || eq == 0) throw usage_error("--variant must be NAME=SPEC, not '" + it->second + "'");
+        cr::variant v;
+        const std::string why = cr::apply_variant_spec(it->second.substr(eq + 1), v);
+        if (!why.empty()) throw usage_error("--variant " + it->second + ": " + why);
+        variants.emplace_back(it->second.substr(0, eq), v);
+    }
+    if (variants.empty())
+        for (const char* spec : {"default=", "march=light=march,light-steps=64", "single=octaves=1,powder=off", "mie=phase=mie"}) {
+            const std::string s = spec;
+            cr::variant v;
+            (void)cr::apply_variant_spec(s.substr(s.find('=') + 1), v);
+            variants.emplace_back(s.substr(0, s.find('=')), v);
+        }
+    const std::string data = f.get("--data", "docs/data"), docs = f.get("--docs", "docs");
+    const auto threads = static_cast<unsigned>(f.integer("--threads", 0, 0, 1024));
+    const bool quiet = f.has("--quiet");
+
+    std::vector<truth_image> truths;
+    for (const std::string& n : names) truths.push_back(read_truth(data + "/truth_" + n + ".csv"));
+    const cr::cloud_textures textures = load_textures(f, quiet);
+
+    std::ostringstream md;
+    md << "# Lighting models against the path-traced truth of whole cloud images\n\n"
+          "Generated by `bash scripts/truth.sh` (tools/reference/volume_truth_main.cpp; the truth\n"
+          "images by `cloudmath_volume_truth render`, this report by `cloudmath_volume_truth report`).\n"
+          "The same scene twice: the example renderer's CPU reference (`render_cpu_linear`, the\n"
+          "GLSL image's twin, linear radiance before the tonemap) for each lighting variant, and a\n"
+          "double-precision volumetric path tracer over the renderer's own density field\n"
+          "(`cloud_density`, tools/reference/cloud_medium.hpp): delta tracking, every order of\n"
+          "scattering, the sun by next-event estimation with ratio-tracked transmittance, the\n"
+          "renderer's sky (gradient and aureole, no sun disc) and ground for paths that leave the\n"
+          "layer, albedo 0.99 and the phase given below. Camera rays are the renderer's\n"
+          "pixel centres; their first flight meets the clouds only within the renderer's view\n"
+          "stretch (35 km) and sees the renderer's background behind it. What the real-time\n"
+          "models leave out (real sky light instead of the ambient term, light from clouds\n"
+          "beyond the light march, every scattering order) is what these numbers measure.\n\n"
+          "Definitions (over all pixels and the r, g, b channels; linear radiance):\n\n"
+          "- **rms**: root mean square of model - truth, over the truth image's mean radiance;\n"
+          "- **bias**: (mean of the model - mean of the truth) over the truth's mean;\n"
+          "- **PSNR**: on the display images (the renderer's tonemap, 1 - exp(-exposure L) then\n"
+          "  gamma 1/2.2, values in [0, 1]), 10 log10(1 / mean squared difference), as the\n"
+          "  GPU-vs-CPU test of the renderer;\n"
+          "- **worst block**: the image cut into 4 x 4 blocks (column, row from the top left), the\n"
+          "  block with the largest rms (still over the whole image's mean), with its bias;\n"
+          "- **noise floor**: the truth's own noise, the rms of its per-pixel standard errors over\n"
+          "  its mean: an rms error near it is noise, not model error.\n\n"
+          "Images (docs/images/truth_PRESET.png): truth | model (the first variant) | difference\n"
+          "of the display images, 0.5 + 2 (model - truth) per channel (mid-grey: no difference,\n"
+          "brighter: the model is too bright).\n\n";
+    md << "Variants (the renderer's `--variant` notation over the defaults):\n\n";
+    for (const auto& v : variants) md << "- `" << v.first << "`: `" << cr::variant_spec(v.second) << "`\n";
+    md << '\n';
+
+    for (std::size_t p = 0; p < names.size(); ++p) {
+        const truth_image& t = truths[p];
+        const auto meta = [&](const char* key) {
+            const auto it = t.meta.find(key);
+            return it == t.meta.end() ? std::string("?") : it->second;
+        };
+        const cr::scene& s = preset(names[p]);
+        md << "## " << names[p] << " (" << s.description << ")\n\n";
+        md << "Truth: " << t.width << " x " << t.height << " pixels, " << meta("spp") << " paths per pixel, phase `"
+           << meta("phase") << "`, seed " << meta("seed") << ", " << meta("seconds") << " s on " << meta("threads")
+           << " threads.";
+        bool first = true;
+        std::ostringstream table;
+        table << "| variant | rms | bias | PSNR (dB) | worst block | its rms | its bias |\n|---|---|---|---|---|---|---|\n";
+        image_errors last{};
+        for (const auto& [vname, v] : variants) {
+            if (!quiet) std::cerr << "report: " << names[p] << " / " << vname << '\n';
+            const cr::image model = cr::render_cpu_linear(s, v, textures, t.width, t.height, threads);
+            const image_errors e = compare(t, model, s.exposure);
+            table << "| " << vname << " | " << percent(e.rms) << " | " << signed_percent(e.bias) << " | "
+                  << fixed(e.psnr_db, 1) << " | (" << e.worst_col << ", " << e.worst_row << ") | " << percent(e.worst_rms)
+                  << " | " << signed_percent(e.worst_bias) << " |\n";
+            if (first) {
+                const std::string png = "truth_" + names[p] + ".png";
+                write_side_by_side(docs + "/images/" + png, t, model, s.exposure);
+                md << "\n\n![truth | " << vname << " | difference](images/" << png << ")\n\n";
+                first = false;
+            }
+            last = e;
+        }
+        md << table.str();
+        md << "\nTruth mean radiance " << fixed(last.truth_mean, 4) << ", noise floor " << percent(last.noise_floor) << ".\n\n";
+    }
+    cloudmath::reference::write_text_file_atomically(docs + "/lighting_truth.md", md.str());
+    std::cout << "report: " << names.size() << " presets x " << variants.size() << " variants -> " << docs
+              << "/lighting_truth.md\n";
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    return cloudmath::reference::run_subcommand_tool("cloudmath_volume_truth", usage_text, argc, argv, [&](const std::string& command) {
+        if (command == "render") return run_render(argc, argv);
+        if (command == "report") return run_report(argc, argv);
+        throw usage_error("unknown command '" + command + "' (render, report)");
+    });
+}
