@@ -18,6 +18,7 @@ cmake --build build/main -j "$jobs"
 # for the full default set on 2 cores).
 examples=(
   build/main/examples/minimal/cloudmath_minimal
+  build/main/examples/lighting_choice/cloudmath_lighting_choice
   "build/main/tools/cloudmath_bake_textures --out build/main/textures"
   "build/main/examples/cloud_renderer/cloudmath_cloud_renderer --headless --out build/main/clouds.png --cache build/main/texture-cache"
 )

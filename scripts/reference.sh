@@ -11,9 +11,10 @@
 #                                  (cloudmath_lighting_error report; about 2 minutes)
 #   docs/data/lighting_train_g{0.8,0.93}.csv  the reference's rays at two more phase
 #                                  functions, fitted on with it (about 15 minutes)
-#   docs/data/lighting_holdout_g{0.75,0.85,0.9}.csv  the held-out split (other thicknesses,
-#                                  angles and views; three phase functions), never fitted on
-#                                  (cloudmath_lighting_error reference --holdout; 9 minutes)
+#   docs/data/lighting_holdout_g{0.75,0.85,0.9}.csv, lighting_holdout_g0.85_albedo0.99.csv
+#                                  the held-out split (other thicknesses, angles and views;
+#                                  three phase functions; albedo 0.99), never fitted on
+#                                  (cloudmath_lighting_error reference --holdout; 12 minutes)
 #   include/cloudmath/diffusion_lighting_models.hpp, glsl/diffusion_lighting_models.glsl and
 #   docs/data/diffusion_fit.txt    the diffusion model fitted on the three training sets and
 #                                  measured on all six (cloudmath_lighting_error fit-diffusion;
@@ -71,6 +72,8 @@ if [[ $reports_only == 0 ]]; then
         "$bin/cloudmath_lighting_error" reference --holdout --phase "hg:$g" \
             --out "docs/data/lighting_holdout_g$g.csv"
     done
+    "$bin/cloudmath_lighting_error" reference --holdout --phase hg:0.85 --albedo 0.99 \
+        --out docs/data/lighting_holdout_g0.85_albedo0.99.csv
 fi
 "$bin/cloudmath_lighting_error" fit-diffusion \
     --header include/cloudmath/diffusion_lighting_models.hpp \

@@ -16,7 +16,9 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 presets=(ground horizon inside above)
-variants=(default= march=light=march,light-steps=64 single=octaves=1,powder=off mie=phase=mie)
+variants=(default= march=light=march,light-steps=64 single=octaves=1,powder=off mie=phase=mie
+          diffusion=lighting=diffusion,powder=off
+          diffusion_march=lighting=diffusion,powder=off,light=march,light-steps=6)
 width=160 height=90 spp=1536
 reports_only=0 build=""
 while [[ $# -gt 0 ]]; do

@@ -202,7 +202,7 @@ void diffusion_library(const pass_inputs& in) {
     for (std::size_t i = 0; i < in.n; ++i) {
         float behind, view;
         diffusion_depths(in.tau, in.n, i, behind, view);
-        sink(cm::diffusion_scattering(in.tau[i], behind, view, in.mu[i], g, cm::diffusion_models::fitted));
+        sink(cm::diffusion_scattering(in.tau[i], behind, view, in.mu[i], g, 0.99f, cm::diffusion_models::fitted));
     }
 }
 void multiple_scattering_naive(const pass_inputs& in, int octaves) {

@@ -102,7 +102,7 @@ void ray_sphere_haines(const pass_inputs& in);
 void multiple_scattering_library(const pass_inputs& in, int octaves);  // a = b = c = 0.5
 void multiple_scattering_fast(const pass_inputs& in, int octaves);
 void multiple_scattering_naive(const pass_inputs& in, int octaves);
-// diffusion_scattering (diffusion_models::fitted): tau_sun = tau[i], tau_behind and
+// diffusion_scattering (diffusion_models::fitted, albedo 0.99): tau_sun = tau[i], tau_behind and
 // tau_view from the same array at other indices (diffusion_depths below).
 void diffusion_library(const pass_inputs& in);
 

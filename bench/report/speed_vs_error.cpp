@@ -775,7 +775,7 @@ constexpr int ms_max_octaves = 8;
 // tracer is the physical-reference column.
 void add_diffusion_variants(std::deque<variant>& rows, const pass_inputs* in) {
     variant& v = add_variant(rows, "diffusion_lighting", "3 inputs (diffusion)",
-                             "diffusion_scattering, diffusion_models::fitted (library)", "Diffusion");
+                             "diffusion_scattering, diffusion_models::fitted, albedo 0.99 (library)", "Diffusion");
     v.glsl_function = "cm_diffusion_scattering";
     v.glsl_expression = "CM_DIFFUSION_MODEL_FITTED)";
     const std::vector<float> taus = tau_grid(4, 0.5f);
@@ -784,8 +784,8 @@ void add_diffusion_variants(std::deque<variant>& rows, const pass_inputs* in) {
         for (std::size_t i = 0; i < taus.size(); ++i)
             for (float mu : mus) {
                 const float ts = taus[i], tb = taus[(i * 7 + 3) % taus.size()], tv = 0.25f * taus[(i * 13 + 5) % taus.size()];
-                const float got = cm::diffusion_scattering(ts, tb, tv, mu, g, cm::diffusion_models::fitted);
-                const ld ref = cm::diffusion_scattering<ld>(ts, tb, tv, mu, g, cm::diffusion_models::fitted);
+                const float got = cm::diffusion_scattering(ts, tb, tv, mu, g, 0.99f, cm::diffusion_models::fitted);
+                const ld ref = cm::diffusion_scattering<ld>(ts, tb, tv, mu, g, ld(0.99f), cm::diffusion_models::fitted);
                 v.err.add(got, ref, [&] {
                     return "g = " + fmt_input(g) + ", tau_sun = " + fmt_input(ts) + ", tau_behind = " + fmt_input(tb) +
                            ", tau_view = " + fmt_input(tv) + ", mu = " + fmt_input(mu);

@@ -28,9 +28,11 @@ struct pixel_program {
     frame_constants k;
     cloud_density field;
     cm::mie_approx_parameters<float> mie;
+    float phase_g_mean;  // the diffusion model's g
 
     pixel_program(const scene& sc, const variant& va, const cloud_textures& t)
-        : s(sc), v(va), k(make_frame_constants(sc)), field(sc, t), mie(cm::mie_approx_params(k.droplet_diameter)) {}
+        : s(sc), v(va), k(make_frame_constants(sc)), field(sc, t), mie(cm::mie_approx_params(k.droplet_diameter)),
+          phase_g_mean(phase_mean_cosine(k, va.phase)) {}
 
     float altitude(vec3 p) const { return field.altitude(p); }
     float density(vec3 p, float alt) const { return field.density(p, alt); }
@@ -50,24 +52,30 @@ struct pixel_program {
         return cm::phase_mie_approx(mu, m);
     }
 
-    float light_optical_depth(vec3 p, float alt) const {
+    // Optical depth from p along the unit vector `toward` (the sun, or away from it for the
+    // diffusion model's tau_behind) to where the layer ends, by the variant's cone or march.
+    float light_optical_depth(vec3 p, float alt, vec3 toward) const {
         if (v.light == light_mode::cone) {
             const cm::cone_light_config<float> cone{v.cone_samples, k.cone_step, k.cone_spread, k.cone_far_distance,
                                                     k.cone_far_length};
-            return cm::cone_optical_depth(p, k.sun_dir, cone, [this](const vec3& q) { return cone_extinction(q); });
+            return cm::cone_optical_depth(p, toward, cone, [this](const vec3& q) { return cone_extinction(q); });
         }
         const vec3 up = glm::normalize(vec3(p.x, p.y + (s.planet_radius + s.camera_altitude), p.z));
-        const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(k.sun_dir, up), s.planet_radius, s.layer_bottom, s.layer_top);
+        const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up), s.planet_radius, s.layer_bottom, s.layer_top);
         const float length_to_exit = seg.y > seg.x ? std::min(seg.y, k.light_march_max) : 0.0f;
         const float ds = length_to_exit / float(v.light_steps);
         float tau = 0.0f;
-        for (int i = 0; i < v.light_steps; ++i) tau += cone_extinction(p + k.sun_dir * ((float(i) + 0.5f) * ds)) * ds;
+        for (int i = 0; i < v.light_steps; ++i) tau += cone_extinction(p + toward * ((float(i) + 0.5f) * ds)) * ds;
         return tau;
     }
 
-    vec3 in_scattering(float tau_light, float mu, float h) const {
-        float sun = cm::multiple_scattering_with(tau_light, mu, k.ms_a, k.ms_b, k.ms_c, v.octaves,
-                                                 [this](float m, float scale) { return phase(m, scale); });
+    // tau_behind and tau_view are used by the diffusion model only.
+    vec3 in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h) const {
+        const auto phase_fn = [this](float m, float scale) { return phase(m, scale); };
+        float sun = v.lighting == lighting_model::diffusion
+                        ? cm::diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, phase_g_mean, s.albedo,
+                                                        cm::diffusion_models::fitted, phase_fn)
+                        : cm::multiple_scattering_with(tau_light, mu, k.ms_a, k.ms_b, k.ms_c, v.octaves, phase_fn);
         if (v.powder) sun *= glm::mix(2.0f * cm::powder(tau_light, 2.0f), 1.0f, 0.5f + 0.5f * mu);
         return k.sun_radiance * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
     }
@@ -91,15 +99,19 @@ struct pixel_program {
             const float ds = (t1 - seg.x) / float(v.view_steps);
             const float offset = v.jitter ? jitter(x, y) : 0.5f;
             const float mu = glm::dot(dir, k.sun_dir);
+            float tau_view = 0.0f;  // optical depth from the camera to the start of the step
             for (int i = 0; i < v.view_steps; ++i) {
                 const float t = seg.x + (float(i) + offset) * ds;
                 const float alt = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, t);
                 const float d = density(dir * t, alt);
                 if (d <= 0.0f) continue;
                 const float sigma_t = s.extinction * d;
-                const float tau_light = light_optical_depth(dir * t, alt);
+                const float tau_light = light_optical_depth(dir * t, alt, k.sun_dir);
+                const float tau_behind =
+                    v.lighting == lighting_model::diffusion ? light_optical_depth(dir * t, alt, -k.sun_dir) : 0.0f;
                 const float h = cm::height_fraction(alt, s.layer_bottom, s.layer_top);
-                const vec3 S = (s.albedo * sigma_t) * in_scattering(tau_light, mu, h);
+                const vec3 S = (s.albedo * sigma_t) * in_scattering(tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu, h);
+                tau_view += sigma_t * ds;
                 if (v.integration == integration_mode::analytic) {
                     acc.add_segment(S, sigma_t, ds);
                 } else {

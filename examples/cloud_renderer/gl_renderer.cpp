@@ -37,6 +37,7 @@ struct shader_int {
 };
 std::vector<shader_int> variant_values(const variant& v) {
     return {{"u_phase_model", static_cast<int>(v.phase)},
+            {"u_lighting", static_cast<int>(v.lighting)},
             {"u_octaves", v.octaves},
             {"u_powder", v.powder ? 1 : 0},
             {"u_light_mode", static_cast<int>(v.light)},
@@ -418,6 +419,7 @@ bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, uns
     set1f("u_phase_w", k.phase_w);
     set1f("u_droplet_diameter", k.droplet_diameter);
     set1f("u_ms_a", k.ms_a);
+    set1f("u_phase_mean_cosine", phase_mean_cosine(k, v.phase));
     set1f("u_ms_b", k.ms_b);
     set1f("u_ms_c", k.ms_c);
     set1f("u_cone_step", k.cone_step);

@@ -159,6 +159,7 @@ const std::vector<bench_row>& bench_rows() {
         {"octaves: 4", "octaves=4", false},
         {"octaves: 8", "octaves=8", false},
         {"powder off", "powder=off", false},
+        {"lighting: diffusion model (second cone away from the sun), powder off", "lighting=diffusion,powder=off", false},
         {"cone: 4 samples", "cone-samples=4", false},
         {"light march: 8 steps", "light=march,light-steps=8", false},
         {"light march: 32 steps", "light=march,light-steps=32", false},

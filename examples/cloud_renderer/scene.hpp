@@ -21,11 +21,17 @@ namespace cloud_renderer {
 enum class phase_model { hg, dual_hg, cornette_shanks, mie };
 enum class light_mode { cone, march };
 enum class integration_mode { analytic, naive };
+// The sun term: Wrenninge's octaves (multiple_scattering.hpp) or the diffusion model
+// (diffusion_lighting.hpp, diffusion_models::fitted), which also needs the optical depth
+// behind the sample (a second light march away from the sun, with the same cone or march
+// settings, so the light costs twice the samples) and from the camera (tracked by the march).
+enum class lighting_model { octaves, diffusion };
 
 // What the issue calls a lighting variant. Defaults: the production choice (cone light with
 // the far sample, 3 octaves, dual-lobe HG, powder, energy-conserving steps, jitter).
 struct variant {
     phase_model phase = phase_model::dual_hg;
+    lighting_model lighting = lighting_model::octaves;
     int octaves = 3;                 // Wrenninge octaves, 1..8
     bool powder = true;              // Schneider's powder term
     light_mode light = light_mode::cone;
@@ -87,8 +93,8 @@ struct frame_constants {
 
 frame_constants make_frame_constants(const scene& s);
 
-// "phase=mie,octaves=4,powder=off,light=march,light-steps=32,integration=naive,steps=128,
-// jitter=off" (any subset, applied over `v`). Returns an empty string on success, else the
+// "phase=mie,lighting=diffusion,octaves=4,powder=off,light=march,light-steps=32,
+// integration=naive,steps=128,jitter=off" (any subset, applied over `v`). Returns an empty string on success, else the
 // message for the user.
 std::string apply_variant_spec(const std::string& spec, variant& v);
 // The same notation back, every field.
@@ -96,6 +102,10 @@ std::string variant_spec(const variant& v);
 const char* name(phase_model p);
 const char* name(light_mode l);
 const char* name(integration_mode i);
+const char* name(lighting_model l);
+// Mean cosine g of a phase model with the frame's parameters (the diffusion model's g):
+// closed forms for HG, dual-lobe HG and Cornette-Shanks, a quadrature for the Mie fit.
+float phase_mean_cosine(const frame_constants& k, phase_model p);
 
 }  // namespace cloud_renderer
 

@@ -71,7 +71,8 @@ TEST_CASE("GPU and CPU images agree to at least 35 dB, and are not blank") {
 
 TEST_CASE("the variants agree with the CPU too, and compile-time equals run-time") {
     const scene& s = *find_preset("ground");
-    for (const char* spec : {"phase=mie,light=march,light-steps=8,steps=32", "phase=cs,octaves=1,powder=off,integration=naive,jitter=off"}) {
+    for (const char* spec : {"phase=mie,light=march,light-steps=8,steps=32", "phase=cs,octaves=1,powder=off,integration=naive,jitter=off",
+                             "lighting=diffusion,powder=off", "lighting=diffusion,phase=mie,light=march,light-steps=8,steps=32"}) {
         CAPTURE(std::string(spec));
         variant v;
         REQUIRE(apply_variant_spec(spec, v).empty());
@@ -93,6 +94,10 @@ TEST_CASE("no NaN inside the layer, at its boundaries and at tangent rays") {
             s.pitch = pitch;
             CHECK(statistics(render_gpu(s, variant())).nan_pixels == 0);
             CHECK(statistics(render_cpu(s, variant(), shared().textures, 160, 90)).nan_pixels == 0);
+            variant diffusion;
+            REQUIRE(apply_variant_spec("lighting=diffusion", diffusion).empty());
+            CHECK(statistics(render_gpu(s, diffusion)).nan_pixels == 0);
+            CHECK(statistics(render_cpu(s, diffusion, shared().textures, 160, 90)).nan_pixels == 0);
         }
     }
 }
@@ -113,6 +118,7 @@ TEST_CASE("command-line errors are clear") {
     CHECK(parse({"--variant", "octaves=9"}) == "--variant: octaves must be an integer from 1 to 8, not '9'");
     CHECK(parse({"--variant", "phase=rayleigh"}).find("phase must be hg, dual_hg, cs or mie") != std::string::npos);
     CHECK(parse({"--variant", "colour=red"}).find("unknown variant key 'colour'") != std::string::npos);
+    CHECK(parse({"--variant", "lighting=lut"}) == "--variant: lighting must be octaves or diffusion, not 'lut'");
     CHECK(parse({"--headless", "--cpu"}).find("choose one mode") == 0);
     // Scene flags override the preset wherever they stand.
     options o;

@@ -9,7 +9,7 @@
 //           // stores front depth and total optical depth) and the optical depth from the
 //           // camera (the view march already has it: -log of its transmittance)
 //           float M = cloudmath::diffusion_scattering(tau_sun, tau_behind, tau_view, mu, g,
-//                                                     cloudmath::diffusion_models::fitted);
+//                                                     albedo, cloudmath::diffusion_models::fitted);
 //           S = sigma_s * sun_irradiance * M;   // source term of integration.hpp
 // Why:      the octaves see one number per sample, tau_sun, and no choice of their a, b, c
 //           brings them below 50% rms (docs/lighting_error.md): the light that diffuses
@@ -19,7 +19,8 @@
 // Model:    similarity scaling (van de Hulst 1980; Bouthors et al., "Interactive multiple
 //           anisotropic scattering in clouds", I3D 2008): diffuse light in a medium of
 //           asymmetry g behaves like isotropic scattering at transport optical depth
-//           (1 - g) tau. With s = 1 - g, x = s tau_sun, y = s tau_behind, L = x + y and the
+//           (1 - g) tau. With s = 1 - g (1 - albedo g with absorption, which also adds the
+//           absorption term of diffusion_chord_fluence), x = s tau_sun, y = s tau_behind, L = x + y and the
 //           extrapolation length z = 0.7104 (Milne's problem; Ishimaru, "Wave propagation
 //           and scattering in random media", 1978, ch. 9), the conservative diffusion
 //           equation on the chord, -U''/3 = e^(-x) with U(-z) = U(L + z) = 0, has the exact
@@ -50,9 +51,10 @@
 //           back and the front surface of a cloud). Every result is finite and >= 0.
 // Returns:  the sun term M (1/sr), like multiple_scattering(): radiance = integral of
 //           T_view sigma_s F0 M ds.
-// Cost:     3 exponentials and 1 division per sample (3 octaves: 3 exponentials), 3 phase
-//           evaluations that depend on mu only (once per ray in a ray marcher), a 40-entry
-//           table; plus what the renderer spends on tau_behind.
+// Cost:     3 exponentials and 1 division per sample in a conservative medium (3 octaves:
+//           3 exponentials), 5 more with absorption (albedo < 1), 3 phase evaluations that
+//           depend on mu only (once per ray in a ray marcher), a 135-entry table; plus what the
+//           renderer spends on tau_behind.
 // GLSL twin: cloudmath/glsl/diffusion_lighting.glsl (same names with cm_; models as
 //           CM_DIFFUSION_MODEL_<NAME>).
 #ifndef CLOUDMATH_DIFFUSION_LIGHTING_HPP
@@ -67,8 +69,8 @@ namespace cloudmath {
 
 // Table and peak-term layout, shared with the GLSL twin and the fitting tool.
 namespace diffusion_layout {
-inline constexpr int size_x = 2, size_y = 2, size_mu = 5, size_d = 2;
-inline constexpr int table_size = size_x * size_y * size_mu * size_d;  // 40
+inline constexpr int size_x = 3, size_y = 3, size_mu = 5, size_d = 3;
+inline constexpr int table_size = size_x * size_y * size_mu * size_d;  // 135
 // Forward-peak terms: attenuation factors a (of the transport depth x) and eccentricity
 // factors c; weight w_ac is peak[ia * peak_c_count + ic].
 inline constexpr int peak_a_count = 3, peak_c_count = 2;
@@ -117,17 +119,65 @@ inline void diffusion_hat(T u, int n, int& i0, T& w1) noexcept {
 
 }  // namespace detail
 
-// The diffusion solution on a chord (header comment): fluence U (>= 0; returned) and net
-// flux F (in `flux`) at transport depth x of a chord of transport thickness x + y, with
-// e^(-x) given (the caller has it).
+// The similarity relations for an absorbing medium (van de Hulst 1980): transport optical
+// depth (1 - albedo g) tau, and the diffusion's absorption length 1 / kappa with
+// kappa^2 = 3 (1 - albedo) / (1 - albedo g) per transport depth. kappa is clamped to 0.9
+// (albedo below about 1 - 0.27 (1 - g)), where the particular solution's 1 / (1 - kappa^2)
+// would resonate: clouds (albedo 0.99 and above) are far from it.
 template <class T>
-[[nodiscard]] inline T diffusion_chord_fluence(T x, T y, T exp_neg_x, T& flux) noexcept {
+struct diffusion_medium {
+    T s;      // 1 - albedo g, in [0.001, 2]
+    T kappa;  // in [0, 0.9]
+};
+template <class T>
+[[nodiscard]] inline diffusion_medium<T> diffusion_similarity(T g, T albedo) noexcept {
+    const T gc = detail::clamp(g, T(-0.999), T(0.999));
+    const T w = detail::clamp(albedo, T(0), T(1));
+    const T s = detail::max(T(1) - w * gc, T(0.001));
+    return {s, detail::min(std::sqrt(T(3) * (T(1) - w) / s), T(0.9))};
+}
+
+// The diffusion solution on a chord (header comment), with absorption: fluence U (>= 0;
+// returned) and net flux F (in `flux`) at transport depth x of a chord of transport
+// thickness L = x + y, for -U''/3 + (kappa^2 / 3) U = e^(-x), U(-z) = U(L + z) = 0:
+//   U = 3 / (1 - kappa^2) [ e^(-(L + z)) R(x + z) + e^z R(L + z - x) - e^(-x) ]
+//   F = 1 / (1 - kappa^2) [ kappa (e^z Q(L + z - x) - e^(-(L + z)) Q(x + z)) - e^(-x) ]
+// with R(a) = sinh(kappa a) / sinh(kappa W), Q(a) = cosh(kappa a) / sinh(kappa W),
+// W = L + 2 z, written with decaying exponentials only (no overflow for any L); for
+// kappa W < 1e-4 their series to second order in kappa (at kappa = 0 the conservative
+// solution, 3 [e^z - e^(-x) - (e^z - e^(-(L + z))) (x + z) / W]).
+// e^(-x) is given (the caller has it).
+template <class T>
+[[nodiscard]] inline T diffusion_chord_fluence(T x, T y, T exp_neg_x, T kappa,
+                                               T& flux) noexcept {
     const T z = T(diffusion_layout::extrapolation);
     const T ez = std::exp(z);
     const T L = x + y;
-    const T slope = (ez - std::exp(-(L + z))) / (L + T(2) * z);
-    flux = slope - exp_neg_x;
-    return detail::max(T(3) * (ez - exp_neg_x - slope * (x + z)), T(0));
+    const T W = L + T(2) * z;
+    const T a1 = x + z, a2 = y + z;  // distances to the two extrapolated ends
+    const T e_far = std::exp(-(L + z));
+    const T k = detail::clamp(kappa, T(0), T(0.9));
+    T R1, R2, kQ1, kQ2;
+    if (k * W < T(1e-4)) {
+        // Second-order series of sinh and cosh: the next term is (k W)^4 / 120 < 1e-18.
+        const T k2 = k * k, W2 = W * W;
+        R1 = a1 / W * (T(1) + k2 * (a1 * a1 - W2) / T(6));
+        R2 = a2 / W * (T(1) + k2 * (a2 * a2 - W2) / T(6));
+        kQ1 = (T(1) + k2 * (a1 * a1 / T(2) - W2 / T(6))) / W;
+        kQ2 = (T(1) + k2 * (a2 * a2 / T(2) - W2 / T(6))) / W;
+    } else {
+        // sinh(k a) / sinh(k W) = e^(-k (W - a)) (1 - e^(-2 k a)) / (1 - e^(-2 k W)), W - a1 = a2;
+        // 1 - e^(-u) by one_minus_exp_neg, exact where k a is tiny and W is not.
+        const T e1 = std::exp(-k * a1), e2 = std::exp(-k * a2);
+        const T inv_denominator = T(1) / one_minus_exp_neg(T(2) * k * W);
+        R1 = e2 * one_minus_exp_neg(T(2) * k * a1) * inv_denominator;
+        R2 = e1 * one_minus_exp_neg(T(2) * k * a2) * inv_denominator;
+        kQ1 = k * e2 * (T(1) + e1 * e1) * inv_denominator;
+        kQ2 = k * e1 * (T(1) + e2 * e2) * inv_denominator;
+    }
+    const T scale = T(1) / (T(1) - k * k);
+    flux = scale * (ez * kQ2 - e_far * kQ1 - exp_neg_x);
+    return detail::max(T(3) * scale * (e_far * R1 + ez * R2 - exp_neg_x), T(0));
 }
 
 // The four table coordinates of a sample, each in [0, 1] (header comment).
@@ -137,8 +187,8 @@ struct diffusion_coordinates {
 };
 template <class T>
 [[nodiscard]] inline diffusion_coordinates<T> diffusion_table_coordinates(
-    T tau_sun, T tau_behind, T tau_view, T mu, T g) noexcept {
-    const T s = T(1) - detail::clamp(g, T(-0.999), T(0.999));
+    T tau_sun, T tau_behind, T tau_view, T mu, T g, T albedo) noexcept {
+    const T s = diffusion_similarity(g, albedo).s;
     const T x = s * detail::diffusion_depth(tau_sun);
     const T y = s * detail::diffusion_depth(tau_behind);
     const T z = T(diffusion_layout::extrapolation);
@@ -173,17 +223,20 @@ template <class T>
 
 // Generic form: phase(mu, scale) returns the phase function with its eccentricities scaled
 // by `scale` (1, 1/2 and 4/5 are asked for), as in multiple_scattering_with; g is that
-// phase function's mean cosine (for a dual lobe, (1 - w) g0 + w g1).
+// phase function's mean cosine (for a dual lobe, (1 - w) g0 + w g1); albedo the medium's
+// single-scattering albedo sigma_s / sigma_t (clamped to [0, 1]).
 template <class T, class PhaseFn>
 [[nodiscard]] inline T diffusion_scattering_with(T tau_sun, T tau_behind, T tau_view, T mu,
-                                                 T g, const diffusion_model& m,
+                                                 T g, T albedo, const diffusion_model& m,
                                                  PhaseFn&& phase) noexcept {
     namespace L = diffusion_layout;
     const T mc = detail::clamp(mu, T(-1), T(1));
     const T gc = detail::clamp(g, T(-0.999), T(0.999));
+    const T w = detail::clamp(albedo, T(0), T(1));
+    const diffusion_medium<T> medium = diffusion_similarity(gc, w);
     const T ts = detail::diffusion_depth(tau_sun);
-    const T x = (T(1) - gc) * ts;
-    const T y = (T(1) - gc) * detail::diffusion_depth(tau_behind);
+    const T x = medium.s * ts;
+    const T y = medium.s * detail::diffusion_depth(tau_behind);
 
     const T direct = std::exp(-ts);
     // e^(-a x) for a = 1/2, 1, 2 from one exponential.
@@ -192,25 +245,27 @@ template <class T, class PhaseFn>
     const T beams[L::peak_a_count] = {e_half, e_one, e_one * e_one};
     T peak = T(0);
     for (int ic = 0; ic < L::peak_c_count; ++ic) {
-        T w = T(0);
+        T weight = T(0);
         for (int ia = 0; ia < L::peak_a_count; ++ia)
-            w += T(m.peak[ia * L::peak_c_count + ic]) * detail::max(beams[ia] - direct, T(0));
-        peak += w * phase(mc, T(L::peak_c[ic]));
+            weight += T(m.peak[ia * L::peak_c_count + ic]) * detail::max(beams[ia] - direct, T(0));
+        peak += weight * phase(mc, T(L::peak_c[ic]));
     }
 
+    // The scaled medium's albedo w (1 - g) / (1 - w g) scales the first-collision source.
+    const T source = w * (T(1) - gc) / medium.s;
     T flux = T(0);
-    const T U = diffusion_chord_fluence(x, y, e_one, flux);
-    const T D = detail::max(U + T(3) * gc * flux * mc, T(0)) * inv_four_pi_v<T>;
+    const T U = diffusion_chord_fluence(x, y, e_one, medium.kappa, flux);
+    const T D = source * detail::max(U + T(3) * gc * flux * mc, T(0)) * inv_four_pi_v<T>;
     const T C = diffusion_table_lookup(m, diffusion_table_coordinates(ts, tau_behind, tau_view,
-                                                                      mc, gc));
+                                                                      mc, gc, w));
     return detail::max(phase(mc, T(1)) * direct + peak + D * detail::max(C, T(0)), T(0));
 }
 
 // With the Henyey-Greenstein phase function of asymmetry g.
 template <class T>
 [[nodiscard]] inline T diffusion_scattering(T tau_sun, T tau_behind, T tau_view, T mu, T g,
-                                            const diffusion_model& m) noexcept {
-    return diffusion_scattering_with(tau_sun, tau_behind, tau_view, mu, g, m,
+                                            T albedo, const diffusion_model& m) noexcept {
+    return diffusion_scattering_with(tau_sun, tau_behind, tau_view, mu, g, albedo, m,
                                      [g](T mm, T scale) { return phase_hg(mm, scale * g); });
 }
 

@@ -33,7 +33,7 @@ inline constexpr float rms[model_count][thickness_count] = {
     {0.588f, 0.3823f, 0.5599f, 0.7192f, 0.8208f, 0.9334f, 0.9792f},  // ms_preset::cheap
     {0.4625f, 0.3424f, 0.5844f, 0.7401f, 0.8416f, 0.9412f, 0.99f},  // ms_preset::thin
     {5.173f, 3.275f, 1.235f, 0.5251f, 0.4583f, 0.5598f, 0.6169f},  // ms_preset::thick
-    {0.2533f, 0.3283f, 0.3241f, 0.3893f, 0.4165f, 0.393f, 0.3699f},  // diffusion_models::fitted
+    {0.2397f, 0.3208f, 0.3091f, 0.3539f, 0.3836f, 0.3609f, 0.3406f},  // diffusion_models::fitted
     {4.905f, 4.004f, 3.252f, 2.673f, 2.275f, 2.031f, 2.059f},  // diffusion_models::physical
 };
 

@@ -11,9 +11,9 @@ float cm_test_extinction(vec3 p, int i) {
 }
 
 // cm_diffusion_chord_fluence's fluence plus its flux (an out parameter).
-float cm_test_chord_fluence(float x, float y, float exp_neg_x) {
+float cm_test_chord_fluence(float x, float y, float exp_neg_x, float kappa) {
     float flux;
-    float U = cm_diffusion_chord_fluence(x, y, exp_neg_x, flux);
+    float U = cm_diffusion_chord_fluence(x, y, exp_neg_x, kappa, flux);
     return U + flux;
 }
 

@@ -59,7 +59,7 @@ const char* const glsl_after = R"(
 float cm_test_phase(float mu, float scale) { return cm_phase_hg_dual(mu, 0.8 * scale, -0.5 * scale, 0.5); }
 vec4 cm_test_chord_fluence(vec4 a) {
     float flux;
-    float U = cm_diffusion_chord_fluence(a.x, a.y, a.z, flux);
+    float U = cm_diffusion_chord_fluence(a.x, a.y, a.z, a.w, flux);
     return vec4(U, flux, 0.0, 0.0);
 }
 vec4 cm_test_march(vec4 a, vec4 b, bool grey) {
@@ -250,19 +250,26 @@ std::vector<parity_case> make_cases() {
             for (float tb : {0.0f, 1.0f, 20.0f, 1e4f})
                 for (float tv : {0.0f, 0.5f, 8.0f})
                     for (float mu : {-1.0f, -0.2f, 0.6f, 1.0f})
-                        for (float g : {0.0f, 0.75f, 0.85f, 0.999f}) in.push_back({vec4(ts, tb, tv, mu), vec4(g, 0.0f, 0.0f, 0.0f)});
-        add({"cm_diffusion_scattering", "vec4(cm_diffusion_scattering(a.x, a.y, a.z, a.w, b.x, CM_DIFFUSION_MODEL_FITTED), cm_diffusion_scattering(a.x, a.y, a.z, a.w, b.x, CM_DIFFUSION_MODEL_PHYSICAL), 0.0, 0.0)",
-             [](vec4 a, vec4 b) { return vec4(cm::diffusion_scattering(a.x, a.y, a.z, a.w, b.x, cm::diffusion_models::fitted),
-                                              cm::diffusion_scattering(a.x, a.y, a.z, a.w, b.x, cm::diffusion_models::physical), 0.0f, 0.0f); }, in, 2, 1e-3f, 1e-4});
-        add({"cm_diffusion_scattering_with", "vec4(cm_diffusion_scattering_with(a.x, a.y, a.z, a.w, b.x, CM_DIFFUSION_MODEL_FITTED), 0.0, 0.0, 0.0)",
-             [](vec4 a, vec4 b) { return vec4(cm::diffusion_scattering_with(a.x, a.y, a.z, a.w, b.x, cm::diffusion_models::fitted, cpp_test_phase), 0.0f, 0.0f, 0.0f); }, in, 1, 1e-3f, 1e-4});
-        add({"cm_diffusion_table_coordinates", "cm_diffusion_table_coordinates(a.x, a.y, a.z, a.w, b.x)",
-             [](vec4 a, vec4 b) { const auto u = cm::diffusion_table_coordinates(a.x, a.y, a.z, a.w, b.x); return vec4(u.u_sun, u.u_behind, u.u_mu, u.u_surface); }, in, 4, 1e-6f});
+                        for (float g : {0.0f, 0.75f, 0.85f, 0.999f})
+                            for (float albedo : {1.0f, 0.99f, 0.5f}) in.push_back({vec4(ts, tb, tv, mu), vec4(g, albedo, 0.0f, 0.0f)});
+        add({"cm_diffusion_scattering", "vec4(cm_diffusion_scattering(a.x, a.y, a.z, a.w, b.x, b.y, CM_DIFFUSION_MODEL_FITTED), cm_diffusion_scattering(a.x, a.y, a.z, a.w, b.x, b.y, CM_DIFFUSION_MODEL_PHYSICAL), 0.0, 0.0)",
+             [](vec4 a, vec4 b) { return vec4(cm::diffusion_scattering(a.x, a.y, a.z, a.w, b.x, b.y, cm::diffusion_models::fitted),
+                                              cm::diffusion_scattering(a.x, a.y, a.z, a.w, b.x, b.y, cm::diffusion_models::physical), 0.0f, 0.0f); }, in, 2, 1e-3f, 1e-4});
+        add({"cm_diffusion_scattering_with", "vec4(cm_diffusion_scattering_with(a.x, a.y, a.z, a.w, b.x, b.y, CM_DIFFUSION_MODEL_FITTED), 0.0, 0.0, 0.0)",
+             [](vec4 a, vec4 b) { return vec4(cm::diffusion_scattering_with(a.x, a.y, a.z, a.w, b.x, b.y, cm::diffusion_models::fitted, cpp_test_phase), 0.0f, 0.0f, 0.0f); }, in, 1, 1e-3f, 1e-4});
+        add({"cm_diffusion_table_coordinates", "cm_diffusion_table_coordinates(a.x, a.y, a.z, a.w, b.x, b.y)",
+             [](vec4 a, vec4 b) { const auto u = cm::diffusion_table_coordinates(a.x, a.y, a.z, a.w, b.x, b.y); return vec4(u.u_sun, u.u_behind, u.u_mu, u.u_surface); }, in, 4, 1e-6f});
         std::vector<std::pair<vec4, vec4>> fluence;
         for (float x : {0.0f, 0.01f, 0.5f, 3.0f, 40.0f, 1e3f})
-            for (float y : {0.0f, 0.01f, 0.5f, 3.0f, 40.0f, 1e3f}) fluence.push_back({vec4(x, y, std::exp(-x), 0.0f), vec4(0.0f)});
+            for (float y : {0.0f, 0.01f, 0.5f, 3.0f, 40.0f, 1e3f})
+                for (float kappa : {0.0f, 1e-6f, 0.02f, 0.3f, 0.9f}) fluence.push_back({vec4(x, y, std::exp(-x), kappa), vec4(0.0f)});
         add({"cm_diffusion_chord_fluence", "cm_test_chord_fluence(a)",
-             [](vec4 a, vec4) { float flux = 0.0f; const float U = cm::diffusion_chord_fluence(a.x, a.y, a.z, flux); return vec4(U, flux, 0.0f, 0.0f); }, fluence, 2, 1e-5f, 1e-4});
+             [](vec4 a, vec4) { float flux = 0.0f; const float U = cm::diffusion_chord_fluence(a.x, a.y, a.z, a.w, flux); return vec4(U, flux, 0.0f, 0.0f); }, fluence, 2, 1e-5f, 1e-4});
+        std::vector<std::pair<vec4, vec4>> media;
+        for (float g : {-1.0f, -0.3f, 0.0f, 0.85f, 0.999f, 1.0f})
+            for (float albedo : {0.0f, 0.5f, 0.9f, 0.99f, 0.9999f, 1.0f}) media.push_back({vec4(g, albedo, 0.0f, 0.0f), vec4(0.0f)});
+        add({"cm_diffusion_similarity", "vec4(cm_diffusion_similarity(a.x, a.y), 0.0, 0.0)",
+             [](vec4 a, vec4) { const auto m = cm::diffusion_similarity(a.x, a.y); return vec4(m.s, m.kappa, 0.0f, 0.0f); }, media, 2, 1e-6f});
         std::vector<std::pair<vec4, vec4>> coords;
         for (float u : {0.0f, 0.13f, 0.5f, 0.77f, 1.0f})
             for (float v : {0.0f, 0.4f, 1.0f})

@@ -49,9 +49,12 @@ if(CLOUDMATH_BUILD_TESTS)
         [ -s "$2/$f" ] || { echo "missing $f"; exit 1; }
       done
       grep -q "ms_preset::thin" "$2/lighting_error.md" || { echo "report lacks the presets"; exit 1; }
-      "$1" fit-diffusion --reference "$2/ref.csv" --holdout "$2/ref.csv" >"$2/fit.txt" 2>/dev/null || { echo "fit-diffusion failed"; exit 1; }
+      "$1" fit-diffusion --train "$2/ref.csv" --holdout "$2/ref.csv" >"$2/fit.txt" 2>/dev/null || { echo "fit-diffusion failed"; exit 1; }
       grep -q "^held out" "$2/fit.txt" || { echo "fit-diffusion measured no held-out set"; exit 1; }
       "$1" reference --quick --holdout 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "--quick --holdout: exit $s, want 2"; exit 1; }
+      "$1" reference --quick --albedo 1.5 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "--albedo 1.5: exit $s, want 2"; exit 1; }
+      "$1" choice --reference "$2/ref.csv" --out "$2/choice.hpp" >/dev/null || { echo "choice failed"; exit 1; }
+      grep -q "diffusion_models::fitted" "$2/choice.hpp" || { echo "choice data lacks the diffusion model"; exit 1; }
       "$1" --help >/dev/null || { echo "--help failed"; exit 1; }
       ]=] sh $<TARGET_FILE:cloudmath_lighting_error> "${CMAKE_CURRENT_BINARY_DIR}/lighting_error_cli_test")
 endif()

@@ -34,11 +34,12 @@ namespace cloudmath::reference::lighting {
 inline constexpr std::size_t diffusion_unknowns =
     static_cast<std::size_t>(diffusion_layout::table_size + diffusion_layout::peak_size);
 
-// The model's features at one sample (HG phase of asymmetry g): M = single + sum_k
-// coefficient_k feature_k, with the table's max(C, 0) left out (the fit is linear).
+// The model's features at one sample (HG phase of asymmetry g, single-scattering albedo):
+// M = single + sum_k coefficient_k feature_k, with the table's max(C, 0) left out (the fit
+// is linear).
 [[nodiscard]] std::vector<double> diffusion_features(double tau_sun, double tau_behind,
                                                      double tau_view, double mu, double g,
-                                                     double& single);
+                                                     double albedo, double& single);
 
 // Evaluates models on every row of a set (HG phase with the set's g), the quadratures
 // computed once; radiance() calls cloudmath::diffusion_scattering at every node.
@@ -51,7 +52,7 @@ public:
     [[nodiscard]] std::vector<std::vector<double>> row_features(std::vector<double>& single) const;
 
 private:
-    double g_ = 0.0;
+    double g_ = 0.0, albedo_ = 1.0;
     std::vector<std::size_t> begin_;
     std::vector<double> mu_;
     std::vector<double> weight_, tau_light_, tau_behind_, tau_view_;
@@ -62,7 +63,7 @@ struct diffusion_fit_options {
     // on its differences from 1 (the uncorrected diffusion), relative to the mean diagonal
     // of the normal equations. Larger: smoother, closer to plain diffusion.
     // Chosen by leave-one-set-out cross-validation on the training sets (--cv).
-    double smoothing = 0.1;
+    double smoothing = 0.01;
     double ridge = 1e-4;
     double panel = 0.25;  // quadrature panel, optical units
 };
@@ -83,7 +84,8 @@ struct diffusion_fit_result {
 
 // The data of the shipped fit, in directory `data_dir` (docs/data): the training sets (the
 // report's reference, g = 0.85, then g = 0.8 and 0.93 over the same geometry) and the
-// held-out split (holdout_reference_options() at g = 0.75, 0.85 and 0.9).
+// held-out split (holdout_reference_options() at g = 0.75, 0.85 and 0.9, and at g = 0.85
+// with albedo 0.99: the model's absorption, never fitted, since every fitted set has albedo 1).
 [[nodiscard]] std::vector<std::string> diffusion_training_paths(const std::string& data_dir);
 [[nodiscard]] std::vector<std::string> diffusion_holdout_paths(const std::string& data_dir);
 

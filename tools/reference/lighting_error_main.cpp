@@ -4,7 +4,7 @@
 //
 //   cloudmath_lighting_error reference [--out docs/data/lighting_reference.csv] [--paths N]
 //       [--max-paths N] [--target-error 0.01] [--threads 0] [--seed 1] [--quick]
-//       [--holdout] [--phase hg:0.85]
+//       [--holdout] [--phase hg:0.85] [--albedo 1]
 //   cloudmath_lighting_error report [--reference docs/data/lighting_reference.csv]
 //       [--docs docs] [--images docs/images]
 //   cloudmath_lighting_error choice [--reference docs/data/lighting_reference.csv] [--out PATH]
@@ -54,7 +54,7 @@ const char* const usage_text =
     "                    test, not a reference)\n"
     "                    --holdout (the held-out split: thicknesses, view and sun angles\n"
     "                    and slab views that the default set does not contain)\n"
-    "                    --phase hg:0.85 (any montecarlo.hpp phase spec)\n"
+    "                    --phase hg:0.85 (any montecarlo.hpp phase spec) --albedo 1\n"
     "  report     measures the lighting models against the reference and fits them:\n"
     "             writes DOCS/lighting_error.md, DOCS/lighting_error.csv and\n"
     "             IMAGES/lighting_error_*.svg.\n"
@@ -70,7 +70,7 @@ const char* const usage_text =
     "                    --train A.csv,B.csv (instead; the first is the reference the\n"
     "                    model's rms_error is measured on) --holdout C.csv,D.csv\n"
     "                    --header PATH.hpp --glsl PATH.glsl\n"
-    "                    --smoothing 0.1 --ridge 0.0001\n"
+    "                    --smoothing 0.01 --ridge 0.0001\n"
     "                    --cv (instead of fitting: leave-one-set-out cross-validation of\n"
     "                    smoothing and ridge over the training sets alone)\n"
     "  choice     writes the measured-error table of cloudmath/lighting_choice.hpp alone.\n"
@@ -121,13 +121,17 @@ double to_positive(const std::string& flag, const std::string& text) {
 
 int run_reference(int argc, char** argv) {
     auto f = parse_flags(argc, argv, {"out", "paths", "max-paths", "target-error", "threads",
-                                      "seed", "phase"},
+                                      "seed", "phase", "albedo"},
                          {"quick", "holdout"});
     lm::reference_options o;
     if (f.count("quick") && f.count("holdout"))
         throw usage_error("--quick and --holdout exclude each other");
     if (f.count("holdout")) o = lm::holdout_reference_options();
     if (f.count("phase")) o.phase = f["phase"];
+    if (f.count("albedo")) {
+        o.albedo = to_positive("albedo", f["albedo"]);
+        if (o.albedo > 1.0) throw usage_error("--albedo must be in (0, 1], got '" + f["albedo"] + "'");
+    }
     if (f.count("quick")) {
         o.taus = {1, 10, 100};
         o.sphere_view_angles_deg = {30, 120};

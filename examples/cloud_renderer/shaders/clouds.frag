@@ -13,6 +13,7 @@
 
 // The lighting variant (values in scene.hpp's `variant`).
 CR_PARAM(int, u_phase_model)      // 0 HG, 1 dual-lobe HG, 2 Cornette-Shanks, 3 Mie fit
+CR_PARAM(int, u_lighting)         // 0 Wrenninge octaves, 1 diffusion model (diffusion_lighting.glsl)
 CR_PARAM(int, u_octaves)          // Wrenninge octaves
 CR_PARAM(int, u_powder)           // 0 off, 1 on
 CR_PARAM(int, u_light_mode)       // 0 cone, 1 full light march
@@ -36,6 +37,7 @@ uniform vec2 u_wind;
 uniform float u_exposure;
 uniform float u_phase_g, u_phase_g_back, u_phase_w, u_droplet_diameter;
 uniform float u_ms_a, u_ms_b, u_ms_c;
+uniform float u_phase_mean_cosine;  // the diffusion model's g for u_phase_model
 uniform float u_cone_step, u_cone_spread, u_cone_far_distance, u_cone_far_length;
 uniform float u_light_march_max, u_min_transmittance;
 
@@ -50,6 +52,7 @@ float cr_cone_extinction(vec3 p, int i);
 float cr_phase(float mu, float scale);
 #define CM_CONE_EXTINCTION cr_cone_extinction
 #define CM_MS_PHASE cr_phase
+#define CM_DIFFUSION_PHASE cr_phase
 #include "cloudmath.glsl"
 
 CmMieApproxParams cr_mie;  // set once per pixel in main()
@@ -88,28 +91,33 @@ float cr_phase(float mu, float scale) {
     return cm_phase_mie_approx(mu, m);
 }
 
-// Optical depth from p toward the sun.
-float cr_light_optical_depth(vec3 p, float altitude) {
+// Optical depth from p along the unit vector `toward` (the sun, or away from it for the
+// diffusion model's tau_behind) to where the layer ends.
+float cr_light_optical_depth(vec3 p, float altitude, vec3 toward) {
     if (u_light_mode == 0) {
         CmConeLightConfig cone = CmConeLightConfig(u_cone_samples, u_cone_step, u_cone_spread,
                                                    u_cone_far_distance, u_cone_far_length);
-        return cm_cone_optical_depth(p, u_sun_dir, cone);
+        return cm_cone_optical_depth(p, toward, cone);
     }
     // Full march: midpoint steps up to where the sun ray leaves the layer.
     vec3 up = normalize(vec3(p.x, p.y + (u_planet_radius + u_cam_altitude), p.z));
-    vec2 seg = cm_cloud_layer_segment(altitude, dot(u_sun_dir, up), u_planet_radius, u_layer_bottom, u_layer_top);
+    vec2 seg = cm_cloud_layer_segment(altitude, dot(toward, up), u_planet_radius, u_layer_bottom, u_layer_top);
     float length_to_exit = seg.y > seg.x ? min(seg.y, u_light_march_max) : 0.0;
     float ds = length_to_exit / float(u_light_steps);
     float tau = 0.0;
     for (int i = 0; i < u_light_steps; ++i)
-        tau += cr_cone_extinction(p + u_sun_dir * ((float(i) + 0.5) * ds), i) * ds;
+        tau += cr_cone_extinction(p + toward * ((float(i) + 0.5) * ds), i) * ds;
     return tau;
 }
 
 // Radiance scattered toward the camera per unit scattering coefficient: sunlight through
-// the octaves (phase and transmittance), the powder term, and isotropic sky light.
-vec3 cr_in_scattering(float tau_light, float mu, float h) {
-    float sun = cm_multiple_scattering_with(tau_light, mu, u_ms_a, u_ms_b, u_ms_c, u_octaves);
+// the octaves or the diffusion model (phase and transmittance), the powder term, and
+// isotropic sky light. tau_behind and tau_view are used by the diffusion model only.
+vec3 cr_in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h) {
+    float sun = u_lighting == 1
+        ? cm_diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, u_phase_mean_cosine, u_albedo,
+                                       CM_DIFFUSION_MODEL_FITTED)
+        : cm_multiple_scattering_with(tau_light, mu, u_ms_a, u_ms_b, u_ms_c, u_octaves);
     if (u_powder != 0) {
         // Schneider 2015's Beer-Powder factor 2 (1 - e^(-2 tau)), strongest looking away
         // from the sun and gone looking into it (where the dark edges are not seen).
@@ -150,15 +158,18 @@ void main() {
         float ds = (t1 - seg.x) / float(u_view_steps);
         float offset = u_jitter != 0 ? cr_jitter(gl_FragCoord.xy) : 0.5;
         float mu = dot(dir, u_sun_dir);
+        float tau_view = 0.0;  // optical depth from the camera to the start of the step
         for (int i = 0; i < u_view_steps; ++i) {
             float t = seg.x + (float(i) + offset) * ds;
             float altitude = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, t);
             float density = cr_density(dir * t, altitude);
             if (density <= 0.0) continue;
             float sigma_t = u_extinction * density;
-            float tau_light = cr_light_optical_depth(dir * t, altitude);
+            float tau_light = cr_light_optical_depth(dir * t, altitude, u_sun_dir);
+            float tau_behind = u_lighting == 1 ? cr_light_optical_depth(dir * t, altitude, -u_sun_dir) : 0.0;
             float h = cm_height_fraction(altitude, u_layer_bottom, u_layer_top);
-            vec3 S = (u_albedo * sigma_t) * cr_in_scattering(tau_light, mu, h);
+            vec3 S = (u_albedo * sigma_t) * cr_in_scattering(tau_light, tau_behind, tau_view + 0.5 * sigma_t * ds, mu, h);
+            tau_view += sigma_t * ds;
             if (u_integration == 0) {
                 cm_march_add_segment(acc, S, sigma_t, ds);
             } else {

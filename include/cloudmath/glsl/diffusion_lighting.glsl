@@ -2,7 +2,7 @@
 // multiple scattering from diffusion along the sun's chord with a fitted correction table.
 // The formulas, their sources and the inputs are documented in the C++ header.
 //
-// Use:      float M = cm_diffusion_scattering(tau_sun, tau_behind, tau_view, mu, g,
+// Use:      float M = cm_diffusion_scattering(tau_sun, tau_behind, tau_view, mu, g, albedo,
 //                                             CM_DIFFUSION_MODEL_FITTED);
 //           // tau_behind: optical depth behind the sample along the sun direction (a second
 //           // short march away from the sun); tau_view: optical depth from the camera.
@@ -20,46 +20,57 @@
 #include "core.glsl"
 #include "phase.glsl"
 
-// diffusion_layout of the C++ header.
-#define CM_DIFFUSION_SIZE_X 2
-#define CM_DIFFUSION_SIZE_Y 2
-#define CM_DIFFUSION_SIZE_MU 5
-#define CM_DIFFUSION_SIZE_D 2
-#define CM_DIFFUSION_TABLE_SIZE 40
-#define CM_DIFFUSION_PEAK_SIZE 6
-#define CM_DIFFUSION_EXTRAPOLATION 0.7104
-
-// The C++ diffusion_model without its name.
-struct CmDiffusionModel {
-    float table[CM_DIFFUSION_TABLE_SIZE];
-    float peak[CM_DIFFUSION_PEAK_SIZE];
-    float tau_min;
-    float tau_max;
-    float g_min;
-    float g_max;
-    float rms_error;
-    float max_error;
-    float holdout_rms_error;
-};
-
+// The table layout (CM_DIFFUSION_SIZE_*, CM_DIFFUSION_EXTRAPOLATION), CmDiffusionModel and
+// the fitted models, generated from the C++ side with the fit.
 #include "diffusion_lighting_models.glsl"
 
 float cmi_diffusion_depth(float tau) { return clamp(tau, 0.0, 1e6); }
 
-// Fluence U (returned) and net flux F of the chord's diffusion solution.
-float cm_diffusion_chord_fluence(float x, float y, float exp_neg_x, out float flux) {
+// (1 - albedo g, kappa): the similarity relations with absorption (C++ diffusion_similarity).
+vec2 cm_diffusion_similarity(float g, float albedo) {
+    float gc = clamp(g, -0.999, 0.999);
+    float w = clamp(albedo, 0.0, 1.0);
+    float s = max(1.0 - w * gc, 0.001);
+    return vec2(s, min(sqrt(3.0 * (1.0 - w) / s), 0.9));
+}
+
+// Fluence U (returned) and net flux F of the chord's diffusion solution with absorption
+// kappa (the C++ diffusion_chord_fluence, same stable forms).
+float cm_diffusion_chord_fluence(float x, float y, float exp_neg_x, float kappa, out float flux) {
     float z = CM_DIFFUSION_EXTRAPOLATION;
     float ez = exp(z);
     float L = x + y;
-    float slope = (ez - exp(-(L + z))) / (L + 2.0 * z);
-    flux = slope - exp_neg_x;
-    return max(3.0 * (ez - exp_neg_x - slope * (x + z)), 0.0);
+    float W = L + 2.0 * z;
+    float a1 = x + z;
+    float a2 = y + z;
+    float e_far = exp(-(L + z));
+    float k = clamp(kappa, 0.0, 0.9);
+    float R1, R2, kQ1, kQ2;
+    if (k * W < 1e-4) {
+        float k2 = k * k;
+        float W2 = W * W;
+        R1 = a1 / W * (1.0 + k2 * (a1 * a1 - W2) / 6.0);
+        R2 = a2 / W * (1.0 + k2 * (a2 * a2 - W2) / 6.0);
+        kQ1 = (1.0 + k2 * (a1 * a1 / 2.0 - W2 / 6.0)) / W;
+        kQ2 = (1.0 + k2 * (a2 * a2 / 2.0 - W2 / 6.0)) / W;
+    } else {
+        float e1 = exp(-k * a1);
+        float e2 = exp(-k * a2);
+        float inv_denominator = 1.0 / cm_one_minus_exp_neg(2.0 * k * W);
+        R1 = e2 * cm_one_minus_exp_neg(2.0 * k * a1) * inv_denominator;
+        R2 = e1 * cm_one_minus_exp_neg(2.0 * k * a2) * inv_denominator;
+        kQ1 = k * e2 * (1.0 + e1 * e1) * inv_denominator;
+        kQ2 = k * e1 * (1.0 + e2 * e2) * inv_denominator;
+    }
+    float scale = 1.0 / (1.0 - k * k);
+    flux = scale * (ez * kQ2 - e_far * kQ1 - exp_neg_x);
+    return max(3.0 * scale * (e_far * R1 + ez * R2 - exp_neg_x), 0.0);
 }
 
 // (u_sun, u_behind, u_mu, u_surface), each in [0, 1].
 vec4 cm_diffusion_table_coordinates(float tau_sun, float tau_behind, float tau_view, float mu,
-                                    float g) {
-    float s = 1.0 - clamp(g, -0.999, 0.999);
+                                    float g, float albedo) {
+    float s = cm_diffusion_similarity(g, albedo).x;
     float x = s * cmi_diffusion_depth(tau_sun);
     float y = s * cmi_diffusion_depth(tau_behind);
     float z = CM_DIFFUSION_EXTRAPOLATION;
@@ -99,13 +110,15 @@ float cm_diffusion_table_lookup(CmDiffusionModel m, vec4 u) {
 
 // The model with the three phase values it needs (scales 1, 0.5 and 0.8) given.
 float cmi_diffusion_scattering_phases(float tau_sun, float tau_behind, float tau_view, float mu,
-                                      float g, CmDiffusionModel m, float p1, float p_half,
-                                      float p_four_fifths) {
+                                      float g, float albedo, CmDiffusionModel m, float p1,
+                                      float p_half, float p_four_fifths) {
     float mc = clamp(mu, -1.0, 1.0);
     float gc = clamp(g, -0.999, 0.999);
+    float w = clamp(albedo, 0.0, 1.0);
+    vec2 medium = cm_diffusion_similarity(gc, w);
     float ts = cmi_diffusion_depth(tau_sun);
-    float x = (1.0 - gc) * ts;
-    float y = (1.0 - gc) * cmi_diffusion_depth(tau_behind);
+    float x = medium.x * ts;
+    float y = medium.x * cmi_diffusion_depth(tau_behind);
     float direct = exp(-ts);
     float e_half = exp(-0.5 * x);
     float e_one = e_half * e_half;
@@ -113,27 +126,28 @@ float cmi_diffusion_scattering_phases(float tau_sun, float tau_behind, float tau
     float w_half = m.peak[0] * beams.x + m.peak[2] * beams.y + m.peak[4] * beams.z;
     float w_four_fifths = m.peak[1] * beams.x + m.peak[3] * beams.y + m.peak[5] * beams.z;
     float peak = w_half * p_half + w_four_fifths * p_four_fifths;
+    float source = w * (1.0 - gc) / medium.x;
     float flux;
-    float U = cm_diffusion_chord_fluence(x, y, e_one, flux);
-    float D = max(U + 3.0 * gc * flux * mc, 0.0) * CM_INV_FOUR_PI;
-    float C = cm_diffusion_table_lookup(m, cm_diffusion_table_coordinates(ts, tau_behind, tau_view, mc, gc));
+    float U = cm_diffusion_chord_fluence(x, y, e_one, medium.y, flux);
+    float D = source * max(U + 3.0 * gc * flux * mc, 0.0) * CM_INV_FOUR_PI;
+    float C = cm_diffusion_table_lookup(m, cm_diffusion_table_coordinates(ts, tau_behind, tau_view, mc, gc, w));
     return max(p1 * direct + peak + D * max(C, 0.0), 0.0);
 }
 
 // With the Henyey-Greenstein phase function of asymmetry g.
 float cm_diffusion_scattering(float tau_sun, float tau_behind, float tau_view, float mu, float g,
-                              CmDiffusionModel m) {
+                              float albedo, CmDiffusionModel m) {
     float mc = clamp(mu, -1.0, 1.0);
-    return cmi_diffusion_scattering_phases(tau_sun, tau_behind, tau_view, mu, g, m,
+    return cmi_diffusion_scattering_phases(tau_sun, tau_behind, tau_view, mu, g, albedo, m,
                                            cm_phase_hg(mc, g), cm_phase_hg(mc, 0.5 * g),
                                            cm_phase_hg(mc, 0.8 * g));
 }
 
 #ifdef CM_DIFFUSION_PHASE
 float cm_diffusion_scattering_with(float tau_sun, float tau_behind, float tau_view, float mu,
-                                   float g, CmDiffusionModel m) {
+                                   float g, float albedo, CmDiffusionModel m) {
     float mc = clamp(mu, -1.0, 1.0);
-    return cmi_diffusion_scattering_phases(tau_sun, tau_behind, tau_view, mu, g, m,
+    return cmi_diffusion_scattering_phases(tau_sun, tau_behind, tau_view, mu, g, albedo, m,
                                            CM_DIFFUSION_PHASE(mc, 1.0), CM_DIFFUSION_PHASE(mc, 0.5),
                                            CM_DIFFUSION_PHASE(mc, 0.8));
 }
