@@ -1042,14 +1042,17 @@ void mark_pareto_fronts(std::deque<variant>& rows) {
 // ---------------------------------------------------------------------------------------
 // Output.
 
-const std::vector<std::string> group_order = {"phase", "transmittance", "integration", "geometry", "multiple_scattering", "cone_sampling"};
+const std::vector<std::string> group_order = {"phase", "transmittance", "integration", "geometry", "multiple_scattering",
+                                              "diffusion_lighting", "cone_sampling"};
 const std::map<std::string, std::string> group_colour = {
     {"phase", "#1f77b4"},    {"transmittance", "#ff7f0e"},       {"integration", "#2ca02c"},
-    {"geometry", "#d62728"}, {"multiple_scattering", "#9467bd"}, {"cone_sampling", "#8c564b"}};
+    {"geometry", "#d62728"}, {"multiple_scattering", "#9467bd"}, {"cone_sampling", "#8c564b"},
+    {"diffusion_lighting", "#e377c2"}};
 const std::map<std::string, std::string> group_header = {
     {"phase", "phase.hpp"},       {"transmittance", "transmittance.hpp"},
     {"integration", "integration.hpp"}, {"geometry", "geometry.hpp"},
-    {"multiple_scattering", "multiple_scattering.hpp"}, {"cone_sampling", "cone_sampling.hpp"}};
+    {"multiple_scattering", "multiple_scattering.hpp"}, {"cone_sampling", "cone_sampling.hpp"},
+    {"diffusion_lighting", "diffusion_lighting.hpp"}};
 // ---------------------------------------------------------------------------------------
 // The physical reference column: each model's error against ground truth no one here wrote
 // the answer to, read from the reports of tools/reference: phase rows against the Lorenz-Mie
