@@ -24,12 +24,13 @@ import { modules, sources, phase, multipleScattering, resolve, version } from 'c
 import { resolveIncludes } from 'cloudmath-glsl/resolve';
 const fail = (m) => { console.log('FAIL: ' + m); process.exit(1); };
 const names = Object.keys(modules);
-if (names.length !== 10) fail(`want 10 modules, got ${names.join(',')}`);
+if (names.length !== 12) fail(`want 12 modules, got ${names.join(',')}`);
 for (const [name, text] of Object.entries(modules))
   if (/^[ \t]*#[ \t]*include/m.test(text)) fail(`${name}: unresolved #include`);
 if (!phase.includes('float cm_phase_hg(float mu, float g)')) fail('phase lacks cm_phase_hg');
 if (!multipleScattering.includes('CM_MS_PRESET_CHEAP') || !multipleScattering.includes('float cm_phase_hg(')) fail('multiple_scattering is not resolved');
 if (!modules.cloudmath.includes('cm_perlin_worley')) fail('cloudmath lacks the noise module');
+if (!modules.diffusion_lighting.includes('CM_DIFFUSION_MODEL_FITTED') || !modules.diffusion_lighting.includes('float cm_phase_hg(')) fail('diffusion_lighting is not resolved');
 const mine = resolve('#define CM_MS_OCTAVES 2\n#include "cloudmath/glsl/phase.glsl"\nvoid main() {}\n');
 if (!mine.includes('cm_phase_draine') || /^[ \t]*#[ \t]*include/m.test(mine)) fail('resolve() did not inline phase.glsl');
 let threw = false;
