@@ -19,16 +19,17 @@
 // Model:    similarity scaling (van de Hulst 1980; Bouthors et al., "Interactive multiple
 //           anisotropic scattering in clouds", I3D 2008): diffuse light in a medium of
 //           asymmetry g behaves like isotropic scattering at transport optical depth
-//           (1 - g) tau. With s = 1 - g (1 - albedo g with absorption, which also adds the
-//           absorption term of diffusion_chord_fluence), x = s tau_sun, y = s tau_behind, L = x + y and the
-//           extrapolation length z = 0.7104 (Milne's problem; Ishimaru, "Wave propagation
-//           and scattering in random media", 1978, ch. 9), the conservative diffusion
-//           equation on the chord, -U''/3 = e^(-x) with U(-z) = U(L + z) = 0, has the exact
-//           solution
+//           (1 - g) tau, (1 - albedo g) tau with absorption. With s = 1 - albedo g,
+//           x = s tau_sun, y = s tau_behind, L = x + y and the extrapolation length
+//           z = 0.7104 (Milne's problem; Ishimaru, "Wave propagation and scattering in
+//           random media", 1978, ch. 9), the conservative diffusion equation on the chord,
+//           -U''/3 = e^(-x) with U(-z) = U(L + z) = 0, has the exact solution
 //             U = 3 [ e^z - e^(-x) - (e^z - e^(-(L + z))) (x + z) / (L + 2 z) ]
 //             F = (e^z - e^(-(L + z))) / (L + 2 z) - e^(-x)     (net flux along the sun)
-//           and the diffusion radiance (U + 3 F.w) / (4 pi), scattered toward the camera by a
-//           phase function of mean cosine g, gives D = (U + 3 g F mu)^+ / (4 pi). Then
+//           (with absorption, diffusion_chord_fluence's sinh/cosh form). The diffusion
+//           radiance (U + 3 F.w) / (4 pi), scattered toward the camera by a phase function
+//           of mean cosine g, gives D = a' (U + 3 g F mu)^+ / (4 pi), a' = albedo (1 - g) / s
+//           the scaled medium's albedo. Then
 //             M = max(0,  p(mu, 1) e^(-tau_sun)                            single, exact
 //                       + sum_{a, c} w_ac p(mu, c) (e^(-a x) - e^(-tau_sun))^+  forward peak
 //                       + D max(C(u), 0) )                                     diffusion
@@ -47,7 +48,7 @@
 //           radiance, and the errors are measured with them.
 // Inputs:   optical depths >= 0 (negative values count as 0, values above 1e6 as 1e6: past
 //           that nothing changes in float); mu in [-1, 1] (clamped); g clamped to
-//           [-0.999, 0.999] like phase_hg. tau_behind = 0 and tau_view = 0 are valid (the
+//           [-0.999, 0.999] like phase_hg; albedo clamped to [0, 1]. tau_behind = 0 and tau_view = 0 are valid (the
 //           back and the front surface of a cloud). Every result is finite and >= 0.
 // Returns:  the sun term M (1/sr), like multiple_scattering(): radiance = integral of
 //           T_view sigma_s F0 M ds.
