@@ -42,8 +42,12 @@ public:
     float altitude(glm::vec3 p) const;
     // Density in [0, 1] at p whose altitude is alt (0 outside the layer); the extinction is
     // scene().extinction times it.
-    float density(glm::vec3 p, float alt) const;
+    float density(glm::vec3 p, float alt) const { return density(p, alt, nullptr); }
     float density(glm::vec3 p) const { return density(p, altitude(p)); }
+    // The same, adding to *texture_reads the texture() calls the shader makes for it: none
+    // outside the layer, the weather map and the base volume inside it, and the detail
+    // volume where the base cloud survives coverage (cr_density's early exits).
+    float density(glm::vec3 p, float alt, long* texture_reads) const;
 
     const scene& scene_data() const { return s_; }
     const linear_texture& base() const { return base_; }

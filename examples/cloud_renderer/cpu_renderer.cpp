@@ -12,6 +12,7 @@
 #include <atomic>
 #include <cmath>
 #include <thread>
+#include <vector>
 
 namespace cloud_renderer {
 namespace {
@@ -34,10 +35,15 @@ struct pixel_program {
         : s(sc), v(va), k(make_frame_constants(sc)), field(sc, t), mie(cm::mie_approx_params(k.droplet_diameter)),
           phase_g_mean(phase_mean_cosine(k, va.phase)) {}
 
-    float altitude(vec3 p) const { return field.altitude(p); }
-    float density(vec3 p, float alt) const { return field.density(p, alt); }
+    // Texture reads of one pixel (count_texture_reads); null when not counting.
+    struct reads {
+        long view = 0, light = 0;
+    };
 
-    float cone_extinction(vec3 p) const { return s.extinction * density(p, altitude(p)); }
+    float altitude(vec3 p) const { return field.altitude(p); }
+    float density(vec3 p, float alt, long* counter = nullptr) const { return field.density(p, alt, counter); }
+
+    float cone_extinction(vec3 p, long* counter = nullptr) const { return s.extinction * density(p, altitude(p), counter); }
 
     float phase(float mu, float scale) const {
         switch (v.phase) {
@@ -54,18 +60,18 @@ struct pixel_program {
 
     // Optical depth from p along the unit vector `toward` (the sun, or away from it for the
     // diffusion model's tau_behind) to where the layer ends, by the variant's cone or march.
-    float light_optical_depth(vec3 p, float alt, vec3 toward) const {
+    float light_optical_depth(vec3 p, float alt, vec3 toward, long* counter = nullptr) const {
         if (v.light == light_mode::cone) {
             const cm::cone_light_config<float> cone{v.cone_samples, k.cone_step, k.cone_spread, k.cone_far_distance,
                                                     k.cone_far_length};
-            return cm::cone_optical_depth(p, toward, cone, [this](const vec3& q) { return cone_extinction(q); });
+            return cm::cone_optical_depth(p, toward, cone, [this, counter](const vec3& q) { return cone_extinction(q, counter); });
         }
         const vec3 up = glm::normalize(vec3(p.x, p.y + (s.planet_radius + s.camera_altitude), p.z));
         const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up), s.planet_radius, s.layer_bottom, s.layer_top);
         const float length_to_exit = seg.y > seg.x ? std::min(seg.y, k.light_march_max) : 0.0f;
         const float ds = length_to_exit / float(v.light_steps);
         float tau = 0.0f;
-        for (int i = 0; i < v.light_steps; ++i) tau += cone_extinction(p + toward * ((float(i) + 0.5f) * ds)) * ds;
+        for (int i = 0; i < v.light_steps; ++i) tau += cone_extinction(p + toward * ((float(i) + 0.5f) * ds), counter) * ds;
         return tau;
     }
 
@@ -87,7 +93,9 @@ struct pixel_program {
 
     // main() of the shader for the pixel whose centre is (x + 0.5, y + 0.5), before the
     // tonemap: rgb linear radiance, a opacity.
-    vec4 shade_linear(int x, int y, int width, int height) const {
+    vec4 shade_linear(int x, int y, int width, int height, reads* counted = nullptr) const {
+        long* view_reads = counted ? &counted->view : nullptr;
+        long* light_reads = counted ? &counted->light : nullptr;
         const vec2 ndc = vec2(float(x) + 0.5f, float(y) + 0.5f) / vec2(float(width), float(height)) * 2.0f - 1.0f;
         const float aspect = float(width) / float(height);
         const vec3 dir = glm::normalize(k.forward + k.right * (ndc.x * aspect * k.tan_half_fov) + k.up * (ndc.y * k.tan_half_fov));
@@ -103,12 +111,13 @@ struct pixel_program {
             for (int i = 0; i < v.view_steps; ++i) {
                 const float t = seg.x + (float(i) + offset) * ds;
                 const float alt = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, t);
-                const float d = density(dir * t, alt);
+                const float d = density(dir * t, alt, view_reads);
                 if (d <= 0.0f) continue;
                 const float sigma_t = s.extinction * d;
-                const float tau_light = light_optical_depth(dir * t, alt, k.sun_dir);
-                const float tau_behind =
-                    v.lighting == lighting_model::diffusion ? light_optical_depth(dir * t, alt, -k.sun_dir) : 0.0f;
+                const float tau_light = light_optical_depth(dir * t, alt, k.sun_dir, light_reads);
+                const float tau_behind = v.lighting == lighting_model::diffusion
+                                             ? light_optical_depth(dir * t, alt, -k.sun_dir, light_reads)
+                                             : 0.0f;
                 const float h = cm::height_fraction(alt, s.layer_bottom, s.layer_top);
                 const vec3 S = (s.albedo * sigma_t) * in_scattering(tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu, h);
                 tau_view += sigma_t * ds;
@@ -158,6 +167,39 @@ image render_rows(int width, int height, unsigned threads, const Shade& shade) {
 image render_cpu(const scene& s, const variant& v, const cloud_textures& textures, int width, int height, unsigned threads) {
     const pixel_program program(s, v, textures);
     return render_rows(width, height, threads, [&](int x, int y) { return program.shade(x, y, width, height); });
+}
+
+texture_read_stats count_texture_reads(const scene& s, const variant& v, const cloud_textures& textures, int width,
+                                       int height, unsigned threads) {
+    const pixel_program program(s, v, textures);
+    const frame_constants k = make_frame_constants(s);
+    std::vector<pixel_program::reads> counts(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+    std::vector<char> in_layer(counts.size(), 0);
+    (void)render_rows(width, height, threads, [&](int x, int y) {
+        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+        const vec2 ndc = vec2(float(x) + 0.5f, float(y) + 0.5f) / vec2(float(width), float(height)) * 2.0f - 1.0f;
+        const float aspect = float(width) / float(height);
+        const vec3 dir = glm::normalize(k.forward + k.right * (ndc.x * aspect * k.tan_half_fov) + k.up * (ndc.y * k.tan_half_fov));
+        const vec2 seg = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, s.layer_bottom, s.layer_top);
+        in_layer[i] = seg.y > seg.x;
+        return program.shade_linear(x, y, width, height, &counts[i]);
+    });
+    texture_read_stats st;
+    std::vector<double> totals;
+    double view = 0.0, light = 0.0;
+    for (std::size_t i = 0; i < counts.size(); ++i) {
+        if (!in_layer[i]) continue;
+        totals.push_back(double(counts[i].view + counts[i].light));
+        view += double(counts[i].view);
+        light += double(counts[i].light);
+    }
+    st.pixels_in_layer = static_cast<int>(totals.size());
+    if (totals.empty()) return st;
+    std::sort(totals.begin(), totals.end());
+    st.mean = (view + light) / double(totals.size());
+    st.p95 = totals[std::min(totals.size() - 1, static_cast<std::size_t>(0.95 * double(totals.size())))];
+    st.light_share = view + light > 0.0 ? light / (view + light) : 0.0;
+    return st;
 }
 
 image render_cpu_linear(const scene& s, const variant& v, const cloud_textures& textures, int width, int height,

@@ -82,6 +82,32 @@ TEST_CASE("the variants agree with the CPU too, and compile-time equals run-time
     }
 }
 
+TEST_CASE("texture reads: bounded by the march, the same view reads for both lighting models") {
+    const scene& s = *find_preset("ground");
+    variant octaves, diffusion;
+    REQUIRE(apply_variant_spec("steps=8,jitter=off", octaves).empty());
+    REQUIRE(apply_variant_spec("steps=8,jitter=off,lighting=diffusion", diffusion).empty());
+    const texture_read_stats a = count_texture_reads(s, octaves, shared().textures, 64, 36);
+    const texture_read_stats b = count_texture_reads(s, diffusion, shared().textures, 64, 36);
+    REQUIRE(a.pixels_in_layer > 0);
+    CHECK(a.pixels_in_layer == b.pixels_in_layer);
+    // At most 3 reads per density (weather, base, detail): 8 view samples, each with 6 cone
+    // samples toward the sun (and 6 away from it for the diffusion model).
+    CHECK(a.p95 <= 8.0 * (3.0 + 6.0 * 3.0));
+    CHECK(b.p95 <= 8.0 * (3.0 + 12.0 * 3.0));
+    CHECK(a.mean > 0.0);
+    CHECK(a.light_share > 0.0);
+    CHECK(b.light_share > a.light_share);
+    // The view march is the same for both (its early exit depends on extinction only).
+    CHECK(a.mean * (1.0 - a.light_share) == doctest::Approx(b.mean * (1.0 - b.light_share)).epsilon(1e-9));
+    // Looking straight down from the ground: no ray enters the layer, nothing is read.
+    scene down = s;
+    down.pitch = -89.0f;
+    const texture_read_stats none = count_texture_reads(down, octaves, shared().textures, 16, 9);
+    CHECK(none.pixels_in_layer == 0);
+    CHECK(none.mean == 0.0);
+}
+
 TEST_CASE("no NaN inside the layer, at its boundaries and at tangent rays") {
     // Cameras exactly on the bottom and top spheres looking level put the middle rows of
     // the image on rays tangent to them; inside the layer, rays start in the cloud.
