@@ -11,10 +11,11 @@
 #                                  (cloudmath_lighting_error report; about 2 minutes)
 #   docs/data/lighting_train_g{0.8,0.93}.csv  the reference's rays at two more phase
 #                                  functions, fitted on with it (about 15 minutes)
-#   docs/data/lighting_holdout_g{0.75,0.85,0.9}.csv, lighting_holdout_g0.85_albedo0.99.csv
-#                                  the held-out split (other thicknesses, angles and views;
-#                                  three phase functions; albedo 0.99), never fitted on
-#                                  (cloudmath_lighting_error reference --holdout; 12 minutes)
+#   docs/data/lighting_holdout_g{0.75,0.85,0.9}.csv, lighting_holdout_g0.85_albedo0.99.csv,
+#   lighting_holdout_renderer_phase.csv  the held-out split (other thicknesses, angles and
+#                                  views; three HG phase functions; albedo 0.99; the example
+#                                  renderer's dual-lobe phase and albedo), never fitted on
+#                                  (cloudmath_lighting_error reference --holdout; 13 minutes)
 #   include/cloudmath/diffusion_lighting_models.hpp, glsl/diffusion_lighting_models.glsl and
 #   docs/data/diffusion_fit.txt    the diffusion model fitted on the three training sets and
 #                                  measured on all six (cloudmath_lighting_error fit-diffusion;
@@ -74,6 +75,8 @@ if [[ $reports_only == 0 ]]; then
     done
     "$bin/cloudmath_lighting_error" reference --holdout --phase hg:0.85 --albedo 0.99 \
         --out docs/data/lighting_holdout_g0.85_albedo0.99.csv
+    "$bin/cloudmath_lighting_error" reference --holdout --phase dual_hg:0.8,-0.25,0.2 --albedo 0.99 \
+        --out docs/data/lighting_holdout_renderer_phase.csv
 fi
 "$bin/cloudmath_lighting_error" fit-diffusion \
     --header include/cloudmath/diffusion_lighting_models.hpp \

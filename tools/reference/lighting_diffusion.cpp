@@ -43,6 +43,17 @@ double phase_spec_mean_cosine(const std::string& spec) {
                                 "': the diffusion model needs isotropic, hg:G or dual_hg");
 }
 
+double scaled_phase(const std::string& spec, double mu, double scale) {
+    if (spec == "isotropic") return cloudmath::phase_isotropic<double>();
+    std::vector<double> v;
+    std::stringstream ss(spec.substr(spec.find(':') + 1));
+    for (std::string cell; std::getline(ss, cell, ',');) v.push_back(std::strtod(cell.c_str(), nullptr));
+    if (spec.rfind("hg:", 0) == 0 && v.size() == 1) return cloudmath::phase_hg(mu, scale * v[0]);
+    if (spec.rfind("dual_hg:", 0) == 0 && v.size() == 3)
+        return cloudmath::phase_hg_dual(mu, scale * v[0], scale * v[1], v[2]);
+    throw std::invalid_argument("phase spec '" + spec + "': the diffusion model needs isotropic, hg:G or dual_hg");
+}
+
 std::vector<double> diffusion_features(double tau_sun, double tau_behind, double tau_view,
                                        double mu, double g, double albedo, double& single) {
     // The steps of cloudmath::diffusion_scattering_with, term by term.
@@ -84,7 +95,7 @@ std::vector<double> diffusion_features(double tau_sun, double tau_behind, double
 }
 
 diffusion_evaluator::diffusion_evaluator(const reference_set& set, double panel)
-    : g_(phase_spec_mean_cosine(set.phase_spec)), albedo_(set.albedo) {
+    : phase_spec_(set.phase_spec), g_(phase_spec_mean_cosine(set.phase_spec)), albedo_(set.albedo) {
     begin_.push_back(0);
     for (const reference_row& r : set.rows) {
         const ray_quadrature q = row_quadrature(r, set.albedo, panel);
@@ -102,9 +113,9 @@ std::vector<double> diffusion_evaluator::radiance(const diffusion_model& m) cons
     for (std::size_t row = 0; row < mu_.size(); ++row) {
         // The phase functions depend on the row only: evaluate them once per row.
         const double mu = mu_[row];
-        const double p1 = cloudmath::phase_hg(mu, g_);
-        const double pc[L::peak_c_count] = {cloudmath::phase_hg(mu, L::peak_c[0] * g_),
-                                            cloudmath::phase_hg(mu, L::peak_c[1] * g_)};
+        const double p1 = scaled_phase(phase_spec_, mu, 1.0);
+        const double pc[L::peak_c_count] = {scaled_phase(phase_spec_, mu, L::peak_c[0]),
+                                            scaled_phase(phase_spec_, mu, L::peak_c[1])};
         auto phase = [&](double, double scale) {
             return scale == 1.0 ? p1 : (scale == L::peak_c[0] ? pc[0] : pc[1]);
         };
@@ -333,7 +344,8 @@ std::vector<std::string> diffusion_training_paths(const std::string& dir) {
 
 std::vector<std::string> diffusion_holdout_paths(const std::string& dir) {
     return {dir + "/lighting_holdout_g0.75.csv", dir + "/lighting_holdout_g0.85.csv",
-            dir + "/lighting_holdout_g0.9.csv", dir + "/lighting_holdout_g0.85_albedo0.99.csv"};
+            dir + "/lighting_holdout_g0.9.csv", dir + "/lighting_holdout_g0.85_albedo0.99.csv",
+            dir + "/lighting_holdout_renderer_phase.csv"};
 }
 
 diffusion_run run_diffusion_fit(const std::vector<std::string>& train_paths,

@@ -41,8 +41,15 @@ inline constexpr std::size_t diffusion_unknowns =
                                                      double tau_view, double mu, double g,
                                                      double albedo, double& single);
 
-// Evaluates models on every row of a set (HG phase with the set's g), the quadratures
-// computed once; radiance() calls cloudmath::diffusion_scattering at every node.
+// The phase function of a set's spec with its eccentricities scaled by `scale`, as the
+// model's phase(mu, scale) callback: HG(mu, scale G) for "hg:G", the dual lobe
+// (1 - W) HG(scale G0) + W HG(scale G1) for "dual_hg:G0,G1,W", isotropic. Throws
+// std::invalid_argument for other specs.
+[[nodiscard]] double scaled_phase(const std::string& spec, double mu, double scale);
+
+// Evaluates models on every row of a set (its phase function, g its mean cosine), the
+// quadratures computed once; radiance() calls cloudmath::diffusion_scattering_with at every
+// node.
 class diffusion_evaluator {
 public:
     explicit diffusion_evaluator(const reference_set& set, double panel = 0.25);
@@ -52,6 +59,7 @@ public:
     [[nodiscard]] std::vector<std::vector<double>> row_features(std::vector<double>& single) const;
 
 private:
+    std::string phase_spec_;
     double g_ = 0.0, albedo_ = 1.0;
     std::vector<std::size_t> begin_;
     std::vector<double> mu_;
@@ -85,7 +93,8 @@ struct diffusion_fit_result {
 // The data of the shipped fit, in directory `data_dir` (docs/data): the training sets (the
 // report's reference, g = 0.85, then g = 0.8 and 0.93 over the same geometry) and the
 // held-out split (holdout_reference_options() at g = 0.75, 0.85 and 0.9, and at g = 0.85
-// with albedo 0.99: the model's absorption, never fitted, since every fitted set has albedo 1).
+// with albedo 0.99: the model's absorption, never fitted, since every fitted set has albedo 1;
+// and the example renderer's medium, dual-lobe HG 0.8 / -0.25 / 0.2 with albedo 0.99).
 [[nodiscard]] std::vector<std::string> diffusion_training_paths(const std::string& data_dir);
 [[nodiscard]] std::vector<std::string> diffusion_holdout_paths(const std::string& data_dir);
 
