@@ -67,7 +67,8 @@ const char* const usage_text =
     "           without any: default=, march=light=march,light-steps=64,\n"
     "           single=octaves=1,powder=off, mie=phase=mie.\n"
     "           Reads DATA/truth_NAME.csv, writes DOCS/lighting_truth.md and\n"
-    "           DOCS/images/truth_NAME.png (truth | first variant | difference).\n"
+    "           DOCS/images/truth_NAME.png (truth | first variant | difference) and\n"
+    "           truth_NAME_VARIANT.png for the other variants.\n"
     "  --cache: the renderer's texture cache (default $XDG_CACHE_HOME/cloudmath or\n"
     "           ~/.cache/cloudmath; 'none' bakes without a cache). --threads 0: all cores.\n";
 
@@ -411,7 +412,8 @@ int run_report(int argc, char** argv) {
           "  block with the largest rms (still over the whole image's mean), with its bias;\n"
           "- **noise floor**: the truth's own noise, the rms of its per-pixel standard errors over\n"
           "  its mean: an rms error near it is noise, not model error.\n\n"
-          "Images (docs/images/truth_PRESET.png): truth | model (the first variant) | difference\n"
+          "Images (docs/images/truth_PRESET.png for the first variant, truth_PRESET_VARIANT.png for\n"
+          "the others): truth | model | difference\n"
           "of the display images, 0.5 + 2 (model - truth) per channel (mid-grey: no difference,\n"
           "brighter: the model is too bright).\n\n";
     md << "Variants (the renderer's `--variant` notation over the defaults):\n\n";
@@ -430,7 +432,7 @@ int run_report(int argc, char** argv) {
            << meta("phase") << "`, seed " << meta("seed") << ", " << meta("seconds") << " s on " << meta("threads")
            << " threads.";
         bool first = true;
-        std::ostringstream table;
+        std::ostringstream table, others;
         table << "| variant | rms | bias | PSNR (dB) | worst block | its rms | its bias |\n|---|---|---|---|---|---|---|\n";
         image_errors last{};
         for (const auto& [vname, v] : variants) {
@@ -440,15 +442,19 @@ int run_report(int argc, char** argv) {
             table << "| " << vname << " | " << percent(e.rms) << " | " << signed_percent(e.bias) << " | "
                   << fixed(e.psnr_db, 1) << " | (" << e.worst_col << ", " << e.worst_row << ") | " << percent(e.worst_rms)
                   << " | " << signed_percent(e.worst_bias) << " |\n";
+            // truth | model | difference for every variant: the first inline, the others linked.
+            const std::string png = "truth_" + names[p] + (first ? std::string() : "_" + vname) + ".png";
+            write_side_by_side(docs + "/images/" + png, t, model, s.exposure);
             if (first) {
-                const std::string png = "truth_" + names[p] + ".png";
-                write_side_by_side(docs + "/images/" + png, t, model, s.exposure);
                 md << "\n\n![truth | " << vname << " | difference](images/" << png << ")\n\n";
                 first = false;
+            } else {
+                others << (others.tellp() > 0 ? ", " : "") << "[" << vname << "](images/" << png << ")";
             }
             last = e;
         }
         md << table.str();
+        if (others.tellp() > 0) md << "\nTruth | model | difference for the other variants: " << others.str() << ".\n";
         md << "\nTruth mean radiance " << fixed(last.truth_mean, 4) << ", noise floor " << percent(last.noise_floor) << ".\n\n";
     }
     cloudmath::reference::write_text_file_atomically(docs + "/lighting_truth.md", md.str());
