@@ -199,26 +199,77 @@ template <class T>
             d / (d + t)};
 }
 
+namespace detail {
+
+// Calls f(index, weight) for the 16 table entries around coordinates u with their
+// multilinear weights (the table C at u is the sum of weight * table[index]).
+template <class T, class F>
+inline void diffusion_table_corners(const diffusion_coordinates<T>& u, F&& f) noexcept {
+    namespace L = diffusion_layout;
+    int ix, iy, im, id;
+    T wx, wy, wm, wd;
+    diffusion_hat(u.u_sun, L::size_x, ix, wx);
+    diffusion_hat(u.u_behind, L::size_y, iy, wy);
+    diffusion_hat(u.u_mu, L::size_mu, im, wm);
+    diffusion_hat(u.u_surface, L::size_d, id, wd);
+    for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b)
+            for (int c = 0; c < 2; ++c)
+                for (int e = 0; e < 2; ++e)
+                    f(L::table_index(ix + a, iy + b, im + c, id + e),
+                      (a ? wx : T(1) - wx) * (b ? wy : T(1) - wy) * (c ? wm : T(1) - wm) *
+                          (e ? wd : T(1) - wd));
+}
+
+// What the model combines with its fitted numbers at one sample (header comment): the
+// clamped mu, e^(-tau_sun), the forward-peak beams (e^(-a x) - e^(-tau_sun))^+ for the
+// a of diffusion_layout, the diffusion term D and the table coordinates. The fitting tool
+// (tools/reference/lighting_diffusion) builds its features from the same terms.
+template <class T>
+struct diffusion_sample {
+    T mu;
+    T direct;
+    T beams[diffusion_layout::peak_a_count];
+    T diffuse;
+    diffusion_coordinates<T> u;
+};
+template <class T>
+inline diffusion_sample<T> diffusion_sample_terms(T tau_sun, T tau_behind, T tau_view, T mu, T g,
+                                                  T albedo) noexcept {
+    diffusion_sample<T> r;
+    r.mu = clamp(mu, T(-1), T(1));
+    const T gc = clamp(g, T(-0.999), T(0.999));
+    const T w = clamp(albedo, T(0), T(1));
+    const diffusion_medium<T> medium = diffusion_similarity(gc, w);
+    const T ts = diffusion_depth(tau_sun);
+    const T x = medium.s * ts;
+    const T y = medium.s * diffusion_depth(tau_behind);
+
+    r.direct = std::exp(-ts);
+    // e^(-a x) for a = 1/2, 1, 2 from one exponential.
+    const T e_half = std::exp(T(-0.5) * x);
+    const T e_one = e_half * e_half;
+    const T beams[diffusion_layout::peak_a_count] = {e_half, e_one, e_one * e_one};
+    for (int ia = 0; ia < diffusion_layout::peak_a_count; ++ia)
+        r.beams[ia] = max(beams[ia] - r.direct, T(0));
+
+    // The scaled medium's albedo w (1 - g) / (1 - w g) scales the first-collision source.
+    const T source = w * (T(1) - gc) / medium.s;
+    T flux = T(0);
+    const T U = diffusion_chord_fluence(x, y, e_one, medium.kappa, flux);
+    r.diffuse = source * max(U + T(3) * gc * flux * r.mu, T(0)) * inv_four_pi_v<T>;
+    r.u = diffusion_table_coordinates(ts, tau_behind, tau_view, r.mu, gc, w);
+    return r;
+}
+
+}  // namespace detail
+
 // The table C at coordinates u (multilinear interpolation).
 template <class T>
 [[nodiscard]] inline T diffusion_table_lookup(const diffusion_model& m,
                                               const diffusion_coordinates<T>& u) noexcept {
-    namespace L = diffusion_layout;
-    int ix, iy, im, id;
-    T wx, wy, wm, wd;
-    detail::diffusion_hat(u.u_sun, L::size_x, ix, wx);
-    detail::diffusion_hat(u.u_behind, L::size_y, iy, wy);
-    detail::diffusion_hat(u.u_mu, L::size_mu, im, wm);
-    detail::diffusion_hat(u.u_surface, L::size_d, id, wd);
     T sum = T(0);
-    for (int a = 0; a < 2; ++a)
-        for (int b = 0; b < 2; ++b)
-            for (int c = 0; c < 2; ++c)
-                for (int e = 0; e < 2; ++e) {
-                    const T w = (a ? wx : T(1) - wx) * (b ? wy : T(1) - wy) *
-                                (c ? wm : T(1) - wm) * (e ? wd : T(1) - wd);
-                    sum += w * T(m.table[L::table_index(ix + a, iy + b, im + c, id + e)]);
-                }
+    detail::diffusion_table_corners(u, [&](int index, T weight) { sum += weight * T(m.table[index]); });
     return sum;
 }
 
@@ -231,35 +282,17 @@ template <class T, class PhaseFn>
                                                  T g, T albedo, const diffusion_model& m,
                                                  PhaseFn&& phase) noexcept {
     namespace L = diffusion_layout;
-    const T mc = detail::clamp(mu, T(-1), T(1));
-    const T gc = detail::clamp(g, T(-0.999), T(0.999));
-    const T w = detail::clamp(albedo, T(0), T(1));
-    const diffusion_medium<T> medium = diffusion_similarity(gc, w);
-    const T ts = detail::diffusion_depth(tau_sun);
-    const T x = medium.s * ts;
-    const T y = medium.s * detail::diffusion_depth(tau_behind);
-
-    const T direct = std::exp(-ts);
-    // e^(-a x) for a = 1/2, 1, 2 from one exponential.
-    const T e_half = std::exp(T(-0.5) * x);
-    const T e_one = e_half * e_half;
-    const T beams[L::peak_a_count] = {e_half, e_one, e_one * e_one};
+    const detail::diffusion_sample<T> t =
+        detail::diffusion_sample_terms(tau_sun, tau_behind, tau_view, mu, g, albedo);
     T peak = T(0);
     for (int ic = 0; ic < L::peak_c_count; ++ic) {
         T weight = T(0);
         for (int ia = 0; ia < L::peak_a_count; ++ia)
-            weight += T(m.peak[ia * L::peak_c_count + ic]) * detail::max(beams[ia] - direct, T(0));
-        peak += weight * phase(mc, T(L::peak_c[ic]));
+            weight += T(m.peak[ia * L::peak_c_count + ic]) * t.beams[ia];
+        peak += weight * phase(t.mu, T(L::peak_c[ic]));
     }
-
-    // The scaled medium's albedo w (1 - g) / (1 - w g) scales the first-collision source.
-    const T source = w * (T(1) - gc) / medium.s;
-    T flux = T(0);
-    const T U = diffusion_chord_fluence(x, y, e_one, medium.kappa, flux);
-    const T D = source * detail::max(U + T(3) * gc * flux * mc, T(0)) * inv_four_pi_v<T>;
-    const T C = diffusion_table_lookup(m, diffusion_table_coordinates(ts, tau_behind, tau_view,
-                                                                      mc, gc, w));
-    return detail::max(phase(mc, T(1)) * direct + peak + D * detail::max(C, T(0)), T(0));
+    const T C = diffusion_table_lookup(m, t.u);
+    return detail::max(phase(t.mu, T(1)) * t.direct + peak + t.diffuse * detail::max(C, T(0)), T(0));
 }
 
 // With the Henyey-Greenstein phase function of asymmetry g.

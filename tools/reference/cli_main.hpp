@@ -8,9 +8,20 @@
 #include <functional>
 #include <iostream>
 #include <stdexcept>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace cloudmath::reference {
+
+// The items of a comma-separated list on a command line ("a.csv,b.csv"), empty ones dropped.
+inline std::vector<std::string> split_list(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');)
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
 
 // A bad command line (the message gets " (see --help)").
 struct usage_error : std::runtime_error {

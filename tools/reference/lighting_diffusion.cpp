@@ -17,7 +17,7 @@ namespace cloudmath::reference::lighting {
 
 namespace L = cloudmath::diffusion_layout;
 
-double phase_spec_mean_cosine(const std::string& spec) {
+hg_mixture parse_hg_mixture(const std::string& spec) {
     auto numbers = [&](const std::string& list) {
         std::vector<double> out;
         std::stringstream ss(list);
@@ -30,72 +30,46 @@ double phase_spec_mean_cosine(const std::string& spec) {
         }
         return out;
     };
-    if (spec == "isotropic") return 0.0;
+    if (spec == "isotropic") return {};
     if (spec.rfind("hg:", 0) == 0) {
         const std::vector<double> v = numbers(spec.substr(3));
-        if (v.size() == 1) return v[0];
+        if (v.size() == 1) return {v[0], 0.0, 0.0};
     }
     if (spec.rfind("dual_hg:", 0) == 0) {
         const std::vector<double> v = numbers(spec.substr(8));
-        if (v.size() == 3) return (1.0 - v[2]) * v[0] + v[2] * v[1];
+        if (v.size() == 3) return {v[0], v[1], v[2]};
     }
     throw std::invalid_argument("phase spec '" + spec +
                                 "': the diffusion model needs isotropic, hg:G or dual_hg");
 }
 
-double scaled_phase(const std::string& spec, double mu, double scale) {
-    if (spec == "isotropic") return cloudmath::phase_isotropic<double>();
-    std::vector<double> v;
-    std::stringstream ss(spec.substr(spec.find(':') + 1));
-    for (std::string cell; std::getline(ss, cell, ',');) v.push_back(std::strtod(cell.c_str(), nullptr));
-    if (spec.rfind("hg:", 0) == 0 && v.size() == 1) return cloudmath::phase_hg(mu, scale * v[0]);
-    if (spec.rfind("dual_hg:", 0) == 0 && v.size() == 3)
-        return cloudmath::phase_hg_dual(mu, scale * v[0], scale * v[1], v[2]);
-    throw std::invalid_argument("phase spec '" + spec + "': the diffusion model needs isotropic, hg:G or dual_hg");
+double hg_mixture::mean_cosine() const { return (1.0 - w) * g0 + w * g1; }
+
+double hg_mixture::phase(double mu, double scale) const {
+    return cloudmath::phase_hg_dual(mu, scale * g0, scale * g1, w);
 }
+
+double phase_spec_mean_cosine(const std::string& spec) { return parse_hg_mixture(spec).mean_cosine(); }
 
 std::vector<double> diffusion_features(double tau_sun, double tau_behind, double tau_view,
                                        double mu, double g, double albedo, double& single) {
-    // The steps of cloudmath::diffusion_scattering_with, term by term.
-    const double mc = std::clamp(mu, -1.0, 1.0);
-    const double gc = std::clamp(g, -0.999, 0.999);
-    const double w = std::clamp(albedo, 0.0, 1.0);
-    const cloudmath::diffusion_medium<double> medium = cloudmath::diffusion_similarity(gc, w);
-    const double ts = std::clamp(tau_sun, 0.0, 1e6);
-    const double x = medium.s * ts;
-    const double y = medium.s * std::clamp(tau_behind, 0.0, 1e6);
-    const double direct = std::exp(-ts);
-    const double e_half = std::exp(-0.5 * x), e_one = e_half * e_half;
-    const double beams[L::peak_a_count] = {e_half, e_one, e_one * e_one};
+    // The terms of cloudmath::diffusion_scattering_with, one feature per fitted number.
+    const cloudmath::detail::diffusion_sample<double> t =
+        cloudmath::detail::diffusion_sample_terms(tau_sun, tau_behind, tau_view, mu, g, albedo);
     std::vector<double> f(diffusion_unknowns, 0.0);
     for (int ia = 0; ia < L::peak_a_count; ++ia)
         for (int ic = 0; ic < L::peak_c_count; ++ic)
             f[static_cast<std::size_t>(L::table_size + ia * L::peak_c_count + ic)] =
-                cloudmath::phase_hg(mc, L::peak_c[ic] * g) * std::max(beams[ia] - direct, 0.0);
-    double flux = 0.0;
-    const double U = cloudmath::diffusion_chord_fluence(x, y, e_one, medium.kappa, flux);
-    const double D = w * (1.0 - gc) / medium.s * std::max(U + 3.0 * gc * flux * mc, 0.0) *
-                     cloudmath::inv_four_pi_v<double>;
-    const auto u = cloudmath::diffusion_table_coordinates(ts, tau_behind, tau_view, mc, gc, w);
-    int ix, iy, im, id;
-    double wx, wy, wm, wd;
-    cloudmath::detail::diffusion_hat(u.u_sun, L::size_x, ix, wx);
-    cloudmath::detail::diffusion_hat(u.u_behind, L::size_y, iy, wy);
-    cloudmath::detail::diffusion_hat(u.u_mu, L::size_mu, im, wm);
-    cloudmath::detail::diffusion_hat(u.u_surface, L::size_d, id, wd);
-    for (int a = 0; a < 2; ++a)
-        for (int b = 0; b < 2; ++b)
-            for (int c = 0; c < 2; ++c)
-                for (int e = 0; e < 2; ++e)
-                    f[static_cast<std::size_t>(L::table_index(ix + a, iy + b, im + c, id + e))] +=
-                        D * (a ? wx : 1 - wx) * (b ? wy : 1 - wy) * (c ? wm : 1 - wm) *
-                        (e ? wd : 1 - wd);
-    single = cloudmath::phase_hg(mc, g) * direct;
+                cloudmath::phase_hg(t.mu, L::peak_c[ic] * g) * t.beams[ia];
+    cloudmath::detail::diffusion_table_corners(t.u, [&](int index, double weight) {
+        f[static_cast<std::size_t>(index)] += t.diffuse * weight;
+    });
+    single = cloudmath::phase_hg(t.mu, g) * t.direct;
     return f;
 }
 
 diffusion_evaluator::diffusion_evaluator(const reference_set& set, double panel)
-    : phase_spec_(set.phase_spec), g_(phase_spec_mean_cosine(set.phase_spec)), albedo_(set.albedo) {
+    : phase_(parse_hg_mixture(set.phase_spec)), g_(phase_.mean_cosine()), albedo_(set.albedo) {
     begin_.push_back(0);
     for (const reference_row& r : set.rows) {
         const ray_quadrature q = row_quadrature(r, set.albedo, panel);
@@ -113,9 +87,8 @@ std::vector<double> diffusion_evaluator::radiance(const diffusion_model& m) cons
     for (std::size_t row = 0; row < mu_.size(); ++row) {
         // The phase functions depend on the row only: evaluate them once per row.
         const double mu = mu_[row];
-        const double p1 = scaled_phase(phase_spec_, mu, 1.0);
-        const double pc[L::peak_c_count] = {scaled_phase(phase_spec_, mu, L::peak_c[0]),
-                                            scaled_phase(phase_spec_, mu, L::peak_c[1])};
+        const double p1 = phase_.phase(mu, 1.0);
+        const double pc[L::peak_c_count] = {phase_.phase(mu, L::peak_c[0]), phase_.phase(mu, L::peak_c[1])};
         auto phase = [&](double, double scale) {
             return scale == 1.0 ? p1 : (scale == L::peak_c[0] ? pc[0] : pc[1]);
         };
@@ -186,45 +159,45 @@ std::string upper(std::string s) {
 
 }  // namespace
 
-diffusion_fit_result fit_diffusion_model(const std::vector<reference_set>& sets,
+diffusion_fit_rows prepare_diffusion_fit(const reference_set& set, double panel) {
+    const diffusion_evaluator ev(set, panel);
+    std::vector<double> single;
+    const std::vector<std::vector<double>> F = ev.row_features(single);
+    const std::vector<double> mean = image_means(set);
+    // measure()'s weights: each geometry class (sphere, slab) counts half.
+    std::size_t sphere = 0, slab = 0;
+    for (const reference_row& r : set.rows)
+        if (r.radiance > 0.0) (r.is_sphere() ? sphere : slab) += 1;
+    const double classes = (sphere > 0 ? 1.0 : 0.0) + (slab > 0 ? 1.0 : 0.0);
+    diffusion_fit_rows p;
+    for (std::size_t i = 0; i < set.rows.size(); ++i) {
+        const reference_row& r = set.rows[i];
+        const double w = r.radiance > 0.0
+                             ? 1.0 / (static_cast<double>(r.is_sphere() ? sphere : slab) * classes)
+                             : 0.0;
+        std::vector<double> a(diffusion_unknowns);
+        for (std::size_t j = 0; j < diffusion_unknowns; ++j) a[j] = F[i][j] / mean[i];
+        p.features.push_back(std::move(a));
+        p.target.push_back((r.radiance - single[i]) / mean[i]);
+        p.weight.push_back(w);
+    }
+    return p;
+}
+
+diffusion_fit_result fit_diffusion_model(const std::vector<const diffusion_fit_rows*>& sets,
                                          const diffusion_fit_options& o) {
     if (sets.empty()) throw std::invalid_argument("fit_diffusion_model: no reference set");
     const std::size_t n = diffusion_unknowns;
     std::vector<double> AtA(n * n, 0.0), Atb(n, 0.0);
-    struct prepared {
-        std::vector<std::vector<double>> A;
-        std::vector<double> target, weight;
-    };
-    std::vector<prepared> all;
-    for (const reference_set& set : sets) {
-        const diffusion_evaluator ev(set, o.panel);
-        std::vector<double> single;
-        const std::vector<std::vector<double>> F = ev.row_features(single);
-        const std::vector<double> mean = image_means(set);
-        // measure()'s weights: each geometry class (sphere, slab) counts half.
-        std::size_t sphere = 0, slab = 0;
-        for (const reference_row& r : set.rows)
-            if (r.radiance > 0.0) (r.is_sphere() ? sphere : slab) += 1;
-        const double classes = (sphere > 0 ? 1.0 : 0.0) + (slab > 0 ? 1.0 : 0.0);
-        prepared p;
-        for (std::size_t i = 0; i < set.rows.size(); ++i) {
-            const reference_row& r = set.rows[i];
-            const double w = r.radiance > 0.0
-                                 ? 1.0 / (static_cast<double>(r.is_sphere() ? sphere : slab) * classes)
-                                 : 0.0;
-            std::vector<double> a(n);
-            for (std::size_t j = 0; j < n; ++j) a[j] = F[i][j] / mean[i];
-            const double t = (r.radiance - single[i]) / mean[i];
+    for (const diffusion_fit_rows* p : sets)
+        for (std::size_t i = 0; i < p->features.size(); ++i) {
+            const std::vector<double>& a = p->features[i];
+            const double w = p->weight[i];
             for (std::size_t j = 0; j < n; ++j) {
-                Atb[j] += w * a[j] * t;
+                Atb[j] += w * a[j] * p->target[i];
                 for (std::size_t k = 0; k < n; ++k) AtA[j * n + k] += w * a[j] * a[k];
             }
-            p.A.push_back(std::move(a));
-            p.target.push_back(t);
-            p.weight.push_back(w);
         }
-        all.push_back(std::move(p));
-    }
     double scale = 0.0;
     for (std::size_t j = 0; j < n; ++j) scale += AtA[j * n + j];
     scale /= static_cast<double>(n);
@@ -257,23 +230,32 @@ diffusion_fit_result fit_diffusion_model(const std::vector<reference_set>& sets,
     diffusion_fit_result r;
     r.coefficients = solve_linear(AtA, Atb);
     double sum = 0.0;
-    for (const prepared& p : all) {
+    for (const diffusion_fit_rows* p : sets) {
         double s2 = 0.0, wsum = 0.0;
-        for (std::size_t i = 0; i < p.A.size(); ++i) {
-            double e = -p.target[i];
-            for (std::size_t j = 0; j < n; ++j) e += p.A[i][j] * r.coefficients[j];
-            s2 += p.weight[i] * e * e;
-            wsum += p.weight[i];
+        for (std::size_t i = 0; i < p->features.size(); ++i) {
+            double e = -p->target[i];
+            for (std::size_t j = 0; j < n; ++j) e += p->features[i][j] * r.coefficients[j];
+            s2 += p->weight[i] * e * e;
+            wsum += p->weight[i];
         }
         sum += wsum > 0.0 ? std::sqrt(s2 / wsum) : 0.0;
     }
-    r.residual = sum / static_cast<double>(all.size());
+    r.residual = sum / static_cast<double>(sets.size());
     r.model.name = "fitted";
     for (std::size_t j = 0; j < static_cast<std::size_t>(L::table_size); ++j)
         r.model.table[j] = static_cast<float>(r.coefficients[j]);
     for (std::size_t j = 0; j < static_cast<std::size_t>(L::peak_size); ++j)
         r.model.peak[j] = static_cast<float>(r.coefficients[static_cast<std::size_t>(L::table_size) + j]);
     return r;
+}
+
+diffusion_fit_result fit_diffusion_model(const std::vector<reference_set>& sets,
+                                         const diffusion_fit_options& o) {
+    std::vector<diffusion_fit_rows> rows;
+    for (const reference_set& set : sets) rows.push_back(prepare_diffusion_fit(set, o.panel));
+    std::vector<const diffusion_fit_rows*> pointers;
+    for (const diffusion_fit_rows& r : rows) pointers.push_back(&r);
+    return fit_diffusion_model(pointers, o);
 }
 
 diffusion_model physical_diffusion_model() {
@@ -307,6 +289,9 @@ std::string diffusion_cross_validation(const std::vector<std::string>& train_pat
     for (const std::string& p : train_paths) sets.push_back(read_reference(p));
     std::vector<diffusion_evaluator> evs;
     for (const reference_set& s : sets) evs.emplace_back(s);
+    // The fit's rows do not depend on the options: build them once for every fold.
+    std::vector<diffusion_fit_rows> rows;
+    for (const reference_set& s : sets) rows.push_back(prepare_diffusion_fit(s, diffusion_fit_options{}.panel));
     std::ostringstream out;
     out << "leave-one-set-out rms (fit on the other sets, measured on the one left out):\n"
         << "smoothing   ridge  ";
@@ -322,9 +307,9 @@ std::string diffusion_cross_validation(const std::vector<std::string>& train_pat
             out << buf;
             double sum = 0.0;
             for (std::size_t k = 0; k < sets.size(); ++k) {
-                std::vector<reference_set> others;
+                std::vector<const diffusion_fit_rows*> others;
                 for (std::size_t j = 0; j < sets.size(); ++j)
-                    if (j != k) others.push_back(sets[j]);
+                    if (j != k) others.push_back(&rows[j]);
                 const diffusion_fit_result fit = fit_diffusion_model(others, o);
                 const double rms = measure(sets[k], evs[k].radiance(fit.model), select_all()).rms;
                 sum += rms;

@@ -26,8 +26,18 @@
 
 namespace cloudmath::reference::lighting {
 
-// The asymmetry g of a reference set's phase spec: "hg:G" gives G, "dual_hg:G0,G1,W" gives
-// (1 - W) G0 + W G1, "isotropic" 0. Throws std::invalid_argument for other specs.
+// A reference set's phase function as a mixture of two HG lobes, (1 - w) HG(g0) + w HG(g1):
+// "hg:G" is (G, 0, 0), "dual_hg:G0,G1,W" is (G0, G1, W), "isotropic" (0, 0, 0).
+struct hg_mixture {
+    double g0 = 0.0, g1 = 0.0, w = 0.0;
+    // Its mean cosine, the model's g: (1 - w) g0 + w g1.
+    [[nodiscard]] double mean_cosine() const;
+    // With its eccentricities scaled by `scale`: the model's phase(mu, scale) callback.
+    [[nodiscard]] double phase(double mu, double scale) const;
+};
+// Throws std::invalid_argument naming the spec for any other spec or a malformed number.
+[[nodiscard]] hg_mixture parse_hg_mixture(const std::string& spec);
+// parse_hg_mixture(spec).mean_cosine().
 [[nodiscard]] double phase_spec_mean_cosine(const std::string& spec);
 
 // Number of fitted numbers: the table, then the peak weights.
@@ -41,12 +51,6 @@ inline constexpr std::size_t diffusion_unknowns =
                                                      double tau_view, double mu, double g,
                                                      double albedo, double& single);
 
-// The phase function of a set's spec with its eccentricities scaled by `scale`, as the
-// model's phase(mu, scale) callback: HG(mu, scale G) for "hg:G", the dual lobe
-// (1 - W) HG(scale G0) + W HG(scale G1) for "dual_hg:G0,G1,W", isotropic. Throws
-// std::invalid_argument for other specs.
-[[nodiscard]] double scaled_phase(const std::string& spec, double mu, double scale);
-
 // Evaluates models on every row of a set (its phase function, g its mean cosine), the
 // quadratures computed once; radiance() calls cloudmath::diffusion_scattering_with at every
 // node.
@@ -59,7 +63,7 @@ public:
     [[nodiscard]] std::vector<std::vector<double>> row_features(std::vector<double>& single) const;
 
 private:
-    std::string phase_spec_;
+    hg_mixture phase_;
     double g_ = 0.0, albedo_ = 1.0;
     std::vector<std::size_t> begin_;
     std::vector<double> mu_;
@@ -82,8 +86,21 @@ struct diffusion_fit_result {
     double residual = 0.0;  // mean over the sets of the rms of the linear model
 };
 
-// Least squares over all rows of the sets (each set's rms counts equally, within a set
-// the sphere and the slab halves as in measure()). Throws std::invalid_argument for no set.
+// The least-squares rows of one set: per reference row, the features and the target (the
+// reference minus the single scattering) over the image mean, and the row's weight (within
+// a set the sphere and the slab halves as in measure()). They do not depend on the fit's
+// options, so cross-validation builds them once.
+struct diffusion_fit_rows {
+    std::vector<std::vector<double>> features;
+    std::vector<double> target, weight;
+};
+[[nodiscard]] diffusion_fit_rows prepare_diffusion_fit(const reference_set& set, double panel);
+
+// Least squares over all rows of the sets (each set's rms counts equally). Throws
+// std::invalid_argument for no set.
+[[nodiscard]] diffusion_fit_result fit_diffusion_model(const std::vector<const diffusion_fit_rows*>& sets,
+                                                       const diffusion_fit_options& options);
+// The same from the reference sets (prepare_diffusion_fit with options.panel).
 [[nodiscard]] diffusion_fit_result fit_diffusion_model(const std::vector<reference_set>& sets,
                                                        const diffusion_fit_options& options);
 

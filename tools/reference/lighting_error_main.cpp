@@ -24,7 +24,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <set>
@@ -34,6 +33,7 @@
 
 #include <cloudmath/multiple_scattering.hpp>
 
+#include "cli_main.hpp"  // split_list
 #include "lighting_diffusion.hpp"
 #include "lighting_error.hpp"
 #include "lighting_report.hpp"
@@ -178,40 +178,15 @@ int run_report(int argc, char** argv) {
     return 0;
 }
 
-// Writes text to path atomically (path.tmp, then rename); throws naming the path.
-void write_text(const std::string& path, const std::string& text) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        if (!out) throw std::runtime_error(tmp + ": cannot write");
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error(path + ": cannot rename");
-}
-
 // Writes the data of cloudmath/lighting_choice.hpp alone (the report writes it too).
 int run_choice(int argc, char** argv) {
     auto f = parse_flags(argc, argv, {"reference", "out"}, {});
     const std::string ref = f.count("reference") ? f["reference"] : "docs/data/lighting_reference.csv";
     const std::string out = f.count("out") ? f["out"] : "include/cloudmath/lighting_choice_data.hpp";
     const std::size_t slash = ref.find_last_of('/');
-    write_text(out, lm::lighting_choice_header(lm::read_reference(ref), ref.substr(slash + 1)));
+    cloudmath::reference::write_text_file_atomically(out, lm::lighting_choice_header(lm::read_reference(ref), ref.substr(slash + 1)));
     std::cout << "cloudmath_lighting_error: wrote " << out << '\n';
     return 0;
-}
-
-// Comma-separated paths.
-std::vector<std::string> split_list(const std::string& text) {
-    std::vector<std::string> out;
-    std::size_t from = 0;
-    while (from <= text.size()) {
-        const std::size_t comma = text.find(',', from);
-        const std::string item = text.substr(from, comma == std::string::npos ? std::string::npos : comma - from);
-        if (!item.empty()) out.push_back(item);
-        if (comma == std::string::npos) break;
-        from = comma + 1;
-    }
-    return out;
 }
 
 // Fits the diffusion model (lighting_diffusion.hpp: run_diffusion_fit), prints the report
@@ -223,9 +198,9 @@ int run_fit_diffusion(int argc, char** argv) {
     if (f.count("smoothing")) o.smoothing = to_positive("smoothing", f["smoothing"]);
     if (f.count("ridge")) o.ridge = to_positive("ridge", f["ridge"]);
     const std::vector<std::string> train =
-        f.count("train") ? split_list(f["train"]) : lm::diffusion_training_paths(data);
+        f.count("train") ? cloudmath::reference::split_list(f["train"]) : lm::diffusion_training_paths(data);
     const std::vector<std::string> holdout =
-        f.count("holdout") ? split_list(f["holdout"]) : lm::diffusion_holdout_paths(data);
+        f.count("holdout") ? cloudmath::reference::split_list(f["holdout"]) : lm::diffusion_holdout_paths(data);
     if (train.empty()) throw usage_error("--train needs at least one reference CSV");
     if (f.count("cv")) {
         std::cout << lm::diffusion_cross_validation(train);
@@ -233,8 +208,10 @@ int run_fit_diffusion(int argc, char** argv) {
     }
     const lm::diffusion_run run = lm::run_diffusion_fit(train, holdout, o);
     std::cout << run.report;
-    if (f.count("header")) write_text(f["header"], lm::diffusion_models_cpp(run.models, run.provenance));
-    if (f.count("glsl")) write_text(f["glsl"], lm::diffusion_models_glsl(run.models, run.provenance));
+    if (f.count("header"))
+        cloudmath::reference::write_text_file_atomically(f["header"], lm::diffusion_models_cpp(run.models, run.provenance));
+    if (f.count("glsl"))
+        cloudmath::reference::write_text_file_atomically(f["glsl"], lm::diffusion_models_glsl(run.models, run.provenance));
     return 0;
 }
 

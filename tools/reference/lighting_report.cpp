@@ -239,6 +239,15 @@ void parallel_for(std::size_t count, const std::function<void(std::size_t)>& job
     if (error) std::rethrow_exception(error);
 }
 
+// The set's optical thicknesses, each once, ascending.
+std::vector<double> optical_thicknesses(const reference_set& set) {
+    std::vector<double> taus;
+    for (const reference_row& r : set.rows)
+        if (std::find(taus.begin(), taus.end(), r.tau) == taus.end()) taus.push_back(r.tau);
+    std::sort(taus.begin(), taus.end());
+    return taus;
+}
+
 double medium_g(const reference_set& set) {
     if (set.phase_spec.rfind("hg:", 0) != 0)
         throw std::runtime_error("lighting report: the reference phase must be hg:G (the models' "
@@ -298,10 +307,7 @@ report_summary write_report(const report_options& o) {
     report_summary summary;
     summary.rows = set.rows.size();
 
-    std::vector<double> taus;
-    for (const reference_row& r : set.rows)
-        if (std::find(taus.begin(), taus.end(), r.tau) == taus.end()) taus.push_back(r.tau);
-    std::sort(taus.begin(), taus.end());
+    const std::vector<double> taus = optical_thicknesses(set);
 
     // --- Fits: every range x form x octave count.
     const attenuation forms[] = {attenuation::beer, attenuation::powder, attenuation::nubis};
@@ -594,10 +600,7 @@ report_summary write_report(const report_options& o) {
 }
 
 std::string lighting_choice_header(const reference_set& set, const std::string& reference_name) {
-    std::vector<double> taus;
-    for (const reference_row& r : set.rows)
-        if (std::find(taus.begin(), taus.end(), r.tau) == taus.end()) taus.push_back(r.tau);
-    std::sort(taus.begin(), taus.end());
+    const std::vector<double> taus = optical_thicknesses(set);
     const double g = medium_g(set);
     const evaluator ev(set);
     const diffusion_evaluator dev(set);

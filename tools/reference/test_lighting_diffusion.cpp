@@ -125,7 +125,13 @@ TEST_CASE("fit_diffusion_model recovers a model from its own radiances") {
     const lm::diffusion_evaluator ev(set);
     const lm::error_summary e = lm::measure(set, ev.radiance(fit.model), lm::select_all());
     CHECK(e.rms < 1e-5);
-    CHECK_THROWS_AS((void)lm::fit_diffusion_model({}, o), std::invalid_argument);
+    CHECK_THROWS_AS((void)lm::fit_diffusion_model(std::vector<lm::reference_set>{}, o), std::invalid_argument);
+    CHECK_THROWS_AS((void)lm::fit_diffusion_model(std::vector<const lm::diffusion_fit_rows*>{}, o),
+                    std::invalid_argument);
+    // From prepared rows, the same fit.
+    const lm::diffusion_fit_rows rows = lm::prepare_diffusion_fit(set, o.panel);
+    const lm::diffusion_fit_result again = lm::fit_diffusion_model({&rows}, o);
+    CHECK(again.coefficients == fit.coefficients);
 }
 
 TEST_CASE("phase_spec_mean_cosine") {
@@ -134,6 +140,13 @@ TEST_CASE("phase_spec_mean_cosine") {
     CHECK(lm::phase_spec_mean_cosine("dual_hg:0.8,-0.2,0.25") == doctest::Approx(0.55));
     CHECK_THROWS_AS((void)lm::phase_spec_mean_cosine("cs:0.8"), std::invalid_argument);
     CHECK_THROWS_AS((void)lm::phase_spec_mean_cosine("hg:x"), std::invalid_argument);
+    // The phase callback: HG, the dual lobe with both eccentricities scaled, isotropic.
+    constexpr double pi = 3.14159265358979323846;
+    const auto hg = [&](double mu, double g) { return (1 - g * g) / (4 * pi * std::pow(1 + g * g - 2 * g * mu, 1.5)); };
+    CHECK(lm::parse_hg_mixture("hg:0.85").phase(0.3, 0.5) == doctest::Approx(hg(0.3, 0.425)).epsilon(1e-12));
+    CHECK(lm::parse_hg_mixture("dual_hg:0.8,-0.2,0.25").phase(-0.4, 0.5) ==
+          doctest::Approx(0.75 * hg(-0.4, 0.4) + 0.25 * hg(-0.4, -0.1)).epsilon(1e-12));
+    CHECK(lm::parse_hg_mixture("isotropic").phase(0.9, 0.8) == doctest::Approx(1 / (4 * pi)).epsilon(1e-12));
 }
 
 TEST_CASE("the held-out split shares no thickness, angle or view with the fitted split") {

@@ -73,6 +73,7 @@ const char* const usage_text =
     "           ~/.cache/cloudmath; 'none' bakes without a cache). --threads 0: all cores.\n";
 
 using cloudmath::reference::usage_error;
+using cloudmath::reference::split_list;
 
 // --flag value pairs after the command; repeatable flags keep every value.
 struct flags {
@@ -339,15 +340,6 @@ void write_side_by_side(const std::string& path, const truth_image& t, const cr:
     const std::string tmp = path + ".tmp";
     if (!cr::write_png(tmp, img) || std::rename(tmp.c_str(), path.c_str()) != 0)
         throw std::runtime_error("cannot write " + path);
-}
-
-std::vector<std::string> split_list(const std::string& s) {
-    std::vector<std::string> out;
-    std::stringstream in(s);
-    std::string item;
-    while (std::getline(in, item, ','))
-        if (!item.empty()) out.push_back(item);
-    return out;
 }
 
 std::string fixed(double v, int digits) {
