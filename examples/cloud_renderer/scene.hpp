@@ -104,7 +104,7 @@ const char* name(light_mode l);
 const char* name(integration_mode i);
 const char* name(lighting_model l);
 // Mean cosine g of a phase model with the frame's parameters (the diffusion model's g):
-// closed forms for HG, dual-lobe HG and Cornette-Shanks, a quadrature for the Mie fit.
+// closed forms for HG, dual-lobe HG, Cornette-Shanks and the Mie fit (HG plus Draine).
 float phase_mean_cosine(const frame_constants& k, phase_model p);
 
 }  // namespace cloud_renderer

@@ -8,9 +8,11 @@
 #include "options.hpp"
 
 #define DOCTEST_CONFIG_IMPLEMENT  // our main() below: skip (77) without OpenGL
+#include <cloudmath/phase.hpp>
 #include <doctest/doctest.h>
 
 #include <cstdio>
+#include <initializer_list>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -106,6 +108,35 @@ TEST_CASE("texture reads: bounded by the march, the same view reads for both lig
     const texture_read_stats none = count_texture_reads(down, octaves, shared().textures, 16, 9);
     CHECK(none.pixels_in_layer == 0);
     CHECK(none.mean == 0.0);
+}
+
+TEST_CASE("phase_mean_cosine: the closed forms against a quadrature of each phase model") {
+    const frame_constants k = make_frame_constants(*find_preset("ground"));
+    const cloudmath::mie_approx_parameters<double> mie = cloudmath::mie_approx_params(double(k.droplet_diameter));
+    const auto p = [&](phase_model m, double mu) {
+        switch (m) {
+        case phase_model::hg: return cloudmath::phase_hg(mu, double(k.phase_g));
+        case phase_model::dual_hg: return cloudmath::phase_hg_dual(mu, double(k.phase_g), double(k.phase_g_back), double(k.phase_w));
+        case phase_model::cornette_shanks: return cloudmath::phase_cornette_shanks(mu, double(k.phase_g));
+        case phase_model::mie: break;
+        }
+        return cloudmath::phase_mie_approx(mu, mie);
+    };
+    for (phase_model m : {phase_model::hg, phase_model::dual_hg, phase_model::cornette_shanks, phase_model::mie}) {
+        // 2 pi integral of mu p(mu), midpoint cells ever finer toward the forward peak.
+        double sum = 0.0;
+        const double edges[] = {-1.0, 0.9, 0.999, 0.99999, 1.0};
+        for (int piece = 0; piece < 4; ++piece) {
+            const int n = 200000;
+            const double h = (edges[piece + 1] - edges[piece]) / n;
+            for (int i = 0; i < n; ++i) {
+                const double mu = edges[piece] + (i + 0.5) * h;
+                sum += mu * p(m, mu) * h;
+            }
+        }
+        CAPTURE(name(m));
+        CHECK(double(phase_mean_cosine(k, m)) == doctest::Approx(2.0 * 3.14159265358979323846 * sum).epsilon(1e-4));
+    }
 }
 
 TEST_CASE("no NaN inside the layer, at its boundaries and at tangent rays") {
