@@ -38,6 +38,7 @@ struct pixel_program {
     // Texture reads of one pixel (count_texture_reads); null when not counting.
     struct reads {
         long view = 0, light = 0;
+        bool in_layer = false;  // the view ray enters the cloud layer
     };
 
     float altitude(vec3 p) const { return field.altitude(p); }
@@ -102,6 +103,7 @@ struct pixel_program {
 
         cm::march_accumulator<vec3, vec3> acc;
         const vec2 seg = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, s.layer_bottom, s.layer_top);
+        if (counted) counted->in_layer = seg.y > seg.x;
         if (seg.y > seg.x) {
             const float t1 = std::min(seg.y, seg.x + s.max_distance);
             const float ds = (t1 - seg.x) / float(v.view_steps);
@@ -172,23 +174,16 @@ image render_cpu(const scene& s, const variant& v, const cloud_textures& texture
 texture_read_stats count_texture_reads(const scene& s, const variant& v, const cloud_textures& textures, int width,
                                        int height, unsigned threads) {
     const pixel_program program(s, v, textures);
-    const frame_constants k = make_frame_constants(s);
     std::vector<pixel_program::reads> counts(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-    std::vector<char> in_layer(counts.size(), 0);
     (void)render_rows(width, height, threads, [&](int x, int y) {
         const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
-        const vec2 ndc = vec2(float(x) + 0.5f, float(y) + 0.5f) / vec2(float(width), float(height)) * 2.0f - 1.0f;
-        const float aspect = float(width) / float(height);
-        const vec3 dir = glm::normalize(k.forward + k.right * (ndc.x * aspect * k.tan_half_fov) + k.up * (ndc.y * k.tan_half_fov));
-        const vec2 seg = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, s.layer_bottom, s.layer_top);
-        in_layer[i] = seg.y > seg.x;
         return program.shade_linear(x, y, width, height, &counts[i]);
     });
     texture_read_stats st;
     std::vector<double> totals;
     double view = 0.0, light = 0.0;
     for (std::size_t i = 0; i < counts.size(); ++i) {
-        if (!in_layer[i]) continue;
+        if (!counts[i].in_layer) continue;
         totals.push_back(double(counts[i].view + counts[i].light));
         view += double(counts[i].view);
         light += double(counts[i].light);
