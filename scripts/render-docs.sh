@@ -23,12 +23,13 @@ for p in $presets; do
 done
 # name|variant spec|caption, all on the "horizon" preset (low sun ahead: phase and powder show)
 variants=(
-  "default||default: dual-lobe HG, 3 octaves, powder, cone light, 64 steps"
+  "default||default: diffusion model, dual-lobe HG, 6-step march toward the sun, cone behind, 64 steps"
+  "octaves|lighting=octaves,powder=on,light=cone|octaves: 3, powder, cone (the previous default)"
   "hg|phase=hg|phase: HG"
   "mie|phase=mie|phase: Mie fit (15 um droplets)"
-  "octaves1|octaves=1|1 octave (single scattering)"
-  "powder_off|powder=off|powder off"
-  "march|light=march,light-steps=32|light: full march, 32 steps"
+  "octaves1|lighting=octaves,octaves=1,light=cone|1 octave (single scattering), cone"
+  "powder_off|lighting=octaves,light=cone|octaves without powder"
+  "march|light-steps=32,behind=march|light: 32-step march both ways"
   "naive16|integration=naive,steps=16|naive Riemann integration, 16 steps"
   "analytic16|steps=16|energy-conserving integration, 16 steps"
 )

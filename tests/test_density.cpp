@@ -72,6 +72,38 @@ TEST_CASE_TEMPLATE("height_gradient_for_type: presets at 0, 0.5, 1, blended prof
     }
 }
 
+TEST_CASE_TEMPLATE("height_range_for_type: the gradient is exactly 0 outside the range, positive just inside", T, float, double) {
+    // The presets' own edges (closed form: the profile's first and last edge).
+    CHECK(height_range_for_type(T(0)) == glm::vec<2, T>(T(0.02), T(0.11)));
+    CHECK(height_range_for_type(T(0.5)) == glm::vec<2, T>(T(0.02), T(0.625)));
+    CHECK(height_range_for_type(T(1)) == glm::vec<2, T>(T(0.01), T(1)));
+    CHECK(height_range_for_type(T(-2)) == height_range_for_type(T(0)));  // type clamped
+    for (int i = 0; i <= 40; ++i) {
+        const T type = T(i) / T(40);
+        const glm::vec<2, T> r = height_range_for_type(type);
+        REQUIRE(r.x < r.y);
+        // Outside: exactly zero, so a march clamped to the range loses nothing. (Under
+        // -ffast-math the profile's edge may round differently in the two call sites, so
+        // the edges themselves are checked in strict builds only.)
+#ifdef __FAST_MATH__
+        const int last = 49;
+#else
+        const int last = 50;
+#endif
+        for (int j = 0; j <= last; ++j) {
+            const T below = r.x * T(j) / T(50);
+            const T above = r.y + (T(1) - r.y) * T(50 - j) / T(50);
+            CHECK(height_gradient_for_type(below, type) == T(0));
+            CHECK(height_gradient_for_type(above, type) == T(0));
+        }
+        // Tight: density a hair inside either end (the range is not padded).
+        const T eps = (r.y - r.x) * T(1e-3);
+        CHECK(height_gradient_for_type(r.x + eps, type) > T(0));
+        CHECK(height_gradient_for_type(r.y - eps, type) > T(0));
+    }
+    CHECK(std::isnan(height_range_for_type(std::numeric_limits<T>::quiet_NaN()).x));
+}
+
 TEST_CASE_TEMPLATE("height_gradient_exponential: Olajos (1 - exp(-a h)) exp(-b h)", T, float, double) {
     for (int i = 0; i <= 100; ++i) {
         const T h = T(i) / T(100);

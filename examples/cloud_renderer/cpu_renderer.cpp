@@ -60,15 +60,18 @@ struct pixel_program {
     }
 
     // Optical depth from p along the unit vector `toward` (the sun, or away from it for the
-    // diffusion model's tau_behind) to where the layer ends, by the variant's cone or march.
-    float light_optical_depth(vec3 p, float alt, vec3 toward, long* counter = nullptr) const {
-        if (v.light == light_mode::cone) {
+    // diffusion model's tau_behind) by the cone or by a march to where the cloud type's
+    // altitude band ends (height_range_for_type: no density beyond it, so the band's steps
+    // lose nothing and a 225 m stratus sheet gets all of them instead of 1 in 11).
+    float light_optical_depth(vec3 p, float alt, vec3 toward, light_mode mode, long* counter = nullptr) const {
+        if (mode == light_mode::cone) {
             const cm::cone_light_config<float> cone{v.cone_samples, k.cone_step, k.cone_spread, k.cone_far_distance,
                                                     k.cone_far_length};
             return cm::cone_optical_depth(p, toward, cone, [this, counter](const vec3& q) { return cone_extinction(q, counter); });
         }
         const vec3 up = glm::normalize(vec3(p.x, p.y + (s.planet_radius + s.camera_altitude), p.z));
-        const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up), s.planet_radius, s.layer_bottom, s.layer_top);
+        const vec2 band = cm::height_range_for_type(s.cloud_type) * (s.layer_top - s.layer_bottom) + s.layer_bottom;
+        const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up), s.planet_radius, band.x, band.y);
         const float length_to_exit = seg.y > seg.x ? std::min(seg.y, k.light_march_max) : 0.0f;
         const float ds = length_to_exit / float(v.light_steps);
         float tau = 0.0f;
@@ -116,9 +119,9 @@ struct pixel_program {
                 const float d = density(dir * t, alt, view_reads);
                 if (d <= 0.0f) continue;
                 const float sigma_t = s.extinction * d;
-                const float tau_light = light_optical_depth(dir * t, alt, k.sun_dir, light_reads);
+                const float tau_light = light_optical_depth(dir * t, alt, k.sun_dir, v.light, light_reads);
                 const float tau_behind = v.lighting == lighting_model::diffusion
-                                             ? light_optical_depth(dir * t, alt, -k.sun_dir, light_reads)
+                                             ? light_optical_depth(dir * t, alt, -k.sun_dir, v.behind, light_reads)
                                              : 0.0f;
                 const float h = cm::height_fraction(alt, s.layer_bottom, s.layer_top);
                 const vec3 S = (s.albedo * sigma_t) * in_scattering(tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu, h);

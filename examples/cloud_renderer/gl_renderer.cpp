@@ -41,6 +41,7 @@ std::vector<shader_int> variant_values(const variant& v) {
             {"u_octaves", v.octaves},
             {"u_powder", v.powder ? 1 : 0},
             {"u_light_mode", static_cast<int>(v.light)},
+            {"u_behind_mode", static_cast<int>(v.behind)},
             {"u_cone_samples", v.cone_samples},
             {"u_light_steps", v.light_steps},
             {"u_integration", static_cast<int>(v.integration)},

@@ -177,6 +177,10 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             if (value == "cone") out.light = light_mode::cone;
             else if (value == "march") out.light = light_mode::march;
             else return "light must be cone or march, not '" + value + "'";
+        } else if (key == "behind") {
+            if (value == "cone") out.behind = light_mode::cone;
+            else if (value == "march") out.behind = light_mode::march;
+            else return "behind must be cone or march, not '" + value + "'";
         } else if (key == "cone-samples") {
             if (!parse_int(value, 2, 16, out.cone_samples))
                 return "cone-samples must be an integer from 2 to 16, not '" + value + "'";
@@ -194,7 +198,7 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             if (!parse_switch(value, out.jitter)) return "jitter must be on or off, not '" + value + "'";
         } else {
             return "unknown variant key '" + key +
-                   "' (known: phase, lighting, octaves, powder, light, cone-samples, light-steps, integration, steps, "
+                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, "
                    "jitter)";
         }
     }
@@ -205,7 +209,7 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
 std::string variant_spec(const variant& v) {
     std::ostringstream s;
     s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",octaves=" << v.octaves << ",powder=" << (v.powder ? "on" : "off")
-      << ",light=" << name(v.light) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
+      << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
       << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",jitter=" << (v.jitter ? "on" : "off");
     return s.str();
 }

@@ -86,22 +86,29 @@ TEST_CASE("the variants agree with the CPU too, and compile-time equals run-time
 
 TEST_CASE("texture reads: bounded by the march, the same view reads for both lighting models") {
     const scene& s = *find_preset("ground");
-    variant octaves, diffusion;
-    REQUIRE(apply_variant_spec("steps=8,jitter=off", octaves).empty());
-    REQUIRE(apply_variant_spec("steps=8,jitter=off,lighting=diffusion", diffusion).empty());
+    variant octaves, diffusion, standard;
+    REQUIRE(apply_variant_spec("steps=8,jitter=off,lighting=octaves,powder=on,light=cone", octaves).empty());
+    REQUIRE(apply_variant_spec("steps=8,jitter=off,lighting=diffusion,light=cone,behind=cone", diffusion).empty());
+    REQUIRE(apply_variant_spec("steps=8,jitter=off", standard).empty());  // 6-step march + cone
     const texture_read_stats a = count_texture_reads(s, octaves, shared().textures, 64, 36);
     const texture_read_stats b = count_texture_reads(s, diffusion, shared().textures, 64, 36);
+    const texture_read_stats c = count_texture_reads(s, standard, shared().textures, 64, 36);
     REQUIRE(a.pixels_in_layer > 0);
     CHECK(a.pixels_in_layer == b.pixels_in_layer);
+    CHECK(a.pixels_in_layer == c.pixels_in_layer);
     // At most 3 reads per density (weather, base, detail): 8 view samples, each with 6 cone
-    // samples toward the sun (and 6 away from it for the diffusion model).
+    // samples toward the sun (and 6 away from it for the diffusion model; the default's
+    // 6-step march toward the sun takes the place of the first cone).
     CHECK(a.p95 <= 8.0 * (3.0 + 6.0 * 3.0));
     CHECK(b.p95 <= 8.0 * (3.0 + 12.0 * 3.0));
+    CHECK(c.p95 <= 8.0 * (3.0 + 12.0 * 3.0));
     CHECK(a.mean > 0.0);
     CHECK(a.light_share > 0.0);
     CHECK(b.light_share > a.light_share);
-    // The view march is the same for both (its early exit depends on extinction only).
+    CHECK(c.light_share > a.light_share);
+    // The view march is the same for all (its early exit depends on extinction only).
     CHECK(a.mean * (1.0 - a.light_share) == doctest::Approx(b.mean * (1.0 - b.light_share)).epsilon(1e-9));
+    CHECK(a.mean * (1.0 - a.light_share) == doctest::Approx(c.mean * (1.0 - c.light_share)).epsilon(1e-9));
     // Looking straight down from the ground: no ray enters the layer, nothing is read.
     scene down = s;
     down.pitch = -89.0f;

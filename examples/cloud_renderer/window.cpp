@@ -11,8 +11,9 @@ namespace {
 
 const char* const key_help =
     "keys: mouse drag or arrows look around; W/S altitude up/down; Q/E sun azimuth; R/F sun elevation;\n"
-    "      1-7 presets; P phase model; O octaves; B powder; L cone/march light; I integration;\n"
-    "      J jitter; [ ] view steps; C uniforms/compile-time; H this help; Esc quit\n";
+    "      1-7 presets; M diffusion/octaves; P phase model; O octaves; B powder; L cone/march toward\n"
+    "      the sun; K cone/march behind; I integration; J jitter; [ ] view steps;\n"
+    "      C uniforms/compile-time; H this help; Esc quit\n";
 
 struct window_state {
     options o;
@@ -42,6 +43,10 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
     case GLFW_KEY_O: v.octaves = v.octaves % 8 + 1; break;
     case GLFW_KEY_B: v.powder = !v.powder; break;
     case GLFW_KEY_L: v.light = v.light == light_mode::cone ? light_mode::march : light_mode::cone; break;
+    case GLFW_KEY_K: v.behind = v.behind == light_mode::cone ? light_mode::march : light_mode::cone; break;
+    case GLFW_KEY_M:
+        v.lighting = v.lighting == lighting_model::diffusion ? lighting_model::octaves : lighting_model::diffusion;
+        break;
     case GLFW_KEY_I:
         v.integration = v.integration == integration_mode::analytic ? integration_mode::naive : integration_mode::analytic;
         break;

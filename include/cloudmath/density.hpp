@@ -66,6 +66,18 @@ template <class T>
     return height_gradient(h, height_profile_for_type(cloud_type));
 }
 
+// height_range_for_type(cloud_type) = (p.x, p.w) of height_profile_for_type(t): the
+// height fractions outside which height_gradient_for_type(h, t) is exactly 0 (below p.x
+// both smoothsteps are 0, above p.w both are 1). A ray march can clamp its range to these
+// altitudes (layer_bottom + h (layer_top - layer_bottom), then cloud_layer_segment) and
+// lose nothing: a stratus sheet fills 9% of the layer, and a march over the whole layer
+// spends 91% of its steps where the density is 0. NaN type gives NaN.
+template <class T>
+[[nodiscard]] constexpr glm::vec<2, T> height_range_for_type(T cloud_type) noexcept {
+    const glm::vec<4, T> p = height_profile_for_type(cloud_type);
+    return glm::vec<2, T>(p.x, p.w);
+}
+
 // height_gradient_exponential(h, a, b) = (1 - exp(-a h)) exp(-b h) (Olajos 2016, with
 // a = 50, b = 4): a fast rise above the layer bottom and a slow exponential decay.
 // The rise uses -expm1 so small a h keeps full precision. Domain h >= 0, a, b >= 0;

@@ -374,6 +374,7 @@ std::vector<parity_case> make_cases() {
         add({"cm_height_profile_cumulus", "vec4(cm_height_gradient(a.x, cm_height_profile_cumulus()), cm_height_profile_cumulus().yzw)",
              [](vec4 a, vec4) { const vec4 p = cm::height_profile_cumulus<float>(); return vec4(cm::height_gradient(a.x, p), p.y, p.z, p.w); }, in, 4, 1.0f});
         add({"cm_height_profile_for_type", "cm_height_profile_for_type(a.y)", [](vec4 a, vec4) { return cm::height_profile_for_type(a.y); }, in, 4, 1.0f});
+        add({"cm_height_range_for_type", "vec4(cm_height_range_for_type(a.y), 0.0, 0.0)", [](vec4 a, vec4) { return vec4(cm::height_range_for_type(a.y), 0.0f, 0.0f); }, in, 2, 1.0f});
         add({"cm_height_gradient_for_type", "vec4(cm_height_gradient_for_type(a.x, a.y))", [](vec4 a, vec4) { return vec4(cm::height_gradient_for_type(a.x, a.y)); }, in, 1, 1.0f});
         add({"cm_height_gradient_exponential", "vec4(cm_height_gradient_exponential(a.x, 50.0, 4.0), cm_height_gradient_exponential(a.x * 1e-6, 50.0, 4.0), 0.0, 0.0)",
              [](vec4 a, vec4) { return vec4(cm::height_gradient_exponential(a.x, 50.0f, 4.0f), cm::height_gradient_exponential(a.x * 1e-6f, 50.0f, 4.0f), 0.0f, 0.0f); }, in, 2, 1e-30f});

@@ -61,11 +61,14 @@ const char* const usage_text =
     "           --phase: a montecarlo phase spec (hg:G, dual_hg:G0,G1,W, cs:G, mie_approx:D,\n"
     "           table:PATH, ...); default the renderer's dual_hg:0.8,-0.25,0.2.\n"
     "  report   the renderer (render_cpu_linear) for each variant against the truth files\n"
-    "           flags: [--presets ground,horizon,inside,above] [--variant NAME=SPEC ...]\n"
-    "                  [--data docs/data] [--docs docs] [--threads 0] [--cache DIR] [--quiet]\n"
+    "           flags: [--presets ground,horizon,inside,above] [--selection PRESETS]\n"
+    "                  [--variant NAME=SPEC ...] [--data docs/data] [--docs docs]\n"
+    "                  [--threads 0] [--cache DIR] [--quiet]\n"
+    "           --presets: the evaluation split; --selection: the presets the variants were\n"
+    "           chosen on (reported first and marked; the two lists must be disjoint).\n"
     "           --variant: repeatable, SPEC as the renderer's --variant (empty = default);\n"
-    "           without any: default=, march=light=march,light-steps=64,\n"
-    "           single=octaves=1,powder=off, mie=phase=mie.\n"
+    "           without any: default=, octaves=lighting=octaves,powder=on,light=cone,\n"
+    "           single=lighting=octaves,octaves=1,light=cone, mie=phase=mie.\n"
     "           Reads DATA/truth_NAME.csv, writes DOCS/lighting_truth.md and\n"
     "           DOCS/images/truth_NAME.png (truth | first variant | difference) and\n"
     "           truth_NAME_VARIANT.png for the other variants.\n"
@@ -351,9 +354,17 @@ std::string percent(double v) { return fixed(100.0 * v, 1) + "%"; }
 std::string signed_percent(double v) { return (v >= 0 ? "+" : "") + fixed(100.0 * v, 1) + "%"; }
 
 int run_report(int argc, char** argv) {
-    const flags f(argc, argv, {"--presets", "--variant", "--data", "--docs", "--threads", "--cache"}, {"--quiet"});
-    const std::vector<std::string> names = split_list(f.get("--presets", "ground,horizon,inside,above"));
-    if (names.empty()) throw usage_error("--presets lists no preset");
+    const flags f(argc, argv, {"--presets", "--selection", "--variant", "--data", "--docs", "--threads", "--cache"},
+                  {"--quiet"});
+    const std::vector<std::string> evaluation = split_list(f.get("--presets", "ground,horizon,inside,above"));
+    const std::vector<std::string> selection = split_list(f.get("--selection", ""));
+    if (evaluation.empty()) throw usage_error("--presets lists no preset");
+    std::vector<std::string> names = selection;
+    for (const std::string& n : evaluation) {
+        if (std::find(selection.begin(), selection.end(), n) != selection.end())
+            throw usage_error("preset '" + n + "' is in both --selection and --presets: the splits must be disjoint");
+        names.push_back(n);
+    }
     for (const std::string& n : names) (void)preset(n);
     std::vector<std::pair<std::string, cr::variant>> variants;
     for (auto [it, end] = f.values.equal_range("--variant"); it != end; ++it) {
@@ -365,7 +376,8 @@ int run_report(int argc, char** argv) {
         variants.emplace_back(it->second.substr(0, eq), v);
     }
     if (variants.empty())
-        for (const char* spec : {"default=", "march=light=march,light-steps=64", "single=octaves=1,powder=off", "mie=phase=mie"}) {
+        for (const char* spec : {"default=", "octaves=lighting=octaves,powder=on,light=cone",
+                                 "single=lighting=octaves,octaves=1,light=cone", "mie=phase=mie"}) {
             const std::string s = spec;
             cr::variant v;
             (void)cr::apply_variant_spec(s.substr(s.find('=') + 1), v);
@@ -412,6 +424,8 @@ int run_report(int argc, char** argv) {
     for (const auto& v : variants) md << "- `" << v.first << "`: `" << cr::variant_spec(v.second) << "`\n";
     md << '\n';
 
+    std::ostringstream sections;
+    std::vector<std::vector<double>> rms(variants.size(), std::vector<double>(names.size(), 0.0));
     for (std::size_t p = 0; p < names.size(); ++p) {
         const truth_image& t = truths[p];
         const auto meta = [&](const char* key) {
@@ -419,18 +433,21 @@ int run_report(int argc, char** argv) {
             return it == t.meta.end() ? std::string("?") : it->second;
         };
         const cr::scene& s = preset(names[p]);
-        md << "## " << names[p] << " (" << s.description << ")\n\n";
-        md << "Truth: " << t.width << " x " << t.height << " pixels, " << meta("spp") << " paths per pixel, phase `"
+        sections << "## " << names[p] << " (" << s.description << ")"
+                 << (p < selection.size() ? ", selection split" : "") << "\n\n";
+        sections << "Truth: " << t.width << " x " << t.height << " pixels, " << meta("spp") << " paths per pixel, phase `"
            << meta("phase") << "`, seed " << meta("seed") << ", " << meta("seconds") << " s on " << meta("threads")
            << " threads.";
         bool first = true;
         std::ostringstream table, others;
         table << "| variant | rms | bias | PSNR (dB) | worst block | its rms | its bias |\n|---|---|---|---|---|---|---|\n";
         image_errors last{};
-        for (const auto& [vname, v] : variants) {
+        for (std::size_t vi = 0; vi < variants.size(); ++vi) {
+            const auto& [vname, v] = variants[vi];
             if (!quiet) std::cerr << "report: " << names[p] << " / " << vname << '\n';
             const cr::image model = cr::render_cpu_linear(s, v, textures, t.width, t.height, threads);
             const image_errors e = compare(t, model, s.exposure);
+            rms[vi][p] = e.rms;
             table << "| " << vname << " | " << percent(e.rms) << " | " << signed_percent(e.bias) << " | "
                   << fixed(e.psnr_db, 1) << " | (" << e.worst_col << ", " << e.worst_row << ") | " << percent(e.worst_rms)
                   << " | " << signed_percent(e.worst_bias) << " |\n";
@@ -438,17 +455,34 @@ int run_report(int argc, char** argv) {
             const std::string png = "truth_" + names[p] + (first ? std::string() : "_" + vname) + ".png";
             write_side_by_side(docs + "/images/" + png, t, model, s.exposure);
             if (first) {
-                md << "\n\n![truth | " << vname << " | difference](images/" << png << ")\n\n";
+                sections << "\n\n![truth | " << vname << " | difference](images/" << png << ")\n\n";
                 first = false;
             } else {
                 others << (others.tellp() > 0 ? ", " : "") << "[" << vname << "](images/" << png << ")";
             }
             last = e;
         }
-        md << table.str();
-        if (others.tellp() > 0) md << "\nTruth | model | difference for the other variants: " << others.str() << ".\n";
-        md << "\nTruth mean radiance " << fixed(last.truth_mean, 4) << ", noise floor " << percent(last.noise_floor) << ".\n\n";
+        sections << table.str();
+        if (others.tellp() > 0) sections << "\nTruth | model | difference for the other variants: " << others.str() << ".\n";
+        sections << "\nTruth mean radiance " << fixed(last.truth_mean, 4) << ", noise floor " << percent(last.noise_floor) << ".\n\n";
     }
+    // The rms of every variant on every preset, the selection split first.
+    md << "## Summary: rms over the image mean\n\n";
+    if (!selection.empty())
+        md << "The renderer's default variant was chosen on the selection presets (" << selection.size()
+           << " presets, fewer paths per pixel), then measured on the evaluation presets (what had been\n"
+           "measured on them before the choice is in [lighting_research.md](lighting_research.md)).\n\n";
+    md << "| variant |";
+    for (std::size_t p = 0; p < names.size(); ++p) md << ' ' << names[p] << (p < selection.size() ? " (selection)" : "") << " |";
+    md << "\n|---|";
+    for (std::size_t p = 0; p < names.size(); ++p) md << "---:|";
+    md << '\n';
+    for (std::size_t vi = 0; vi < variants.size(); ++vi) {
+        md << "| " << variants[vi].first << " |";
+        for (std::size_t p = 0; p < names.size(); ++p) md << ' ' << percent(rms[vi][p]) << " |";
+        md << '\n';
+    }
+    md << '\n' << sections.str();
     cloudmath::reference::write_text_file_atomically(docs + "/lighting_truth.md", md.str());
     std::cout << "report: " << names.size() << " presets x " << variants.size() << " variants -> " << docs
               << "/lighting_truth.md\n";

@@ -3,7 +3,7 @@
 // window.cloudmathDemo holds the results (read by web/test/browser.mjs).
 import { modules, resolve } from '../dist/index.js';
 import { cases, defaultBudget, floor } from './parity.js';
-import { scenePresets, variants, msPresets, frameConstants } from './scene.js';
+import { scenePresets, variants, msPresets, frameConstants, phaseMeanCosine } from './scene.js';
 import { cloudsFrag } from './clouds_frag.js';
 
 const demo = (window.cloudmathDemo = { ready: false, error: null, parity: [], image: null, frames: [] });
@@ -175,7 +175,8 @@ function render(state) {
   gl.useProgram(clouds);
   const u = (n) => gl.getUniformLocation(clouds, n);
   const i1 = (n, x) => gl.uniform1i(u(n), x), f1 = (n, x) => gl.uniform1f(u(n), x), v3 = (n, x) => gl.uniform3fv(u(n), x);
-  i1('u_phase_model', v.phase); i1('u_octaves', state.ms === 'production' ? v.octaves : msN); i1('u_powder', v.powder); i1('u_light_mode', v.light);
+  i1('u_phase_model', v.phase); i1('u_lighting', v.lighting); i1('u_octaves', state.ms === 'production' ? v.octaves : msN); i1('u_powder', v.powder);
+  i1('u_light_mode', v.light); i1('u_behind_mode', v.behind); f1('u_phase_mean_cosine', phaseMeanCosine(f, v.phase));
   i1('u_cone_samples', v.coneSamples); i1('u_light_steps', v.lightSteps); i1('u_integration', v.integration);
   i1('u_view_steps', v.viewSteps); i1('u_jitter', v.jitter);
   gl.uniform2f(u('u_resolution'), canvas.width, canvas.height);

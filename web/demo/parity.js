@@ -16,7 +16,7 @@ const draine = (mu, g, a) => { g = clampG(g); mu = clampMu(mu); return (1 - g * 
 const schlick = (mu, k) => { k = clampG(k); mu = clampMu(mu); return (1 - k * k) / (4 * PI * (1 - k * mu) ** 2); };
 const sat = (x) => Math.min(Math.max(x, 0), 1);
 // Jendersie & d'Eon 2023, 5 <= d <= 50 um.
-const mieParams = (d) => [Math.exp(-0.0990567 / (d - 1.67154)), Math.exp(-2.20679 / (d + 3.91029) - 0.428934),
+export const mieParams = (d) => [Math.exp(-0.0990567 / (d - 1.67154)), Math.exp(-2.20679 / (d + 3.91029) - 0.428934),
   Math.exp(3.62489 - 8.29288 / (d + 5.52825)), Math.exp(-0.599085 / (d - 0.641583) - 0.665888)];
 const octaves = (tau, mu, g, a, b, c, n) => { let s = 0; for (let i = 0; i < n; ++i) s += b ** i * hg(mu, c ** i * g) * Math.exp(-(a ** i) * tau); return s; };
 const presets = { PRODUCTION: [0.5, 0.5, 0.5, 3], FITTED: [0.197, 0.409, 0.8, 5], CHEAP: [0.0639, 0.582, 0.676, 2], THIN: [0.173, 0.435, 0.805, 3], THICK: [0.299, 0.625, 0.529, 6] };

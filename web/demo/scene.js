@@ -2,6 +2,8 @@
 // scene.hpp and scene.cpp), in JavaScript: the same numbers as the desktop renderer's uniforms.
 // Frame: camera at the origin, +y up, -z north, +x east, metres.
 
+import { mieParams } from './parity.js';
+
 const degrees = Math.PI / 180;
 
 export const scenePresets = [
@@ -19,18 +21,33 @@ export const scenePresets = [
   maxDistance: 35000, baseTile: 12000, detailTile: 1500, weatherTile: 60000, wind: [1200, -800], exposure: 1,
 }));
 
-// Lighting variants (scene.hpp's `variant`; the names of scripts/render-docs.sh).
-const production = { phase: 1, octaves: 3, powder: 1, light: 0, coneSamples: 6, lightSteps: 16, integration: 0, viewSteps: 64, jitter: 1 };
+// Lighting variants (scene.hpp's `variant`; the names of scripts/render-docs.sh). The default
+// is the diffusion model with a 6-step march toward the sun and the cone behind the sample;
+// `octaves` is the production octave choice it replaced.
+const standard = { lighting: 1, phase: 1, octaves: 3, powder: 0, light: 1, behind: 0, coneSamples: 6, lightSteps: 6, integration: 0, viewSteps: 64, jitter: 1 };
+const octaves = { ...standard, lighting: 0, powder: 1, light: 0 };
 export const variants = {
-  default: { ...production },
-  hg: { ...production, phase: 0 },
-  mie: { ...production, phase: 3 },
-  octaves1: { ...production, octaves: 1 },
-  powder_off: { ...production, powder: 0 },
-  march: { ...production, light: 1, lightSteps: 32 },
-  naive16: { ...production, integration: 1, viewSteps: 16 },
-  analytic16: { ...production, viewSteps: 16 },
+  default: { ...standard },
+  octaves: { ...octaves },
+  hg: { ...standard, phase: 0 },
+  mie: { ...standard, phase: 3 },
+  octaves1: { ...octaves, octaves: 1, powder: 0 },
+  powder_off: { ...octaves, powder: 0 },
+  march: { ...standard, behind: 1, lightSteps: 32 },
+  naive16: { ...standard, integration: 1, viewSteps: 16 },
+  analytic16: { ...standard, viewSteps: 16 },
 };
+
+// The phase model's mean cosine, the diffusion model's g (scene.cpp's phase_mean_cosine):
+// HG g; dual lobe (1 - w) g0 + w g1; the Mie fit (1 - w) g_hg + w Draine's
+// g (1 + alpha (3 + 2 g^2) / 5) / (1 + alpha (1 + 2 g^2) / 3).
+export function phaseMeanCosine(f, phase) {
+  if (phase === 0) return f.phaseG;
+  if (phase === 1) return (1 - f.phaseW) * f.phaseG + f.phaseW * f.phaseGBack;
+  if (phase === 2) return 3 * f.phaseG * (4 + f.phaseG ** 2) / (5 * (2 + f.phaseG ** 2));
+  const [gh, gd, a, w] = mieParams(f.dropletDiameter);
+  return (1 - w) * gh + w * gd * (1 + a * (3 + 2 * gd * gd) / 5) / (1 + a * (1 + 2 * gd * gd) / 3);
+}
 
 // Multiple-scattering presets (include/cloudmath/multiple_scattering.hpp, ms_preset): a, b, c
 // and the octave count, which replaces the variant's.

@@ -16,7 +16,8 @@ CR_PARAM(int, u_phase_model)      // 0 HG, 1 dual-lobe HG, 2 Cornette-Shanks, 3 
 CR_PARAM(int, u_lighting)         // 0 Wrenninge octaves, 1 diffusion model (diffusion_lighting.glsl)
 CR_PARAM(int, u_octaves)          // Wrenninge octaves
 CR_PARAM(int, u_powder)           // 0 off, 1 on
-CR_PARAM(int, u_light_mode)       // 0 cone, 1 full light march
+CR_PARAM(int, u_light_mode)       // toward the sun: 0 cone, 1 march over the cloud type's band
+CR_PARAM(int, u_behind_mode)      // behind the sample (diffusion model): 0 cone, 1 march
 CR_PARAM(int, u_cone_samples)
 CR_PARAM(int, u_light_steps)
 CR_PARAM(int, u_integration)      // 0 energy-conserving (analytic), 1 naive Riemann sum
@@ -92,16 +93,18 @@ float cr_phase(float mu, float scale) {
 }
 
 // Optical depth from p along the unit vector `toward` (the sun, or away from it for the
-// diffusion model's tau_behind) to where the layer ends.
-float cr_light_optical_depth(vec3 p, float altitude, vec3 toward) {
-    if (u_light_mode == 0) {
+// diffusion model's tau_behind) by the cone (mode 0) or a march (mode 1) to where the cloud
+// type's altitude band ends (no density beyond it).
+float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode) {
+    if (mode == 0) {
         CmConeLightConfig cone = CmConeLightConfig(u_cone_samples, u_cone_step, u_cone_spread,
                                                    u_cone_far_distance, u_cone_far_length);
         return cm_cone_optical_depth(p, toward, cone);
     }
-    // Full march: midpoint steps up to where the sun ray leaves the layer.
+    // March: midpoint steps up to where the ray leaves the cloud type's band.
     vec3 up = normalize(vec3(p.x, p.y + (u_planet_radius + u_cam_altitude), p.z));
-    vec2 seg = cm_cloud_layer_segment(altitude, dot(toward, up), u_planet_radius, u_layer_bottom, u_layer_top);
+    vec2 band = cm_height_range_for_type(u_cloud_type) * (u_layer_top - u_layer_bottom) + u_layer_bottom;
+    vec2 seg = cm_cloud_layer_segment(altitude, dot(toward, up), u_planet_radius, band.x, band.y);
     float length_to_exit = seg.y > seg.x ? min(seg.y, u_light_march_max) : 0.0;
     float ds = length_to_exit / float(u_light_steps);
     float tau = 0.0;
@@ -165,8 +168,8 @@ void main() {
             float density = cr_density(dir * t, altitude);
             if (density <= 0.0) continue;
             float sigma_t = u_extinction * density;
-            float tau_light = cr_light_optical_depth(dir * t, altitude, u_sun_dir);
-            float tau_behind = u_lighting == 1 ? cr_light_optical_depth(dir * t, altitude, -u_sun_dir) : 0.0;
+            float tau_light = cr_light_optical_depth(dir * t, altitude, u_sun_dir, u_light_mode);
+            float tau_behind = u_lighting == 1 ? cr_light_optical_depth(dir * t, altitude, -u_sun_dir, u_behind_mode) : 0.0;
             float h = cm_height_fraction(altitude, u_layer_bottom, u_layer_top);
             vec3 S = (u_albedo * sigma_t) * cr_in_scattering(tau_light, tau_behind, tau_view + 0.5 * sigma_t * ds, mu, h);
             tau_view += sigma_t * ds;

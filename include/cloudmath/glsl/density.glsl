@@ -27,6 +27,13 @@ float cm_height_gradient_for_type(float h, float cloud_type) {
     return cm_height_gradient(h, cm_height_profile_for_type(cloud_type));
 }
 
+// The height fractions outside which cm_height_gradient_for_type is exactly 0: clamp a
+// march to them.
+vec2 cm_height_range_for_type(float cloud_type) {
+    vec4 p = cm_height_profile_for_type(cloud_type);
+    return vec2(p.x, p.w);
+}
+
 // (1 - exp(-a h)) exp(-b h) (Olajos 2016: a = 50, b = 4).
 float cm_height_gradient_exponential(float h, float a, float b) {
     return cm_one_minus_exp_neg(max(a * h, 0.0)) * exp(-b * h);
