@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Renders the cloud renderer's documentation: every scene preset and a set of lighting
-# variants as PNGs in docs/images/, and the --bench table (ms per frame of every variant
-# and its PSNR against the reference variant) into docs/renderer.md, with the device,
-# date and command. Headless (EGL): on Mesa's llvmpipe where there is no GPU.
-# Usage: bash scripts/render-docs.sh [WIDTH HEIGHT]     (default 480 270; a few minutes on 2 cores)
+# variants as PNGs in docs/images/, the --bench table (ms per frame of every variant and its
+# PSNR against the reference variant) and the --convergence table (every preset against a
+# converged render of the same lighting model) into docs/renderer.md, with the device, date
+# and command. Headless (EGL): on Mesa's llvmpipe where there is no GPU.
+# Usage: bash scripts/render-docs.sh [WIDTH HEIGHT]     (default 480 270; about 15 minutes on 2 cores)
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 width=${1:-480}
@@ -40,7 +41,11 @@ for v in "${variants[@]}"; do
   "$renderer" "${args[@]}" >/dev/null
 done
 compare=$("$renderer" --compare --preset ground "${common[@]}" --out build/main/compare.png | grep 'GPU vs CPU')
+accumulated=$("$renderer" --compare --preset ground --accumulate 8 "${common[@]}" --out build/main/compare_accumulated.png | grep 'GPU vs CPU')
 bench=$("$renderer" --bench --preset ground "${common[@]}")
+# Convergence at 160 x 90 on the CPU (the reference takes 1024 view steps and 128-step light
+# marches: about 10 minutes on 2 cores for the seven presets).
+convergence=$("$renderer" --convergence --width 160 --height 90 --cache build/main/texture-cache --quiet)
 
 {
   echo "# The example cloud renderer: scenes, variants and timings"
@@ -70,6 +75,16 @@ bench=$("$renderer" --bench --preset ground "${common[@]}")
   echo "## GPU against the CPU reference"
   echo
   echo "\`cloudmath_cloud_renderer --compare --preset ground\` at $width x $height: $compare."
+  echo "With \`--accumulate 8\` (the average of frames 0 to 7, each with its own march jitter and"
+  echo "dither): $accumulated."
+  echo
+  echo "## Convergence"
+  echo
+  echo "\`cloudmath_cloud_renderer --convergence --width 160 --height 90\`: every preset against a"
+  echo "converged render of the same lighting model, with one setting changed per row (the view"
+  echo "march's error against the light estimate's)."
+  echo
+  echo "$convergence"
   echo
   echo "## Frame time of every variant"
   echo

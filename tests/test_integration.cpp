@@ -106,3 +106,50 @@ TEST_CASE_TEMPLATE("integrate_scattering: denormal extinction and NaN inputs", T
         CHECK(cm_test::nan_bits(integrate_scattering(T(1), cm_test::make_nan<T>(), T(1))));  // documented: NaN propagates
     }
 }
+
+TEST_CASE_TEMPLATE("march_schedule_distance: the closed form, exact ends, geometric steps, uniform limit", T, float, double) {
+    struct range {
+        T t0, t1, near_distance;
+    };
+    for (const range r : {range{T(0), T(35000), T(1000)}, range{T(1500), T(4000), T(500)}, range{T(0), T(1e6), T(1)},
+                          range{T(20), T(21), T(1e4)}}) {
+        CAPTURE(r.t0);
+        CAPTURE(r.t1);
+        // Ends exact, u clamped.
+        CHECK(march_schedule_distance(T(0), r.t0, r.t1, r.near_distance) == r.t0);
+        CHECK(march_schedule_distance(T(1), r.t0, r.t1, r.near_distance) == r.t1);
+        CHECK(march_schedule_distance(T(-3), r.t0, r.t1, r.near_distance) == r.t0);
+        CHECK(march_schedule_distance(T(7), r.t0, r.t1, r.near_distance) == r.t1);
+        // Against expm1(u L) / expm1(L) in long double, relative to the range.
+        const ld L = std::log1p((ld(r.t1) - ld(r.t0)) / (ld(r.t0) + ld(r.near_distance)));
+        T previous = r.t0;
+        for (int i = 1; i <= 64; ++i) {
+            const T u = T(i) / T(64);
+            const T t = march_schedule_distance(u, r.t0, r.t1, r.near_distance);
+            const ld want = ld(r.t0) + (ld(r.t1) - ld(r.t0)) * std::expm1(ld(u) * L) / std::expm1(L);
+            // 8 ulp of the range, plus the rounding of t itself.
+            const ld eps = ld(std::numeric_limits<T>::epsilon());
+            CHECK(std::abs(ld(t) - want) <= 8 * eps * ld(r.t1 - r.t0) + eps * want);
+            CHECK(t >= previous);  // monotonic
+            previous = t;
+        }
+    }
+    // Consecutive steps grow by the constant factor e^(L / n): the last of 64 steps over 0-35 km
+    // with near_distance 1 km is 36^(63/64) times the first (56 m and 2 km).
+    const T first = march_schedule_distance(T(1) / T(64), T(0), T(35000), T(1000));
+    const T last = T(35000) - march_schedule_distance(T(63) / T(64), T(0), T(35000), T(1000));
+    CHECK(double(last / first) == doctest::Approx(std::pow(36.0, 63.0 / 64.0)).epsilon(1e-4));
+    CHECK(double(first) == doctest::Approx(1000.0 * std::expm1(std::log(36.0) / 64.0)).epsilon(1e-5));
+    // near_distance -> +Inf: uniform steps.
+    for (T near_distance : {T(1e30), cm_test::ieee_build ? cm_test::make_inf<T>() : T(1e30)})
+        for (int i = 0; i <= 8; ++i)
+            CHECK(march_schedule_distance(T(i) / T(8), T(100), T(900), near_distance) ==
+                  doctest::Approx(double(100 + 100 * i)).epsilon(1e-6));
+    // An empty range stays put; NaN propagates (IEEE builds).
+    CHECK(march_schedule_distance(T(0.5), T(42), T(42), T(1)) == T(42));
+    if (cm_test::ieee_build) {
+        const T nan = cm_test::make_nan<T>();
+        CHECK(cm_test::nan_bits(march_schedule_distance(T(0.5), T(0), nan, T(1))));
+        CHECK(cm_test::nan_bits(march_schedule_distance(T(0.5), T(0), T(10), nan)));
+    }
+}

@@ -308,3 +308,79 @@ TEST_CASE_TEMPLATE("far coordinates and absurd octave counts: finite, no overflo
     CHECK(perlin_fbm(p, 8, 40, 3, T(0.5)) >= T(-1));
     CHECK(perlin_fbm(p, 8, 40, 3, T(0.5)) <= T(1));
 }
+
+TEST_CASE("low-discrepancy sequences: Roberts' closed form, even coverage, bit-exact in float and double") {
+    const long double phi1 = 0.61803398874989484820L;                                    // golden ratio - 1
+    const long double plastic = 1.32471795724474602596L, a1 = 1 / plastic, a2 = 1 / (plastic * plastic);
+    const auto circular = [](long double a, long double b) {
+        const long double d = std::fabs(a - b);
+        return std::min(d, 1 - d);
+    };
+    for (std::uint32_t n = 0; n < 4096; ++n) {
+        // fract(1/2 + n alpha): alpha rounded to 2^-32 (n 2^-33 at most) and the value to 2^-24.
+        const long double tol = std::ldexp(1.0L, -24) + n * std::ldexp(1.0L, -33);
+        const auto fract = [](long double x) { return x - std::floor(x); };
+        CHECK(circular(low_discrepancy_r1<double>(n), fract(0.5L + n * phi1)) <= tol);
+        const glm::dvec2 r2 = low_discrepancy_r2<double>(n);
+        CHECK(circular(r2.x, fract(0.5L + n * a1)) <= tol);
+        CHECK(circular(r2.y, fract(0.5L + n * a2)) <= tol);
+        // 24 bits: exact in float, identical in double.
+        CHECK(double(low_discrepancy_r1<float>(n)) == low_discrepancy_r1<double>(n));
+        CHECK(glm::dvec2(low_discrepancy_r2<float>(n)) == r2);
+        CHECK(low_discrepancy_r1<float>(n) < 1.0f);
+    }
+    // R1 and the per-pixel frame jitter: the first N frames of any pixel leave no gap wider
+    // than 2/N (white noise leaves gaps near ln(N)/N), for every N up to 256.
+    for (std::uint32_t pixel_hash : {0U, 12345U, 0xdeadbeefU, 0xffffffffU, noise_hash(7U)}) {
+        CHECK(frame_jitter(pixel_hash, 0U) == float(pixel_hash >> 8) / 16777216.0f);  // frame 0: the hash itself
+        std::vector<double> xs;
+        for (std::uint32_t frame = 0; frame < 256; ++frame) {
+            xs.push_back(frame_jitter<double>(pixel_hash, frame));
+            std::vector<double> sorted = xs;
+            std::sort(sorted.begin(), sorted.end());
+            double widest = 1.0 - sorted.back() + sorted.front();
+            for (std::size_t i = 1; i < sorted.size(); ++i) widest = std::max(widest, sorted[i] - sorted[i - 1]);
+            CHECK(widest * double(sorted.size()) < 2.0);
+        }
+    }
+    // R2: N = k^2 points put at most 2 in any cell of a k x k grid.
+    for (int k : {4, 8, 16}) {
+        std::vector<int> count(static_cast<std::size_t>(k * k), 0);
+        for (std::uint32_t n = 0; n < std::uint32_t(k * k); ++n) {
+            const glm::vec2 p = low_discrepancy_r2(n);
+            ++count[static_cast<std::size_t>(int(p.y * float(k)) * k + int(p.x * float(k)))];
+        }
+        CHECK(*std::max_element(count.begin(), count.end()) <= 2);
+    }
+}
+
+TEST_CASE("triangular_dither: the closed form, triangular moments, quantisation without bias") {
+    CHECK(triangular_dither(0U) == 0.0f);
+    CHECK(triangular_dither(0x0000ffffU) == 65535.0f / 65536.0f);   // the extremes stay inside (-1, 1)
+    CHECK(triangular_dither(0xffff0000U) == -65535.0f / 65536.0f);
+    CHECK(triangular_dither(0x00030001U) == -2.0f / 65536.0f);
+    CHECK(double(triangular_dither<float>(0x12345678U)) == triangular_dither<double>(0x12345678U));  // exact in float
+    // Moments of the triangular distribution on (-1, 1): mean 0, variance 1/6, E|x| = 1/3.
+    const int n = 1 << 18;
+    double sum = 0, sum2 = 0, sum_abs = 0;
+    for (int i = 0; i < n; ++i) {
+        const double d = triangular_dither<double>(noise_hash(std::uint32_t(i)));
+        REQUIRE(d > -1.0);
+        REQUIRE(d < 1.0);
+        sum += d;
+        sum2 += d * d;
+        sum_abs += std::fabs(d);
+    }
+    CHECK(std::fabs(sum / n) < 3e-3);
+    CHECK(sum2 / n == doctest::Approx(1.0 / 6.0).epsilon(0.01));
+    CHECK(sum_abs / n == doctest::Approx(1.0 / 3.0).epsilon(0.01));
+    // Quantising v + d / 255 to 8 bits: the mean of the stored values is v (plain rounding
+    // would store the nearest step, off by up to half a step), for values between steps.
+    for (double frac : {0.1, 0.25, 0.5, 0.8}) {
+        const double v = (100.0 + frac) / 255.0;
+        double stored = 0;
+        for (int i = 0; i < n; ++i) stored += std::floor((v + triangular_dither<double>(noise_hash(std::uint32_t(i) + 77U)) / 255.0) * 255.0 + 0.5);
+        CHECK(stored / n / 255.0 == doctest::Approx(v).epsilon(1e-5));
+        CHECK(std::floor(v * 255.0 + 0.5) / 255.0 != doctest::Approx(v).epsilon(1e-4));  // without dither: biased
+    }
+}

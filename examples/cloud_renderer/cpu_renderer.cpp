@@ -90,9 +90,10 @@ struct pixel_program {
         return k.sun_radiance * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
     }
 
-    static float jitter(int x, int y) {
+    // The march's start offset in [0, 1) steps: the pixel's hash advanced by R1 each frame.
+    float jitter(int x, int y) const {
         const std::uint32_t h = cm::noise_hash(static_cast<std::uint32_t>(x) + static_cast<std::uint32_t>(y) * 8192u);
-        return float(h >> 8u) * (1.0f / 16777216.0f);
+        return cm::frame_jitter(h, s.frame);
     }
 
     // main() of the shader for the pixel whose centre is (x + 0.5, y + 0.5), before the
@@ -105,16 +106,26 @@ struct pixel_program {
         const vec3 dir = glm::normalize(k.forward + k.right * (ndc.x * aspect * k.tan_half_fov) + k.up * (ndc.y * k.tan_half_fov));
 
         cm::march_accumulator<vec3, vec3> acc;
-        const vec2 seg = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, s.layer_bottom, s.layer_top);
-        if (counted) counted->in_layer = seg.y > seg.x;
+        // The view stretch: from where the ray enters the layer, at most max_distance. The
+        // march covers the part of it inside the cloud type's altitude band (no density outside).
+        const vec2 layer = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, s.layer_bottom, s.layer_top);
+        const vec2 band_altitudes = cm::height_range_for_type(s.cloud_type) * (s.layer_top - s.layer_bottom) + s.layer_bottom;
+        const vec2 band = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, band_altitudes.x, band_altitudes.y);
+        const vec2 seg(std::max(layer.x, band.x), std::min(std::min(layer.y, layer.x + s.max_distance), band.y));
+        if (counted) counted->in_layer = layer.y > layer.x;
         if (seg.y > seg.x) {
-            const float t1 = std::min(seg.y, seg.x + s.max_distance);
-            const float ds = (t1 - seg.x) / float(v.view_steps);
+            const float t1 = seg.y;
             const float offset = v.jitter ? jitter(x, y) : 0.5f;
             const float mu = glm::dot(dir, k.sun_dir);
+            const float n = float(v.view_steps);
+            const auto at = [&](float u) {
+                return v.schedule == step_schedule::growing ? cm::march_schedule_distance(u, seg.x, t1, k.march_near_distance)
+                                                            : seg.x + u * (t1 - seg.x);
+            };
             float tau_view = 0.0f;  // optical depth from the camera to the start of the step
             for (int i = 0; i < v.view_steps; ++i) {
-                const float t = seg.x + (float(i) + offset) * ds;
+                const float t = at((float(i) + offset) / n);
+                const float ds = at((float(i) + 1.0f) / n) - at(float(i) / n);
                 const float alt = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, t);
                 const float d = density(dir * t, alt, view_reads);
                 if (d <= 0.0f) continue;
@@ -140,10 +151,18 @@ struct pixel_program {
         return vec4(color, 1.0f - (t.r + t.g + t.b) / 3.0f);
     }
 
-    // main() of the shader: the display colour.
+    // main() of the shader: the display colour, dithered for the 8-bit store.
     vec4 shade(int x, int y, int width, int height) const {
         const vec4 c = shade_linear(x, y, width, height);
-        return vec4(tonemap(vec3(c), s.exposure), c.a);
+        vec3 display = tonemap(vec3(c), s.exposure);
+        if (v.dither) display += cm::triangular_dither(dither_hash(x, y)) * (1.0f / 255.0f);
+        return vec4(display, c.a);
+    }
+
+    // The dither's hash: another hash of the pixel than the jitter's, new each frame.
+    std::uint32_t dither_hash(int x, int y) const {
+        const std::uint32_t pixel = static_cast<std::uint32_t>(x) + static_cast<std::uint32_t>(y) * 8192u;
+        return cm::noise_hash(cm::noise_hash(pixel) + s.frame * 0x9e3779b9u);
     }
 };
 

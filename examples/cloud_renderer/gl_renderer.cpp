@@ -46,7 +46,9 @@ std::vector<shader_int> variant_values(const variant& v) {
             {"u_light_steps", v.light_steps},
             {"u_integration", static_cast<int>(v.integration)},
             {"u_view_steps", v.view_steps},
-            {"u_jitter", v.jitter ? 1 : 0}};
+            {"u_schedule", static_cast<int>(v.schedule)},
+            {"u_jitter", v.jitter ? 1 : 0},
+            {"u_dither", v.dither ? 1 : 0}};
 }
 
 }  // namespace
@@ -89,6 +91,7 @@ std::string fragment_shader_source(const variant& v, bool compile_time) {
     X(PFNGLUSEPROGRAMPROC, UseProgram)                          \
     X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)          \
     X(PFNGLUNIFORM1IPROC, Uniform1i)                            \
+    X(PFNGLUNIFORM1UIPROC, Uniform1ui)                          \
     X(PFNGLUNIFORM1FPROC, Uniform1f)                            \
     X(PFNGLUNIFORM2FPROC, Uniform2f)                            \
     X(PFNGLUNIFORM3FPROC, Uniform3f)                            \
@@ -397,6 +400,7 @@ bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, uns
     set1f("u_planet_radius", sc.planet_radius);
     set1f("u_layer_bottom", sc.layer_bottom);
     set1f("u_layer_top", sc.layer_top);
+    set1f("u_march_near_distance", k.march_near_distance);
     set3f("u_sun_dir", k.sun_dir);
     set3f("u_sun_radiance", k.sun_radiance);
     set3f("u_ambient_top", k.ambient_top);
@@ -414,6 +418,7 @@ bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, uns
     set1f("u_detail_tile", sc.detail_tile);
     set1f("u_weather_tile", sc.weather_tile);
     gl.Uniform2f(loc("u_wind"), sc.wind.x, sc.wind.y);
+    gl.Uniform1ui(loc("u_frame"), sc.frame);
     set1f("u_exposure", sc.exposure);
     set1f("u_phase_g", k.phase_g);
     set1f("u_phase_g_back", k.phase_g_back);

@@ -43,12 +43,14 @@ image_stats statistics(const image& img) {
     return s;
 }
 
-image_difference compare(const image& a, const image& b) {
+image_difference compare(const image& a, const image& b) { return compare(a, b, std::vector<char>(a.pixels.size(), 1)); }
+
+image_difference compare(const image& a, const image& b, const std::vector<char>& mask) {
     image_difference d;
     double sum = 0;
     std::size_t n = 0;
-    for (std::size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
+    for (std::size_t i = 0; i < a.pixels.size() && i < b.pixels.size() && i < mask.size(); ++i)
+        for (int c = 0; c < 3 && mask[i]; ++c) {
             double e = double(a.pixels[i][c]) - double(b.pixels[i][c]);
             if (!std::isfinite(e)) e = 1.0;  // a NaN pixel counts as the largest error
             e = std::fabs(e);
@@ -57,7 +59,8 @@ image_difference compare(const image& a, const image& b) {
             ++n;
         }
     d.rms = n ? std::sqrt(sum / double(n)) : 0.0;
-    d.psnr_db = d.rms > 0 ? 20.0 * std::log10(1.0 / d.rms) : std::numeric_limits<double>::infinity();
+    d.psnr_db = n == 0 ? std::numeric_limits<double>::quiet_NaN()
+                       : (d.rms > 0 ? 20.0 * std::log10(1.0 / d.rms) : std::numeric_limits<double>::infinity());
     return d;
 }
 

@@ -30,8 +30,10 @@ struct image_difference {
     double max_abs = 0;         // largest channel difference
     double rms = 0;
 };
-// Requires images of the same size.
+// Requires images of the same size. With a mask (one flag per pixel), only the flagged
+// pixels count; no flagged pixel gives psnr_db NaN.
 image_difference compare(const image& a, const image& b);
+image_difference compare(const image& a, const image& b, const std::vector<char>& mask);
 
 }  // namespace cloud_renderer
 

@@ -8,6 +8,8 @@
 #include "textures.hpp"
 #include "window.hpp"
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -70,6 +72,23 @@ void print_stats(const char* who, const image& img) {
                 100.0 * s.cloud_fraction, s.nan_pixels);
 }
 
+// The average of frames 0..n-1 of a scene, each drawn by render(scene, image&) with its
+// own march jitter (scene::frame): the converged image of the temporal jitter, the same on
+// the CPU and the GPU. Display colours are averaged (what a history buffer holds).
+template <class Render>
+bool accumulate_frames(scene s, int n, Render render, image& out) {
+    for (int f = 0; f < n; ++f) {
+        s.frame = static_cast<std::uint32_t>(f);
+        image img;
+        if (!render(s, img)) return false;
+        if (f == 0) out = img;
+        else
+            for (std::size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] += img.pixels[i];
+    }
+    for (glm::vec4& p : out.pixels) p /= float(n);
+    return true;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -85,7 +104,10 @@ int run_headless(const options& o) {
     // Twice: drivers compile the shader for the GPU at the first draw (Mesa's llvmpipe JIT
     // takes seconds), so the second draw is the frame time.
     if (!gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &first, why) ||
-        !gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &ft, why)) {
+        !gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &ft, why) ||
+        (o.accumulate > 1 && !accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& out) {
+             return gpu->render(s, o.var, o.compile_time, o.width, o.height, out, nullptr, why);
+         }, img))) {
         std::fprintf(stderr, "error: %s\n", why.c_str());
         return 1;
     }
@@ -101,7 +123,11 @@ int run_cpu(const options& o) {
     cloud_textures t;
     if (!load_textures(o, t)) return 1;
     const auto t0 = std::chrono::steady_clock::now();
-    const image img = render_cpu(o.sc, o.var, t, o.width, o.height);
+    image img;
+    (void)accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& out) {
+        out = render_cpu(s, o.var, t, o.width, o.height);
+        return true;
+    }, img);
     std::printf("CPU: preset %s, %d x %d, %s: %.2f s\n", o.sc.name.c_str(), o.width, o.height, variant_spec(o.var).c_str(),
                 seconds_since(t0));
     print_stats("CPU image", img);
@@ -116,12 +142,19 @@ int run_compare(const options& o) {
     image g;
     std::string why;
     frame_timing ft;
-    if (!gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, g, &ft, why)) {
+    if (!gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, g, &ft, why) ||
+        (o.accumulate > 1 && !accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& out) {
+             return gpu->render(s, o.var, o.compile_time, o.width, o.height, out, nullptr, why);
+         }, g))) {
         std::fprintf(stderr, "error: %s\n", why.c_str());
         return 1;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    const image c = render_cpu(o.sc, o.var, t, o.width, o.height);
+    image c;
+    (void)accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& out) {
+        out = render_cpu(s, o.var, t, o.width, o.height);
+        return true;
+    }, c);
     const double cpu_s = seconds_since(t0);
     const image_difference d = compare(g, c);
     std::printf("preset %s, %d x %d, %s: GPU %.1f ms, CPU %.2f s\n", o.sc.name.c_str(), o.width, o.height,
@@ -237,6 +270,73 @@ int run_bench(const options& o) {
     return 0;
 }
 
+// --convergence: for every preset, the variant (and the same with each step schedule)
+// against a converged render of the same lighting model: 1024 view steps with uniform
+// spacing and 128-step light marches toward the sun and behind the sample, no jitter. CPU
+// renders (the GPU image's twin), PSNR over the display image and over the horizon band
+// (pixels whose ray is within 5 degrees of the horizon), and the texture reads.
+int run_convergence(const options& o) {
+    cloud_textures t;
+    if (!load_textures(o, t)) return 1;
+    const char* const reference_spec = "steps=1024,light=march,light-steps=128,behind=march,schedule=uniform,jitter=off";
+    // The variant, then one change each: the other step schedule, 4x the view steps, and
+    // converged light (which error dominates: the view march's or the light estimate's).
+    const char* const other_schedule = o.var.schedule == step_schedule::uniform ? "schedule=growing" : "schedule=uniform";
+    const std::pair<const char*, const char*> rows[] = {{"the variant", ""},
+                                                        {"the other step schedule", other_schedule},
+                                                        {"4x the view steps", nullptr},
+                                                        {"light marches of 128 steps both ways", "light=march,light-steps=128,behind=march"}};
+    const std::string four_times = "steps=" + std::to_string(std::min(1024, 4 * o.var.view_steps));
+    std::ostringstream table;
+    table << "| Preset | Variant | PSNR, image (dB) | PSNR, horizon band (dB) | texture reads per pixel |\n"
+          << "|---|---|---:|---:|---:|\n";
+    const auto t0 = std::chrono::steady_clock::now();
+    for (const scene& preset : presets()) {
+        scene s = preset;
+        variant reference_variant = o.var;
+        (void)apply_variant_spec(reference_spec, reference_variant);
+        const image reference = render_cpu(s, reference_variant, t, o.width, o.height);
+        // The horizon band: |elevation| <= 5 degrees (the camera has no roll).
+        const frame_constants k = make_frame_constants(s);
+        const float aspect = float(o.width) / float(o.height);
+        std::vector<char> band(reference.pixels.size(), 0);
+        for (int y = 0; y < o.height; ++y)
+            for (int x = 0; x < o.width; ++x) {
+                const float nx = (float(x) + 0.5f) / float(o.width) * 2.0f - 1.0f;
+                const float ny = (float(y) + 0.5f) / float(o.height) * 2.0f - 1.0f;
+                const glm::vec3 d = glm::normalize(k.forward + k.right * (nx * aspect * k.tan_half_fov) + k.up * (ny * k.tan_half_fov));
+                band[static_cast<std::size_t>(y) * static_cast<std::size_t>(o.width) + static_cast<std::size_t>(x)] =
+                    std::fabs(d.y) <= std::sin(5.0f * 3.14159265f / 180.0f) ? 1 : 0;
+            }
+        for (const auto& [label, spec] : rows) {
+            variant v = o.var;
+            const std::string row_spec = spec ? spec : four_times;
+            const std::string why = apply_variant_spec(row_spec, v);
+            if (!why.empty()) {
+                std::fprintf(stderr, "error: %s\n", why.c_str());
+                return 1;
+            }
+            const image img = render_cpu(s, v, t, o.width, o.height);
+            const double whole = compare(img, reference).psnr_db, horizon = compare(img, reference, band).psnr_db;
+            const texture_read_stats reads = count_texture_reads(s, v, t, o.width, o.height);
+            char line[512];
+            char horizon_text[32];
+            if (std::isnan(horizon)) std::snprintf(horizon_text, sizeof horizon_text, "-");
+            else std::snprintf(horizon_text, sizeof horizon_text, "%.1f", horizon);
+            std::snprintf(line, sizeof line, "| %s | %s%s%s%s | %.1f | %s | %.0f |\n", s.name.c_str(), label,
+                          row_spec.empty() ? "" : " (`", row_spec.c_str(), row_spec.empty() ? "" : "`)", whole, horizon_text,
+                          reads.mean);
+            table << line;
+        }
+        if (!o.quiet) std::fprintf(stderr, "convergence: %s (%.0f s)\n", s.name.c_str(), seconds_since(t0));
+    }
+    std::printf("Variant: `%s`. Reference: the same with `%s`. %d x %d, CPU renderer (the GPU image's twin); "
+                "horizon band: pixels whose ray is within 5 degrees of the horizon; texture reads: per pixel whose ray "
+                "enters the cloud type's band.\n\n%s",
+                variant_spec(o.var).c_str(), reference_spec, o.width, o.height, table.str().c_str());
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -259,6 +359,7 @@ int main(int argc, char** argv) {
     case run_mode::cpu: return run_cpu(o);
     case run_mode::compare: return run_compare(o);
     case run_mode::bench: return run_bench(o);
+    case run_mode::convergence: return run_convergence(o);
     case run_mode::window: break;
     }
     cloud_textures t;

@@ -32,6 +32,9 @@ const char* usage_text() {
            "  --compare           render on both, print PSNR and max difference, write both PNGs\n"
            "  --bench             render every lighting variant, print ms per frame and PSNR\n"
            "                      against the reference variant as a markdown table\n"
+           "  --convergence       every preset on the CPU: the variant (and both step schedules)\n"
+           "                      against 1024 view steps and 128-step light marches of the same\n"
+           "                      lighting model, PSNR of the image and of the horizon band\n"
            "  --list-presets      print the scene presets\n"
            "  --dump-shader       print the fragment shader as compiled for the variant\n"
            "options:\n"
@@ -46,6 +49,8 @@ const char* usage_text() {
            "  --out FILE          PNG to write (default clouds.png; --cpu: clouds_cpu.png;\n"
            "                      --compare: FILE and FILE with _cpu before .png)\n"
            "  --bench-out FILE    also write the --bench table to FILE\n"
+           "  --accumulate N      --headless, --cpu, --compare: the average of frames 0..N-1, each\n"
+           "                      with its own march jitter (deterministic; default 1)\n"
            "  --frames N          --bench: timed frames per variant, after one warm-up (default 3);\n"
            "                      window: close after N frames (default: when closed)\n"
            "  --min-psnr DB       --compare: exit with status 1 if the PSNR is below DB\n"
@@ -98,6 +103,7 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
         else if (a == "--cpu") err = set_mode(run_mode::cpu, a);
         else if (a == "--compare") err = set_mode(run_mode::compare, a);
         else if (a == "--bench") err = set_mode(run_mode::bench, a);
+        else if (a == "--convergence") err = set_mode(run_mode::convergence, a);
         else if (a == "--list-presets") err = set_mode(run_mode::list_presets, a);
         else if (a == "--dump-shader") err = set_mode(run_mode::dump_shader, a);
         else if (a == "--help" || a == "-h") err = set_mode(run_mode::help, a);
@@ -114,6 +120,7 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
         } else if (a == "--width") err = number(16, 8192, [&](double x) { o.width = static_cast<int>(x); });
         else if (a == "--height") err = number(16, 8192, [&](double x) { o.height = static_cast<int>(x); });
         else if (a == "--frames") err = number(1, 100000, [&](double x) { o.frames = static_cast<int>(x); o.frames_given = true; });
+        else if (a == "--accumulate") err = number(1, 4096, [&](double x) { o.accumulate = static_cast<int>(x); });
         else if (a == "--min-psnr") err = number(0, 200, [&](double x) { o.min_psnr = x; });
         else if (a == "--altitude") err = number(0, 100000, [&](double x) { o.sc.camera_altitude = float(x); });
         else if (a == "--yaw") err = number(-360, 360, [&](double x) { o.sc.yaw = float(x); });
@@ -133,7 +140,7 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
         }
         if (!err.empty()) return err;
         // Whole-number options given a fraction: say so rather than truncate silently.
-        if ((a == "--width" || a == "--height" || a == "--frames") && args[i].find_first_not_of("0123456789") != std::string::npos)
+        if ((a == "--width" || a == "--height" || a == "--frames" || a == "--accumulate") && args[i].find_first_not_of("0123456789") != std::string::npos)
             return a + " must be a whole number, not '" + args[i] + "'";
     }
     return {};

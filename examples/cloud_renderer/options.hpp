@@ -8,7 +8,7 @@
 
 namespace cloud_renderer {
 
-enum class run_mode { window, headless, cpu, compare, bench, list_presets, dump_shader, help };
+enum class run_mode { window, headless, cpu, compare, bench, convergence, list_presets, dump_shader, help };
 
 struct options {
     run_mode mode = run_mode::window;
@@ -22,6 +22,7 @@ struct options {
     int frames = 3;              // --bench: timed frames per variant (after one warm-up);
                                  // window: close after this many frames, if frames_given
     bool frames_given = false;
+    int accumulate = 1;          // --headless, --cpu, --compare: average of frames 0..N-1
     double min_psnr = 0;         // --compare: fail below this (0: never)
     bool quiet = false;
 };

@@ -110,6 +110,7 @@ frame_constants make_frame_constants(const scene& s) {
     f.cone_far_distance = 1800.0f;
     f.cone_far_length = 900.0f;
     f.light_march_max = 6000.0f;
+    f.march_near_distance = 1000.0f;
     f.min_transmittance = 0.01f;
     return f;
 }
@@ -124,6 +125,7 @@ const char* name(phase_model p) {
     return "?";
 }
 const char* name(light_mode l) { return l == light_mode::cone ? "cone" : "march"; }
+const char* name(step_schedule s) { return s == step_schedule::uniform ? "uniform" : "growing"; }
 const char* name(integration_mode i) { return i == integration_mode::analytic ? "analytic" : "naive"; }
 const char* name(lighting_model l) { return l == lighting_model::octaves ? "octaves" : "diffusion"; }
 
@@ -194,11 +196,17 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
         } else if (key == "steps") {
             if (!parse_int(value, 8, 1024, out.view_steps))
                 return "steps must be an integer from 8 to 1024, not '" + value + "'";
+        } else if (key == "schedule") {
+            if (value == "uniform") out.schedule = step_schedule::uniform;
+            else if (value == "growing") out.schedule = step_schedule::growing;
+            else return "schedule must be uniform or growing, not '" + value + "'";
         } else if (key == "jitter") {
             if (!parse_switch(value, out.jitter)) return "jitter must be on or off, not '" + value + "'";
+        } else if (key == "dither") {
+            if (!parse_switch(value, out.dither)) return "dither must be on or off, not '" + value + "'";
         } else {
             return "unknown variant key '" + key +
-                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, "
+                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, schedule, dither, "
                    "jitter)";
         }
     }
@@ -210,7 +218,7 @@ std::string variant_spec(const variant& v) {
     std::ostringstream s;
     s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",octaves=" << v.octaves << ",powder=" << (v.powder ? "on" : "off")
       << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
-      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",jitter=" << (v.jitter ? "on" : "off");
+      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",schedule=" << name(v.schedule) << ",jitter=" << (v.jitter ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
     return s.str();
 }
 

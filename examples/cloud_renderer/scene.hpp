@@ -13,6 +13,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,10 @@ namespace cloud_renderer {
 enum class phase_model { hg, dual_hg, cornette_shanks, mie };
 enum class light_mode { cone, march };
 enum class integration_mode { analytic, naive };
+// Where the view march puts its steps between where the ray enters the cloud type's altitude
+// band and max_distance further: equal steps, or steps that grow with distance
+// (march_schedule_distance with frame_constants::march_near_distance).
+enum class step_schedule { uniform, growing };
 // The sun term: Wrenninge's octaves (multiple_scattering.hpp) or the diffusion model
 // (diffusion_lighting.hpp, diffusion_models::fitted), which also needs the optical depth
 // behind the sample (a second light estimate away from the sun, by the cone or a march:
@@ -44,7 +49,9 @@ struct variant {
     int light_steps = 6;             // march: midpoint steps to where the cloud type's band ends (1..256)
     integration_mode integration = integration_mode::analytic;
     int view_steps = 64;             // steps along the view ray through the layer (8..1024)
+    step_schedule schedule = step_schedule::uniform;
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
+    bool dither = true;              // triangular dither of the display colour before 8-bit output
 };
 
 // The picture: camera, sun, sky, clouds. Angles in degrees, lengths in metres.
@@ -69,6 +76,7 @@ struct scene {
     float detail_tile = 1500.0f;     // ... of the detail volume
     float weather_tile = 60000.0f;   // ... of the weather map
     glm::vec2 wind{1200.0f, -800.0f};  // offset of the textures (animate it for wind)
+    std::uint32_t frame = 0;         // frame number: advances each pixel's march jitter (frame_jitter)
     float exposure = 1.0f;
 };
 
@@ -93,6 +101,7 @@ struct frame_constants {
     float ms_a, ms_b, ms_c;          // octave factors (attenuation, contribution, eccentricity)
     float cone_step, cone_spread, cone_far_distance, cone_far_length;
     float light_march_max;           // the light march covers at most this far
+    float march_near_distance;       // growing view steps: nearly uniform closer than this
     float min_transmittance;         // early exit of the view march
 };
 
@@ -106,6 +115,7 @@ std::string apply_variant_spec(const std::string& spec, variant& v);
 std::string variant_spec(const variant& v);
 const char* name(phase_model p);
 const char* name(light_mode l);
+const char* name(step_schedule s);
 const char* name(integration_mode i);
 const char* name(lighting_model l);
 // Mean cosine g of a phase model with the frame's parameters (the diffusion model's g):

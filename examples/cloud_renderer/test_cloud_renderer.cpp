@@ -74,7 +74,8 @@ TEST_CASE("GPU and CPU images agree to at least 35 dB, and are not blank") {
 TEST_CASE("the variants agree with the CPU too, and compile-time equals run-time") {
     const scene& s = *find_preset("ground");
     for (const char* spec : {"phase=mie,light=march,light-steps=8,steps=32", "phase=cs,octaves=1,powder=off,integration=naive,jitter=off",
-                             "lighting=diffusion,powder=off", "lighting=diffusion,phase=mie,light=march,light-steps=8,steps=32"}) {
+                             "lighting=octaves,powder=on,light=cone", "lighting=diffusion,phase=mie,behind=march,light-steps=8,steps=32",
+                             "schedule=growing", "schedule=uniform,steps=16"}) {
         CAPTURE(std::string(spec));
         variant v;
         REQUIRE(apply_variant_spec(spec, v).empty());
@@ -183,6 +184,15 @@ TEST_CASE("command-line errors are clear") {
     CHECK(parse({"--variant", "phase=rayleigh"}).find("phase must be hg, dual_hg, cs or mie") != std::string::npos);
     CHECK(parse({"--variant", "colour=red"}).find("unknown variant key 'colour'") != std::string::npos);
     CHECK(parse({"--variant", "lighting=lut"}) == "--variant: lighting must be octaves or diffusion, not 'lut'");
+    CHECK(parse({"--variant", "behind=shadow"}) == "--variant: behind must be cone or march, not 'shadow'");
+    CHECK(parse({"--variant", "schedule=log"}) == "--variant: schedule must be uniform or growing, not 'log'");
+    // Every key round-trips through variant_spec.
+    variant v, back;
+    REQUIRE(apply_variant_spec("lighting=octaves,behind=march,schedule=growing,light=cone", v).empty());
+    REQUIRE(apply_variant_spec(variant_spec(v), back).empty());
+    CHECK(variant_spec(back) == variant_spec(v));
+    CHECK(back.behind == light_mode::march);
+    CHECK(back.schedule == step_schedule::growing);
     CHECK(parse({"--headless", "--cpu"}).find("choose one mode") == 0);
     // Scene flags override the preset wherever they stand.
     options o;

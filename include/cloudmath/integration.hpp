@@ -7,6 +7,7 @@
 //           color = background * acc.transmittance + acc.luminance;
 // Units:    S is the source term per unit length (radiance / m), for single scattering
 //           S = sigma_s * phase * L_light * T_light; sigma_t in 1/m; ds in m.
+//           Step placement: march_schedule_distance (steps that grow with distance).
 // Source:   Hillaire, "Physically based and unified volumetric rendering in Frostbite",
 //           SIGGRAPH 2015 Advances: within a step of length ds with constant S and sigma_t,
 //           integral_0^ds S exp(-sigma_t t) dt = S (1 - exp(-sigma_t ds)) / sigma_t.
@@ -86,6 +87,27 @@ struct march_accumulator {
         return Extinction(1) - transmittance;
     }
 };
+
+// march_schedule_distance(u, t_start, t_end, near_distance): where a march over
+// [t_start, t_end] puts fraction u of its steps when the step length grows with distance:
+//   t(u) = t_start + (t_end - t_start) (e^(u L) - 1) / (e^L - 1),
+//   L = ln((t_end + near_distance) / (t_start + near_distance)).
+// Step i of n spans [t(i/n), t((i + 1)/n)] and is about (t + near_distance) L / n long:
+// nearly uniform closer than near_distance, a constant fraction of the distance beyond it
+// (as a pixel's footprint, which grows as t). near_distance -> +Inf gives uniform steps.
+// Example: 64 steps over 0-35 km with near_distance = 1 km are 56 m long at the camera and
+// 2 km at 35 km, against 547 m everywhere for uniform steps.
+// Evaluated as u e^((u-1) L) f(u L) / f(L) with f(x) = (1 - e^-x)/x
+// (one_minus_exp_neg_over_x): t(0) = t_start and t(1) = t_end exactly, no cancellation for
+// small L and no overflow for large L.
+// Domain: 0 <= t_start <= t_end, near_distance > 0; u is clamped to [0, 1].
+template <class T>
+[[nodiscard]] inline T march_schedule_distance(T u, T t_start, T t_end, T near_distance) noexcept {
+    const T v = saturate(u);
+    const T L = std::log1p((t_end - t_start) / (t_start + near_distance));
+    const T g = v * std::exp((v - T(1)) * L) * one_minus_exp_neg_over_x(v * L) / one_minus_exp_neg_over_x(L);
+    return t_start + (t_end - t_start) * g;
+}
 
 }  // namespace cloudmath
 

@@ -57,6 +57,49 @@ namespace cloudmath {
     return noise_hash(x + noise_hash(y + noise_hash(z + noise_hash(seed))));
 }
 
+// ---------------------------------------------------------------------------------------
+// Low-discrepancy sequences for per-frame jitter (Roberts 2018, "The unreasonable
+// effectiveness of quasirandom sequences"): x_n = fract(1/2 + n alpha). Computed in 32-bit
+// fixed point (alpha rounded to 2^-32; uint arithmetic wraps as fract does), so C++ and
+// GLSL give the same bits for every n, with no float drift for large frame counts. Values
+// are the top 24 bits over 2^24: in [0, 1), exact in float.
+
+// R1: alpha = golden ratio - 1 = 0.6180339887 (0x9e3779b9 / 2^32). Any N consecutive terms
+// split [0, 1) into gaps of at most 3 sizes (the three-distance theorem).
+template <class T = float>
+[[nodiscard]] constexpr T low_discrepancy_r1(std::uint32_t n) noexcept {
+    return T((0x80000000U + n * 0x9e3779b9U) >> 8U) * T(1.0 / 16777216.0);
+}
+
+// R2: alpha = (1/g, 1/g^2) with g = 1.3247179572 the plastic number (0xc13fa9a9 and
+// 0x91e10da6 over 2^32): the 2D sequence with the best known packing for any prefix.
+template <class T = float>
+[[nodiscard]] constexpr glm::vec<2, T> low_discrepancy_r2(std::uint32_t n) noexcept {
+    return glm::vec<2, T>(T((0x80000000U + n * 0xc13fa9a9U) >> 8U), T((0x80000000U + n * 0x91e10da6U) >> 8U)) *
+           T(1.0 / 16777216.0);
+}
+
+// frame_jitter(pixel_hash, frame): a ray-march start offset in [0, 1) for one pixel and
+// frame: the pixel's hash (white noise across pixels, so no pattern on screen) advanced by
+// R1 each frame (so the frames of one pixel fill [0, 1) evenly: the temporal average of N
+// frames converges as 1/N for a smooth integrand, not 1/sqrt(N)). Frame 0 is the hash's
+// own top 24 bits over 2^24.
+template <class T = float>
+[[nodiscard]] constexpr T frame_jitter(std::uint32_t pixel_hash, std::uint32_t frame) noexcept {
+    return T((pixel_hash + frame * 0x9e3779b9U) >> 8U) * T(1.0 / 16777216.0);
+}
+
+// triangular_dither(h): a value in (-1, 1) with the triangular distribution (the difference
+// of two uniforms from the hash's low and high 16 bits, each (k + 1/2) / 65536), to add in
+// units of the output's last bit before quantising: colour + triangular_dither(h) / 255
+// before an 8-bit store. Triangular noise of this width makes the quantisation error's mean
+// and variance independent of the signal (no banding in slow gradients such as the sky), at
+// an rms of 1/sqrt(6) of a step (Lipshitz, Wannamaker and Vanderkooy 1992). Exact in float.
+template <class T = float>
+[[nodiscard]] constexpr T triangular_dither(std::uint32_t h) noexcept {
+    return (T(h & 0xffffU) - T(h >> 16U)) * T(1.0 / 65536.0);
+}
+
 namespace detail {
 
 // i modulo n in [0, n) for any int i and n >= 1, using % on non-negative operands only

@@ -238,6 +238,14 @@ std::vector<parity_case> make_cases() {
         add({"cm_march_opacity", "vec4(cm_march_opacity(CmMarchAccumulator(vec3(1.0), a.xyz)), 0.0)",
              [](vec4 a, vec4) { cm::march_accumulator<vec3> acc; acc.transmittance = vec3(a); return vec4(acc.opacity(), 0.0f); },
              {{vec4(0.0f, 0.5f, 1.0f, 0), vec4(0)}, {vec4(0.25f, 0.75f, 1e-6f, 0), vec4(0)}}, 3, 1.0f});
+        // Step schedules: camera at the layer, inside it, a nearly uniform one (huge
+        // near_distance), an empty range and a 1000 km ray with near_distance 1 m.
+        std::vector<std::pair<vec4, vec4>> schedule;
+        for (vec3 r : {vec3(0.0f, 35000.0f, 1000.0f), vec3(1500.0f, 4000.0f, 500.0f), vec3(0.0f, 35000.0f, 1e9f),
+                       vec3(100.0f, 100.0f, 10.0f), vec3(0.0f, 1e6f, 1.0f)})
+            for (float u : {-0.5f, 0.0f, 0.01f, 0.1f, 0.37f, 0.5f, 0.9f, 0.999f, 1.0f, 2.0f}) schedule.push_back({vec4(u, r), vec4(0)});
+        add({"cm_march_schedule_distance", "vec4(cm_march_schedule_distance(a.x, a.y, a.z, a.w))",
+             [](vec4 a, vec4) { return vec4(cm::march_schedule_distance(a.x, a.y, a.z, a.w)); }, schedule, 1, 1e-3f});
     }
 
     // diffusion lighting: optical depths from 0 to 1e4 (past the 1e6 clamp is C++-tested),
@@ -425,6 +433,24 @@ std::vector<parity_case> make_cases() {
                  const std::uint32_t g = cm::noise_hash(std::uint32_t(a.z), std::uint32_t(a.w), std::uint32_t(b.x), 7U);
                  return vec4(float(h >> 16), float(h & 0xffffU), float(g >> 16), float(g & 0xffffU)); },
              hashes, 4, 1.0f, 0.0});
+        // The sequences: bit-identical (uint arithmetic), for small and wrapping indices.
+        std::vector<std::pair<vec4, vec4>> indices;
+        for (std::uint32_t i = 0; i < 48; ++i) {
+            const std::uint32_t n = i < 16 ? i : cm::noise_hash(i);
+            const std::uint32_t frame = i < 8 ? i : cm::noise_hash(i + 1000U);
+            indices.push_back({vec4(float(n >> 16), float(n & 0xffffU), float(frame >> 16), float(frame & 0xffffU)), vec4(0.0f)});
+        }
+        const auto index = [](float hi, float lo) { return (std::uint32_t(hi) << 16) | std::uint32_t(lo); };
+        add({"cm_low_discrepancy_r1",
+             "vec4(cm_low_discrepancy_r1((uint(a.x) << 16u) | uint(a.y)), cm_low_discrepancy_r2((uint(a.x) << 16u) | uint(a.y)), "
+             "cm_frame_jitter((uint(a.x) << 16u) | uint(a.y), (uint(a.z) << 16u) | uint(a.w)))",
+             [index](vec4 a, vec4) {
+                 const std::uint32_t n = index(a.x, a.y), frame = index(a.z, a.w);
+                 return vec4(cm::low_discrepancy_r1(n), cm::low_discrepancy_r2(n), cm::frame_jitter(n, frame)); },
+             indices, 4, 1.0f, 0.0});
+        add({"cm_triangular_dither", "vec4(cm_triangular_dither((uint(a.x) << 16u) | uint(a.y)), cm_triangular_dither((uint(a.z) << 16u) | uint(a.w)), 0.0, 0.0)",
+             [index](vec4 a, vec4) { return vec4(cm::triangular_dither(index(a.x, a.y)), cm::triangular_dither(index(a.z, a.w)), 0.0f, 0.0f); },
+             indices, 2, 1.0f, 0.0});
         std::vector<std::pair<vec4, vec4>> pts;
         cm_test_points(pts);
         add({"cm_perlin_noise_derivatives", "cm_perlin_noise_derivatives(a.xyz, int(a.w), uint(b.x))",
@@ -579,7 +605,17 @@ int main(int argc, char** argv) {
         std::string defines;
         std::vector<parity_case> cases;
     };
-    const program programs[] = {{"", make_cases()}, {config_defines, make_config_cases()}};
+    // At most 64 cases per shader: each case is one `if (c == i) return` of cm_test_case, and
+    // Mesa's llvmpipe nests those ifs and mis-runs control flow nested past 80 levels
+    // (gallivm's LP_MAX_TGSI_NESTING): the 81st case returned 0 for every input.
+    constexpr std::size_t max_cases_per_shader = 64;
+    std::vector<program> programs;
+    for (const program& all : {program{"", make_cases()}, program{config_defines, make_config_cases()}})
+        for (std::size_t first = 0; first < all.cases.size(); first += max_cases_per_shader) {
+            const std::size_t last = std::min(all.cases.size(), first + max_cases_per_shader);
+            programs.push_back({all.defines, std::vector<parity_case>(all.cases.begin() + std::ptrdiff_t(first),
+                                                                      all.cases.begin() + std::ptrdiff_t(last))});
+        }
     std::vector<row> rows;
     std::size_t case_count = 0;
     bool ok = true;

@@ -22,7 +22,9 @@ CR_PARAM(int, u_cone_samples)
 CR_PARAM(int, u_light_steps)
 CR_PARAM(int, u_integration)      // 0 energy-conserving (analytic), 1 naive Riemann sum
 CR_PARAM(int, u_view_steps)
+CR_PARAM(int, u_schedule)         // view steps: 0 uniform, 1 growing with distance
 CR_PARAM(int, u_jitter)
+CR_PARAM(int, u_dither)           // 0 off, 1 triangular dither before the 8-bit store
 
 // The scene (scene.hpp's `scene` and `frame_constants`).
 uniform vec2 u_resolution;
@@ -35,12 +37,14 @@ uniform float u_sun_cos_radius;
 uniform float u_coverage, u_cloud_type, u_extinction, u_albedo, u_max_distance;
 uniform float u_base_tile, u_detail_tile, u_weather_tile;
 uniform vec2 u_wind;
+uniform uint u_frame;
 uniform float u_exposure;
 uniform float u_phase_g, u_phase_g_back, u_phase_w, u_droplet_diameter;
 uniform float u_ms_a, u_ms_b, u_ms_c;
 uniform float u_phase_mean_cosine;  // the diffusion model's g for u_phase_model
 uniform float u_cone_step, u_cone_spread, u_cone_far_distance, u_cone_far_length;
 uniform float u_light_march_max, u_min_transmittance;
+uniform float u_march_near_distance;  // growing view steps: nearly uniform closer than this
 
 uniform sampler3D u_base;      // 128^3 RGBA8: Perlin-Worley + Worley fBm (noise_bake.hpp)
 uniform sampler3D u_detail;    // 32^3 RGB8: Worley fBm
@@ -139,13 +143,19 @@ vec3 cr_background(vec3 dir) {
     return sky;
 }
 
+// Distance of fraction u of the view march over [t0, t1] (scene.hpp's step_schedule).
+float cr_march_distance(float u, float t0, float t1) {
+    return u_schedule == 1 ? cm_march_schedule_distance(u, t0, t1, u_march_near_distance) : t0 + u * (t1 - t0);
+}
+
 // Exposure, 1 - e^-x tone curve, display gamma 2.2.
 vec3 cr_tonemap(vec3 c) { return pow(vec3(1.0) - exp(-c * u_exposure), vec3(1.0 / 2.2)); }
 
-// Start offset of the march in [0, 1) steps: a hash of the pixel (24 bits, exact in float).
+// Start offset of the march in [0, 1) steps: the pixel's hash advanced by R1 each frame
+// (24 bits, exact in float).
 float cr_jitter(vec2 pixel) {
     uint h = cm_noise_hash(uint(pixel.x) + uint(pixel.y) * 8192u);
-    return float(h >> 8u) * (1.0 / 16777216.0);
+    return cm_frame_jitter(h, u_frame);
 }
 
 void main() {
@@ -155,15 +165,21 @@ void main() {
     cr_mie = cm_mie_approx_params(u_droplet_diameter);
 
     CmMarchAccumulator acc = cm_march_accumulator();
-    vec2 seg = cm_cloud_layer_segment(u_cam_altitude, dir.y, u_planet_radius, u_layer_bottom, u_layer_top);
+    // The view stretch: from where the ray enters the layer, at most u_max_distance. The
+    // march covers the part of it inside the cloud type's altitude band (no density outside).
+    vec2 layer = cm_cloud_layer_segment(u_cam_altitude, dir.y, u_planet_radius, u_layer_bottom, u_layer_top);
+    vec2 band_altitudes = cm_height_range_for_type(u_cloud_type) * (u_layer_top - u_layer_bottom) + u_layer_bottom;
+    vec2 band = cm_cloud_layer_segment(u_cam_altitude, dir.y, u_planet_radius, band_altitudes.x, band_altitudes.y);
+    vec2 seg = vec2(max(layer.x, band.x), min(min(layer.y, layer.x + u_max_distance), band.y));
     if (seg.y > seg.x) {
-        float t1 = min(seg.y, seg.x + u_max_distance);
-        float ds = (t1 - seg.x) / float(u_view_steps);
+        float t1 = seg.y;
         float offset = u_jitter != 0 ? cr_jitter(gl_FragCoord.xy) : 0.5;
         float mu = dot(dir, u_sun_dir);
+        float n = float(u_view_steps);
         float tau_view = 0.0;  // optical depth from the camera to the start of the step
         for (int i = 0; i < u_view_steps; ++i) {
-            float t = seg.x + (float(i) + offset) * ds;
+            float t = cr_march_distance((float(i) + offset) / n, seg.x, t1);
+            float ds = cr_march_distance((float(i) + 1.0) / n, seg.x, t1) - cr_march_distance(float(i) / n, seg.x, t1);
             float altitude = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, t);
             float density = cr_density(dir * t, altitude);
             if (density <= 0.0) continue;
@@ -185,5 +201,12 @@ void main() {
         }
     }
     vec3 color = cr_background(dir) * acc.transmittance + acc.luminance;
-    out_color = vec4(cr_tonemap(color), 1.0 - (acc.transmittance.r + acc.transmittance.g + acc.transmittance.b) / 3.0);
+    vec3 display = cr_tonemap(color);
+    if (u_dither != 0) {
+        // Triangular dither of one 8-bit step (no banding in the sky's slow gradients); its
+        // hash is another hash of the pixel than the jitter's, new each frame.
+        uint pixel = uint(gl_FragCoord.x) + uint(gl_FragCoord.y) * 8192u;
+        display += cm_triangular_dither(cm_noise_hash(cm_noise_hash(pixel) + u_frame * 0x9e3779b9u)) * (1.0 / 255.0);
+    }
+    out_color = vec4(display, 1.0 - (acc.transmittance.r + acc.transmittance.g + acc.transmittance.b) / 3.0);
 }

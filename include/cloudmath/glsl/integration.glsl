@@ -46,4 +46,16 @@ bool cm_march_is_opaque(CmMarchAccumulator acc, float min_transmittance) {
 
 vec3 cm_march_opacity(CmMarchAccumulator acc) { return vec3(1.0) - acc.transmittance; }
 
+// Distance of fraction u of a march over [t_start, t_end] whose steps grow with distance:
+// t_start + (t_end - t_start) (e^(u L) - 1) / (e^L - 1),
+// L = ln((t_end + near_distance) / (t_start + near_distance));
+// ends exact. (GLSL has no log1p: L = log(1 + x) loses relative precision for tiny x, which
+// only bends the spacing of a nearly uniform schedule.)
+float cm_march_schedule_distance(float u, float t_start, float t_end, float near_distance) {
+    float v = cm_saturate(u);
+    float L = log(1.0 + (t_end - t_start) / (t_start + near_distance));
+    float g = v * exp((v - 1.0) * L) * cm_one_minus_exp_neg_over_x(v * L) / cm_one_minus_exp_neg_over_x(L);
+    return t_start + (t_end - t_start) * g;
+}
+
 #endif  // CM_INTEGRATION_GLSL

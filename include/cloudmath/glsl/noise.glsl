@@ -21,6 +21,17 @@ uint cm_noise_hash(uint x, uint y, uint z, uint seed) {
     return cm_noise_hash(x + cm_noise_hash(y + cm_noise_hash(z + cm_noise_hash(seed))));
 }
 
+// Low-discrepancy sequences in 32-bit fixed point (Roberts 2018), bit-identical to the C++:
+// R1 (golden ratio), R2 (plastic number), and a pixel's march offset for a frame.
+float cm_low_discrepancy_r1(uint n) { return float((0x80000000u + n * 0x9e3779b9u) >> 8u) * (1.0 / 16777216.0); }
+vec2 cm_low_discrepancy_r2(uint n) {
+    return vec2(float((0x80000000u + n * 0xc13fa9a9u) >> 8u), float((0x80000000u + n * 0x91e10da6u) >> 8u)) *
+           (1.0 / 16777216.0);
+}
+float cm_frame_jitter(uint pixel_hash, uint frame) { return float((pixel_hash + frame * 0x9e3779b9u) >> 8u) * (1.0 / 16777216.0); }
+// Triangular noise in (-1, 1) from one hash (add / 255 before an 8-bit store).
+float cm_triangular_dither(uint h) { return (float(h & 0xffffu) - float(h >> 16u)) * (1.0 / 65536.0); }
+
 // i modulo n in [0, n) with % on non-negative operands only.
 int cmi_wrap_cell(int i, int n) { return i >= 0 ? i % n : n - 1 - ((-(i + 1)) % n); }
 // floor(p) as ints clamped to +-2^30, and periods saturated at 2^30, as in noise.hpp: no
