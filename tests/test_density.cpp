@@ -241,3 +241,47 @@ TEST_CASE_TEMPLATE("Nubis density model: each step against its formula, limits a
     }
     CHECK(ok);
 }
+
+TEST_CASE_TEMPLATE("air_optical_depth: Rayleigh and aerosol constants, closed forms and a quadrature", T, float, double) {
+    const ld rayleigh[3] = {5.802e-6L, 13.558e-6L, 33.1e-6L};
+    const ld aerosol = 4.40e-6L;
+    // A level ray at sea level: beta L.
+    const glm::vec<3, T> level = air_optical_depth(T(0), T(0), T(10000));
+    for (int c = 0; c < 3; ++c) CHECK(cm_test::rel_err(level[c], (rayleigh[c] + aerosol) * 10000) <= 8 * cm_test::eps<T>());
+    // Straight up from the ground through the whole atmosphere: beta H.
+    const glm::vec<3, T> up = air_optical_depth(T(0), T(1), T(1e6));
+    for (int c = 0; c < 3; ++c) CHECK(cm_test::rel_err(up[c], rayleigh[c] * 8000 + aerosol * 1200) <= 8 * cm_test::eps<T>());
+    // Slant rays from the ground, the clouds and above them, against a midpoint quadrature.
+    for (T h : {T(2), T(2700), T(7000)})
+        for (T mu : {T(-0.3), T(-0.01), T(0.02), T(0.5)})
+            for (T L : {T(1000), T(35000)}) {
+                if (ld(h) + ld(mu) * ld(L) < 0) continue;  // below the ground
+                const int n = 20000;
+                ld sum_r = 0, sum_a = 0;
+                for (int i = 0; i < n; ++i) {
+                    const ld alt = ld(h) + ld(mu) * ld(L) * (i + 0.5L) / n;
+                    sum_r += std::exp(-alt / 8000);
+                    sum_a += std::exp(-alt / 1200);
+                }
+                const glm::vec<3, T> tau = air_optical_depth(h, mu, L);
+                for (int c = 0; c < 3; ++c)
+                    CHECK(cm_test::rel_err(tau[c], (rayleigh[c] * sum_r + aerosol * sum_a) * ld(L) / n) <= 1e-5L);
+            }
+}
+
+TEST_CASE_TEMPLATE("aerial_perspective: L e^-tau + L_air (1 - e^-tau), exact at both ends", T, float, double) {
+    for (T tau : {T(0), T(1e-30), T(1e-8), T(1e-3), T(0.5), T(3), T(40), T(1e4)})
+        for (T L : {T(0), T(0.3), T(2.5)}) {
+            const ld want = ld(L) * std::exp(-ld(tau)) + ld(0.7) * -std::expm1(-ld(tau));
+            CHECK(std::abs(ld(aerial_perspective(L, T(0.7), tau)) - want) <= 4 * cm_test::eps<T>() * (std::abs(want) + ld(L)));
+        }
+    CHECK(aerial_perspective(T(0.3), T(0.7), T(0)) == T(0.3));  // no air: the radiance itself
+    const glm::vec<3, T> v = aerial_perspective(glm::vec<3, T>(1, 2, 3), glm::vec<3, T>(0.5), glm::vec<3, T>(0, 1, 100));
+    CHECK(v.x == T(1));
+    CHECK(v.y == doctest::Approx(0.5 + 1.5 * std::exp(-1.0)));
+    CHECK(v.z == doctest::Approx(0.5).epsilon(1e-12));
+    if (cm_test::ieee_build) {
+        CHECK(aerial_perspective(T(0.3), T(0.7), cm_test::make_inf<T>()) == T(0.7));  // opaque air: only its light
+        CHECK(cm_test::nan_bits(aerial_perspective(cm_test::make_nan<T>(), T(0.7), T(1))));
+    }
+}

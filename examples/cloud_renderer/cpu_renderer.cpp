@@ -122,7 +122,8 @@ struct pixel_program {
                 return v.schedule == step_schedule::growing ? cm::march_schedule_distance(u, seg.x, t1, k.march_near_distance)
                                                             : seg.x + u * (t1 - seg.x);
             };
-            float tau_view = 0.0f;  // optical depth from the camera to the start of the step
+            float tau_view = 0.0f;    // optical depth from the camera to the start of the step
+            float depth_sum = 0.0f;   // sum of each step's opacity times its distance
             for (int i = 0; i < v.view_steps; ++i) {
                 const float t = at((float(i) + offset) / n);
                 const float ds = at((float(i) + 1.0f) / n) - at(float(i) / n);
@@ -137,13 +138,23 @@ struct pixel_program {
                 const float h = cm::height_fraction(alt, s.layer_bottom, s.layer_top);
                 const vec3 S = (s.albedo * sigma_t) * in_scattering(tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu, h);
                 tau_view += sigma_t * ds;
+                const float before = acc.transmittance.r;  // grey extinction: every channel alike
                 if (v.integration == integration_mode::analytic) {
                     acc.add_segment(S, sigma_t, ds);
                 } else {
                     acc.luminance += acc.transmittance * S * ds;  // the textbook Riemann sum
                     acc.transmittance *= cm::beer_lambert(sigma_t * ds);
                 }
+                depth_sum += (before - acc.transmittance.r) * t;
                 if (acc.is_opaque(k.min_transmittance)) break;
+            }
+            // Aerial perspective: the air between the camera and the cloud's
+            // transmittance-weighted depth dims its light and adds the horizon's haze in
+            // proportion to its opacity (the sky behind already holds its air).
+            const float opacity = 1.0f - acc.transmittance.r;
+            if (v.haze && opacity > 0.0f) {
+                const vec3 tau_air = cm::air_optical_depth(s.camera_altitude, dir.y, depth_sum / opacity);
+                acc.luminance = cm::aerial_perspective(acc.luminance, k.sky_horizon * opacity, tau_air);
             }
         }
         const vec3 color = background(s, k, dir) * acc.transmittance + acc.luminance;

@@ -202,11 +202,13 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             else return "schedule must be uniform or growing, not '" + value + "'";
         } else if (key == "jitter") {
             if (!parse_switch(value, out.jitter)) return "jitter must be on or off, not '" + value + "'";
+        } else if (key == "haze") {
+            if (!parse_switch(value, out.haze)) return "haze must be on or off, not '" + value + "'";
         } else if (key == "dither") {
             if (!parse_switch(value, out.dither)) return "dither must be on or off, not '" + value + "'";
         } else {
             return "unknown variant key '" + key +
-                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, schedule, dither, "
+                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, schedule, haze, dither, "
                    "jitter)";
         }
     }
@@ -218,7 +220,7 @@ std::string variant_spec(const variant& v) {
     std::ostringstream s;
     s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",octaves=" << v.octaves << ",powder=" << (v.powder ? "on" : "off")
       << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
-      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",schedule=" << name(v.schedule) << ",jitter=" << (v.jitter ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
+      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",schedule=" << name(v.schedule) << ",jitter=" << (v.jitter ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
     return s.str();
 }
 

@@ -51,6 +51,7 @@ struct variant {
     int view_steps = 64;             // steps along the view ray through the layer (8..1024)
     step_schedule schedule = step_schedule::uniform;
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
+    bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
     bool dither = true;              // triangular dither of the display colour before 8-bit output
 };
 

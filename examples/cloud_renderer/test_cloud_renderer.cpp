@@ -9,8 +9,10 @@
 
 #define DOCTEST_CONFIG_IMPLEMENT  // our main() below: skip (77) without OpenGL
 #include <cloudmath/phase.hpp>
+#include <glm/geometric.hpp>
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <initializer_list>
 #include <cstdlib>
@@ -75,7 +77,7 @@ TEST_CASE("the variants agree with the CPU too, and compile-time equals run-time
     const scene& s = *find_preset("ground");
     for (const char* spec : {"phase=mie,light=march,light-steps=8,steps=32", "phase=cs,octaves=1,powder=off,integration=naive,jitter=off",
                              "lighting=octaves,powder=on,light=cone", "lighting=diffusion,phase=mie,behind=march,light-steps=8,steps=32",
-                             "schedule=growing", "schedule=uniform,steps=16"}) {
+                             "schedule=growing", "schedule=uniform,steps=16", "haze=off,dither=off"}) {
         CAPTURE(std::string(spec));
         variant v;
         REQUIRE(apply_variant_spec(spec, v).empty());
@@ -116,6 +118,42 @@ TEST_CASE("texture reads: bounded by the march, the same view reads for both lig
     const texture_read_stats none = count_texture_reads(down, octaves, shared().textures, 16, 9);
     CHECK(none.pixels_in_layer == 0);
     CHECK(none.mean == 0.0);
+}
+
+TEST_CASE("aerial perspective: distant clouds fade toward the horizon's haze, near ones barely change") {
+    // Horizon preset: rows near the horizon see clouds tens of km away, rows high up see
+    // clouds a few km away. The haze pulls the far ones toward the sky's horizon colour.
+    const scene& s = *find_preset("horizon");
+    variant on, off;
+    REQUIRE(apply_variant_spec("haze=on", on).empty());
+    REQUIRE(apply_variant_spec("haze=off", off).empty());
+    const int w = 160, h = 90;
+    const image a = render_cpu_linear(s, on, shared().textures, w, h), b = render_cpu_linear(s, off, shared().textures, w, h);
+    const frame_constants k = make_frame_constants(s);
+    double far_on = 0, far_off = 0, near_change = 0;
+    int far_n = 0, near_n = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y * w + x);
+            const glm::vec4 p = a.pixels[i], q = b.pixels[i];
+            REQUIRE(std::isfinite(p.r + p.g + p.b));
+            CHECK(p.a == q.a);  // the air changes colour, not the cloud's opacity
+            if (q.a < 0.5f) continue;
+            const float ny = (float(y) + 0.5f) / float(h) * 2.0f - 1.0f;
+            const float elevation = std::atan(ny * k.tan_half_fov) * 57.29578f + s.pitch;
+            if (elevation < 2.0f) {  // far: compare the distance to the haze colour
+                far_on += glm::length(glm::vec3(p) - k.sky_horizon);
+                far_off += glm::length(glm::vec3(q) - k.sky_horizon);
+                ++far_n;
+            } else if (elevation > 20.0f) {
+                near_change += glm::length(glm::vec3(p) - glm::vec3(q)) / (glm::length(glm::vec3(q)) + 1e-6f);
+                ++near_n;
+            }
+        }
+    REQUIRE(far_n > 20);
+    REQUIRE(near_n > 20);
+    CHECK(far_on < 0.8 * far_off);         // far clouds: at least 20% closer to the haze
+    CHECK(near_change / near_n < 0.1);     // near clouds: under 10% change
 }
 
 TEST_CASE("phase_mean_cosine: the closed forms against a quadrature of each phase model") {

@@ -131,6 +131,42 @@ template <class T>
 }
 
 // ---------------------------------------------------------------------------------------
+// Aerial perspective: the air between the camera and what it sees.
+
+// air_optical_depth(altitude, cos_zenith, distance): optical depth (r, g, b) of clear air
+// along a straight ray, Rayleigh plus aerosol (Mie) extinction with exponential height
+// profiles: sea-level Rayleigh scattering (5.802, 13.558, 33.1) 1e-6 /m at 680, 550 and 440
+// nm with scale height 8 km, aerosol extinction 4.40e-6 /m with scale height 1.2 km (the Earth
+// constants of Bruneton 2017 and Hillaire 2020). Each term is height_fog_optical_depth, so
+// horizontal rays are exact; the ray is straight (over 35 km the Earth's curvature lifts it
+// by 96 m, 1% of the Rayleigh scale height). Domain as height_fog_optical_depth.
+template <class T>
+[[nodiscard]] inline glm::vec<3, T> air_optical_depth(T altitude, T cos_zenith, T distance) noexcept {
+    const T rayleigh = height_fog_optical_depth(altitude, cos_zenith, distance, T(1), T(1) / T(8000));
+    const T aerosol = height_fog_optical_depth(altitude, cos_zenith, distance, T(4.40e-6), T(1) / T(1200));
+    return glm::vec<3, T>(T(5.802e-6), T(13.558e-6), T(33.1e-6)) * rayleigh + glm::vec<3, T>(aerosol);
+}
+
+// aerial_perspective(L, L_air, tau) = L e^-tau + L_air (1 - e^-tau): radiance L seen through
+// air of optical depth tau that scatters L_air toward the camera (its single-scattered
+// radiance over a long path, for example the sky's radiance at the horizon), with
+// one_minus_exp_neg so tau -> 0 returns L exactly and tau = +Inf returns L_air. For a ray-marched
+// cloud apply it to the cloud's light at its transmittance-weighted depth
+// (sum of T_i (1 - e^(-sigma_t ds)) t_i over the march, divided by 1 - T) and weight L_air by
+// the cloud's opacity: the sky behind it already holds its air. Per channel for vectors.
+template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
+[[nodiscard]] inline T aerial_perspective(T L, T L_air, T tau) noexcept {
+    return L + (L_air - L) * one_minus_exp_neg(tau);
+}
+template <glm::length_t N, class T, glm::qualifier Q>
+[[nodiscard]] inline glm::vec<N, T, Q> aerial_perspective(const glm::vec<N, T, Q>& L, const glm::vec<N, T, Q>& L_air,
+                                                          const glm::vec<N, T, Q>& tau) noexcept {
+    glm::vec<N, T, Q> out;
+    for (glm::length_t i = 0; i < N; ++i) out[i] = aerial_perspective(L[i], L_air[i], tau[i]);
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------
 // The Nubis density model (Schneider 2015 and GPU Pro 7 2016; Nubis 2017), as functions of
 // already-sampled texture values, so it works with any texture layout or noise source:
 //   base   = base volume RGBA (R Perlin-Worley, G/B/A Worley fBm at rising frequencies),

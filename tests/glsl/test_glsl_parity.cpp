@@ -398,6 +398,20 @@ std::vector<parity_case> make_cases() {
         add({"cm_height_fog_density", "vec4(cm_height_fog_density(a.x, b.x, b.y))", [](vec4 a, vec4 b) { return vec4(cm::height_fog_density(a.x, b.x, b.y)); }, fog});
         add({"cm_height_fog_optical_depth", "vec4(cm_height_fog_optical_depth(a.x, a.y, a.z, b.x, b.y), cm_height_fog_optical_depth(a.x, a.y, a.z, b.x, b.z), 0.0, 0.0)",
              [](vec4 a, vec4 b) { return vec4(cm::height_fog_optical_depth(a.x, a.y, a.z, b.x, b.y), cm::height_fog_optical_depth(a.x, a.y, a.z, b.x, b.z), 0.0f, 0.0f); }, fog, 2});
+        // Air: cameras on the ground and above the clouds, rays up, level and down, 1 m to 300 km.
+        std::vector<std::pair<vec4, vec4>> air;
+        for (float h : {0.0f, 2.0f, 2700.0f, 7000.0f})
+            for (float mu : {-1.0f, -0.3f, -0.01f, 0.0f, 0.02f, 0.5f, 1.0f})
+                for (float L : {1.0f, 1000.0f, 35000.0f, 300000.0f})
+                    if (h + mu * L >= 0.0f) air.push_back({vec4(h, mu, L, 0.0f), vec4(0)});  // above the ground
+        add({"cm_air_optical_depth", "vec4(cm_air_optical_depth(a.x, a.y, a.z), 0.0)",
+             [](vec4 a, vec4) { return vec4(cm::air_optical_depth(a.x, a.y, a.z), 0.0f); }, air, 3});
+        std::vector<std::pair<vec4, vec4>> seen;
+        for (float tau : {0.0f, 1e-8f, 1e-3f, 0.5f, 3.0f, 40.0f, 1e4f})
+            for (float L : {0.0f, 0.3f, 2.5f}) seen.push_back({vec4(L, 0.7f, tau, tau * 0.5f), vec4(L * 2.0f, 1.1f, 0.0f, 0.0f)});
+        add({"cm_aerial_perspective", "vec4(cm_aerial_perspective(a.x, a.y, a.z), cm_aerial_perspective(vec3(a.x, b.x, b.y), vec3(a.y), vec3(a.z, a.w, 2.0 * a.z)))",
+             [](vec4 a, vec4 b) { return vec4(cm::aerial_perspective(a.x, a.y, a.z),
+                                              cm::aerial_perspective(vec3(a.x, b.x, b.y), vec3(a.y), vec3(a.z, a.w, 2.0f * a.z))); }, seen, 4, 1.0f});
     }
     // Nubis density composition over a grid of texture values, types, coverage and heights.
     {

@@ -178,7 +178,7 @@ function render(state) {
   i1('u_phase_model', v.phase); i1('u_lighting', v.lighting); i1('u_octaves', state.ms === 'production' ? v.octaves : msN); i1('u_powder', v.powder);
   i1('u_light_mode', v.light); i1('u_behind_mode', v.behind); f1('u_phase_mean_cosine', phaseMeanCosine(f, v.phase));
   i1('u_cone_samples', v.coneSamples); i1('u_light_steps', v.lightSteps); i1('u_integration', v.integration);
-  i1('u_view_steps', v.viewSteps); i1('u_schedule', v.schedule); i1('u_jitter', v.jitter); i1('u_dither', v.dither);
+  i1('u_view_steps', v.viewSteps); i1('u_schedule', v.schedule); i1('u_jitter', v.jitter); i1('u_haze', v.haze); i1('u_dither', v.dither);
   gl.uniform2f(u('u_resolution'), canvas.width, canvas.height);
   v3('u_forward', f.forward); v3('u_right', f.right); v3('u_up', f.up); f1('u_tan_half_fov', f.tanHalfFov);
   f1('u_cam_altitude', s.cameraAltitude); f1('u_planet_radius', s.planetRadius); f1('u_layer_bottom', s.layerBottom); f1('u_layer_top', s.layerTop);

@@ -24,6 +24,7 @@ CR_PARAM(int, u_integration)      // 0 energy-conserving (analytic), 1 naive Rie
 CR_PARAM(int, u_view_steps)
 CR_PARAM(int, u_schedule)         // view steps: 0 uniform, 1 growing with distance
 CR_PARAM(int, u_jitter)
+CR_PARAM(int, u_haze)             // 0 off, 1 aerial perspective (air between camera and cloud)
 CR_PARAM(int, u_dither)           // 0 off, 1 triangular dither before the 8-bit store
 
 // The scene (scene.hpp's `scene` and `frame_constants`).
@@ -177,6 +178,7 @@ void main() {
         float mu = dot(dir, u_sun_dir);
         float n = float(u_view_steps);
         float tau_view = 0.0;  // optical depth from the camera to the start of the step
+        float depth_sum = 0.0;  // sum of each step's opacity times its distance
         for (int i = 0; i < u_view_steps; ++i) {
             float t = cr_march_distance((float(i) + offset) / n, seg.x, t1);
             float ds = cr_march_distance((float(i) + 1.0) / n, seg.x, t1) - cr_march_distance(float(i) / n, seg.x, t1);
@@ -189,6 +191,7 @@ void main() {
             float h = cm_height_fraction(altitude, u_layer_bottom, u_layer_top);
             vec3 S = (u_albedo * sigma_t) * cr_in_scattering(tau_light, tau_behind, tau_view + 0.5 * sigma_t * ds, mu, h);
             tau_view += sigma_t * ds;
+            float before = acc.transmittance.r;  // grey extinction: every channel alike
             if (u_integration == 0) {
                 cm_march_add_segment(acc, S, sigma_t, ds);
             } else {
@@ -197,7 +200,15 @@ void main() {
                 acc.luminance += acc.transmittance * S * ds;
                 acc.transmittance *= cm_beer_lambert(sigma_t * ds);
             }
+            depth_sum += (before - acc.transmittance.r) * t;
             if (cm_march_is_opaque(acc, u_min_transmittance)) break;
+        }
+        // Aerial perspective at the cloud's transmittance-weighted depth: the air dims its
+        // light and adds the horizon's haze in proportion to its opacity.
+        float opacity = 1.0 - acc.transmittance.r;
+        if (u_haze != 0 && opacity > 0.0) {
+            vec3 tau_air = cm_air_optical_depth(u_cam_altitude, dir.y, depth_sum / opacity);
+            acc.luminance = cm_aerial_perspective(acc.luminance, u_sky_horizon * opacity, tau_air);
         }
     }
     vec3 color = cr_background(dir) * acc.transmittance + acc.luminance;

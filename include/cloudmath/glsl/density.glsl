@@ -61,6 +61,18 @@ float cm_height_fog_optical_depth(float altitude, float cos_zenith, float distan
            cm_one_minus_exp_neg_over_x(falloff * abs(rise));
 }
 
+// Clear air's optical depth (r, g, b): Rayleigh (5.802, 13.558, 33.1) 1e-6 /m, scale height
+// 8 km, plus aerosols 4.40e-6 /m, scale height 1.2 km (Bruneton 2017, Hillaire 2020).
+vec3 cm_air_optical_depth(float altitude, float cos_zenith, float distance) {
+    float rayleigh = cm_height_fog_optical_depth(altitude, cos_zenith, distance, 1.0, 1.0 / 8000.0);
+    float aerosol = cm_height_fog_optical_depth(altitude, cos_zenith, distance, 4.40e-6, 1.0 / 1200.0);
+    return vec3(5.802e-6, 13.558e-6, 33.1e-6) * rayleigh + vec3(aerosol);
+}
+
+// L e^-tau + L_air (1 - e^-tau): radiance seen through air that scatters L_air.
+float cm_aerial_perspective(float L, float L_air, float tau) { return L + (L_air - L) * cm_one_minus_exp_neg(tau); }
+vec3 cm_aerial_perspective(vec3 L, vec3 L_air, vec3 tau) { return L + (L_air - L) * cm_one_minus_exp_neg(tau); }
+
 // Nubis density model (density.hpp): steps on already-sampled texture values.
 float cm_nubis_low_frequency_fbm(vec4 base) { return base.y * 0.625 + base.z * 0.25 + base.w * 0.125; }
 float cm_nubis_base_cloud(vec4 base) { return cm_remap(base.x, cm_nubis_low_frequency_fbm(base) - 1.0, 1.0, 0.0, 1.0); }
