@@ -92,14 +92,15 @@ vec3 sky_radiance(const frame_constants& k, vec3 dir, bool sun_disc) {
     const float mu = glm::dot(dir, k.sun_dir);
     vec3 sky = glm::mix(k.sky_horizon, k.sky_zenith, std::sqrt(cm::saturate(dir.y)));
     sky += k.sun_radiance * (0.05f * cm::phase_hg(mu, 0.75f));
-    if (sun_disc && mu >= k.sun_cos_radius) sky += k.sun_radiance * 4.0f;
+    // The disc at its physical radiance: the irradiance over its solid angle, limb-darkened.
+    if (sun_disc) sky += k.sun_radiance * cm::sun_disc_radiance(1.0f, mu, k.sun_angular_radius, 0.6f);
     return sky;
 }
 
-vec3 background(const scene& s, const frame_constants& k, vec3 dir) {
+vec3 background(const scene& s, const frame_constants& k, vec3 dir, bool sun_disc) {
     const vec2 ground = cm::ray_sphere_intersect_altitude(s.camera_altitude, dir.y, s.planet_radius, 0.0f);
     if (ground.x >= 0.0f && ground.y > ground.x) return k.ground;
-    return sky_radiance(k, dir, true);
+    return sky_radiance(k, dir, sun_disc);
 }
 
 vec3 tonemap(vec3 c, float exposure) { return glm::pow(vec3(1.0f) - glm::exp(-c * exposure), vec3(1.0f / 2.2f)); }

@@ -61,11 +61,12 @@ private:
 
 // The sky seen in direction dir (unit, camera frame): the zenith-horizon gradient by dir.y,
 // the sun's aureole 0.05 HG(mu, 0.75) sun_radiance and, with sun_disc, the drawn disc
-// (4 sun_radiance within sun_cos_radius). No ground test.
+// (sun_disc_radiance: the irradiance sun_radiance over the disc's solid angle, limb-darkened,
+// about 18,000 sun_radiance at its centre). No ground test.
 glm::vec3 sky_radiance(const frame_constants& k, glm::vec3 dir, bool sun_disc);
 // What the camera sees behind the clouds in direction dir (cr_background): the ground colour
-// where the ray from the camera hits the planet, else sky_radiance with the disc.
-glm::vec3 background(const scene& s, const frame_constants& k, glm::vec3 dir);
+// where the ray from the camera hits the planet, else sky_radiance, with the disc if sun_disc.
+glm::vec3 background(const scene& s, const frame_constants& k, glm::vec3 dir, bool sun_disc = true);
 
 // The renderer's display transform: 1 - exp(-c exposure), then gamma 1/2.2.
 glm::vec3 tonemap(glm::vec3 c, float exposure);

@@ -157,7 +157,7 @@ struct pixel_program {
                 acc.luminance = cm::aerial_perspective(acc.luminance, k.sky_horizon * opacity, tau_air);
             }
         }
-        const vec3 color = background(s, k, dir) * acc.transmittance + acc.luminance;
+        const vec3 color = background(s, k, dir, v.sun) * acc.transmittance + acc.luminance;
         const vec3 t = acc.transmittance;
         return vec4(color, 1.0f - (t.r + t.g + t.b) / 3.0f);
     }

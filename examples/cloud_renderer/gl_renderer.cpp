@@ -48,6 +48,7 @@ std::vector<shader_int> variant_values(const variant& v) {
             {"u_view_steps", v.view_steps},
             {"u_schedule", static_cast<int>(v.schedule)},
             {"u_jitter", v.jitter ? 1 : 0},
+            {"u_sun_disc", v.sun ? 1 : 0},
             {"u_haze", v.haze ? 1 : 0},
             {"u_dither", v.dither ? 1 : 0}};
 }
@@ -409,7 +410,7 @@ bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, uns
     set3f("u_sky_zenith", k.sky_zenith);
     set3f("u_sky_horizon", k.sky_horizon);
     set3f("u_ground", k.ground);
-    set1f("u_sun_cos_radius", k.sun_cos_radius);
+    set1f("u_sun_angular_radius", k.sun_angular_radius);
     set1f("u_coverage", sc.coverage);
     set1f("u_cloud_type", sc.cloud_type);
     set1f("u_extinction", sc.extinction);

@@ -1,6 +1,7 @@
 #include "scene.hpp"
 
 #include <cloudmath/phase.hpp>
+#include <cloudmath/sun.hpp>
 
 #include <glm/geometric.hpp>
 
@@ -96,7 +97,7 @@ frame_constants make_frame_constants(const scene& s) {
     f.ground = glm::vec3(0.12f, 0.11f, 0.09f) * day;
     f.ambient_top = glm::mix(f.sky_zenith, f.sky_horizon, 0.4f) * 1.1f;
     f.ambient_bottom = f.ground * 1.5f + 0.25f * f.ambient_top;
-    f.sun_cos_radius = std::cos(0.6f * degrees);  // drawn larger than the real 0.27 degrees
+    f.sun_angular_radius = cloudmath::sun_angular_radius<float>();  // the real Sun: 0.27 degrees
 
     f.phase_g = 0.8f;
     f.phase_g_back = -0.25f;
@@ -202,13 +203,15 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             else return "schedule must be uniform or growing, not '" + value + "'";
         } else if (key == "jitter") {
             if (!parse_switch(value, out.jitter)) return "jitter must be on or off, not '" + value + "'";
+        } else if (key == "sun") {
+            if (!parse_switch(value, out.sun)) return "sun must be on or off, not '" + value + "'";
         } else if (key == "haze") {
             if (!parse_switch(value, out.haze)) return "haze must be on or off, not '" + value + "'";
         } else if (key == "dither") {
             if (!parse_switch(value, out.dither)) return "dither must be on or off, not '" + value + "'";
         } else {
             return "unknown variant key '" + key +
-                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, schedule, haze, dither, "
+                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, schedule, sun, haze, dither, "
                    "jitter)";
         }
     }
@@ -220,7 +223,7 @@ std::string variant_spec(const variant& v) {
     std::ostringstream s;
     s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",octaves=" << v.octaves << ",powder=" << (v.powder ? "on" : "off")
       << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
-      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",schedule=" << name(v.schedule) << ",jitter=" << (v.jitter ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
+      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",schedule=" << name(v.schedule) << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
     return s.str();
 }
 

@@ -52,6 +52,7 @@ struct variant {
     step_schedule schedule = step_schedule::uniform;
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
     bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
+    bool sun = true;                 // draw the sun disc (sun_disc_radiance) in the background
     bool dither = true;              // triangular dither of the display colour before 8-bit output
 };
 
@@ -96,7 +97,7 @@ struct frame_constants {
     glm::vec3 sun_radiance;          // colour * intensity of direct sunlight
     glm::vec3 ambient_top, ambient_bottom;  // isotropic sky light at the layer top / bottom
     glm::vec3 sky_zenith, sky_horizon, ground;
-    float sun_cos_radius;            // cosine of the sun disc's angular radius
+    float sun_angular_radius;        // the sun disc's angular radius (radians)
     float phase_g, phase_g_back, phase_w;   // HG / Cornette-Shanks g; dual lobe second g, weight
     float droplet_diameter;          // Mie fit, micrometres
     float ms_a, ms_b, ms_c;          // octave factors (attenuation, contribution, eccentricity)

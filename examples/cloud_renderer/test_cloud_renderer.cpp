@@ -40,10 +40,10 @@ fixture& shared() {
     return f;
 }
 
-image render_gpu(const scene& s, const variant& v, bool compile_time = false) {
+image render_gpu(const scene& s, const variant& v, bool compile_time = false, int width = 160, int height = 90) {
     image img;
     std::string why;
-    REQUIRE_MESSAGE(shared().gpu->render(s, v, compile_time, 160, 90, img, nullptr, why), why);
+    REQUIRE_MESSAGE(shared().gpu->render(s, v, compile_time, width, height, img, nullptr, why), why);
     return img;
 }
 
@@ -154,6 +154,38 @@ TEST_CASE("aerial perspective: distant clouds fade toward the horizon's haze, ne
     REQUIRE(near_n > 20);
     CHECK(far_on < 0.8 * far_off);         // far clouds: at least 20% closer to the haze
     CHECK(near_change / near_n < 0.1);     // near clouds: under 10% change
+}
+
+TEST_CASE("the sun disc: its physical radiance at the image centre, GPU and CPU alike, off with sun=off") {
+    // No clouds, the camera looking straight at the sun: the centre pixel of an odd-sized
+    // image is the disc's centre, whose radiance is the irradiance over (solid angle (1 - u/3)).
+    scene s = *find_preset("ground");
+    s.coverage = 0.0f;
+    s.sun_elevation = 30.0f;
+    s.sun_azimuth = 120.0f;
+    s.pitch = 30.0f;
+    s.yaw = 120.0f;
+    variant on, off;
+    REQUIRE(apply_variant_spec("sun=on", on).empty());
+    REQUIRE(apply_variant_spec("sun=off", off).empty());
+    const int w = 161, h = 91;
+    const image a = render_cpu_linear(s, on, shared().textures, w, h), b = render_cpu_linear(s, off, shared().textures, w, h);
+    const frame_constants k = make_frame_constants(s);
+    const std::size_t centre = static_cast<std::size_t>((h / 2) * w + w / 2);
+    const double omega = 2.0 * 3.14159265358979 * (1.0 - std::cos(double(k.sun_angular_radius)));
+    const double peak = 1.0 / (omega * (1.0 - 0.6 / 3.0));  // about 18,400
+    CHECK(peak == doctest::Approx(18380.0).epsilon(2e-3));
+    for (int c = 0; c < 3; ++c) {
+        CHECK(double(a.pixels[centre][c] - b.pixels[centre][c]) == doctest::Approx(peak * double(k.sun_radiance[c])).epsilon(2e-3));
+        CHECK(b.pixels[centre][c] < 10.0f * k.sun_radiance[c]);  // without the disc: the sky and the aureole
+    }
+    // The disc covers under a pixel here (0.53 degrees against 0.37): its neighbours are sky.
+    CHECK(a.pixels[centre + 2].r == b.pixels[centre + 2].r);
+    // The GPU draws the same disc (the display image saturates at the centre, so compare the
+    // images off the disc and the centre's saturation).
+    const image g = render_gpu(s, on, false, w, h), c = render_cpu(s, on, shared().textures, w, h);
+    CHECK(compare(g, c).psnr_db >= 35.0);
+    CHECK(g.pixels[centre].r >= 0.99f);
 }
 
 TEST_CASE("phase_mean_cosine: the closed forms against a quadrature of each phase model") {

@@ -13,5 +13,6 @@
 #include "geometry.hpp"
 #include "density.hpp"
 #include "noise.hpp"
+#include "sun.hpp"
 
 #endif  // CLOUDMATH_CLOUDMATH_HPP

@@ -495,6 +495,22 @@ std::vector<parity_case> make_cases() {
         add({"cm_curl_noise", "vec4(cm_curl_noise(a.xy, int(a.w), uint(b.x)), cm_curl_noise(a.xy, int(a.w)))",
              [](vec4 a, vec4 b) { return vec4(cm::curl_noise(vec2(a), int(a.w), std::uint32_t(b.x)), cm::curl_noise(vec2(a), int(a.w))); }, pts, 4, 4.0f});
     }
+    // sun: solid angles from the Sun's size to a hemisphere; the disc's radiance inside,
+    // at the limb and outside, for the real Sun and a 2-degree artistic one.
+    {
+        std::vector<std::pair<vec4, vec4>> cones;
+        for (float r : {1e-4f, 4.6524e-3f, 0.01f, 0.3f, 1.0f, 1.5707963f}) cones.push_back({vec4(r, 0.0f, 0.0f, 0.0f), vec4(0)});
+        add({"cm_cone_solid_angle", "vec4(cm_cone_solid_angle(a.x), CM_SUN_ANGULAR_RADIUS, 0.0, 0.0)",
+             [](vec4 a, vec4) { return vec4(cm::cone_solid_angle(a.x), cm::sun_angular_radius<float>(), 0.0f, 0.0f); }, cones, 2, 1.0f});
+        std::vector<std::pair<vec4, vec4>> disc;
+        for (float r : {4.6524e-3f, 0.0349f})
+            for (float f : {0.0f, 0.3f, 0.7f, 0.95f, 0.999f, 1.05f, 3.0f})
+                for (float u : {0.0f, 0.6f, 1.0f}) disc.push_back({vec4(1.0f, std::cos(f * r), r, u), vec4(0)});
+        // Near the limb sqrt(1 - x^2) magnifies the rounding of cos_angle; compared on the
+        // centre's scale (floor: the peak radiance, about 1.5e4 for the Sun).
+        add({"cm_sun_disc_radiance", "vec4(cm_sun_disc_radiance(a.x, a.y, a.z, a.w))",
+             [](vec4 a, vec4) { return vec4(cm::sun_disc_radiance(a.x, a.y, a.z, a.w)); }, disc, 1, 1.5e4f, 1e-4});
+    }
     return cs;
 }
 

@@ -277,7 +277,9 @@ std::vector<camera_ray> make_camera_rays(const cr::scene& s, int width, int heig
             } else {
                 r.t_begin = r.t_end = 0.0;
             }
-            const glm::vec3 bg = cr::background(s, k, dir);
+            // No sun disc: the truth measures cloud light, and the disc (18,000 times the
+            // irradiance) would dominate any image metric where it is in view.
+            const glm::vec3 bg = cr::background(s, k, dir, false);
             r.background = {bg.r, bg.g, bg.b};
             rays.push_back(r);
         }

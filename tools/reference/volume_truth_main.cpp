@@ -373,7 +373,8 @@ int run_report(int argc, char** argv) {
         cr::variant v;
         const std::string why = cr::apply_variant_spec(it->second.substr(eq + 1), v);
         if (!why.empty()) throw usage_error("--variant " + it->second + ": " + why);
-        v.haze = false;  // the truth has no air between the camera and the clouds
+        v.haze = false;  // the truth has no air between the camera and the clouds,
+        v.sun = false;   // and no sun disc (cloud_medium.cpp)
         variants.emplace_back(it->second.substr(0, eq), v);
     }
     if (variants.empty())
@@ -383,6 +384,7 @@ int run_report(int argc, char** argv) {
             cr::variant v;
             (void)cr::apply_variant_spec(s.substr(s.find('=') + 1), v);
             v.haze = false;
+            v.sun = false;
             variants.emplace_back(s.substr(0, s.find('=')), v);
         }
     const std::string data = f.get("--data", "docs/data"), docs = f.get("--docs", "docs");
@@ -405,7 +407,7 @@ int run_report(int argc, char** argv) {
           "renderer's sky (gradient and aureole, no sun disc) and ground for paths that leave the\n"
           "layer, albedo 0.99 and the phase given below. Camera rays are the renderer's\n"
           "pixel centres; their first flight meets the clouds only within the renderer's view\n"
-          "stretch (35 km) and sees the renderer's background behind it. What the real-time\n"
+          "stretch (35 km) and sees the renderer's background (no sun disc) behind it. What the real-time\n"
           "models leave out (real sky light instead of the ambient term, light from clouds\n"
           "beyond the light march, every scattering order) is what these numbers measure.\n\n"
           "Definitions (over all pixels and the r, g, b channels; linear radiance):\n\n"
@@ -422,8 +424,9 @@ int run_report(int argc, char** argv) {
           "the others): truth | model | difference\n"
           "of the display images, 0.5 + 2 (model - truth) per channel (mid-grey: no difference,\n"
           "brighter: the model is too bright).\n\n";
-    md << "Variants (the renderer's `--variant` notation over the defaults; `haze=off` in all of them, as the\n"
-          "truth has no air between the camera and the clouds):\n\n";
+    md << "Variants (the renderer's `--variant` notation over the defaults; `sun=off,haze=off` in all of them,\n"
+          "as the truth has no sun disc (18,000 times the irradiance, it would dominate any metric where it is\n"
+          "in view) and no air between the camera and the clouds):\n\n";
     for (const auto& v : variants) md << "- `" << v.first << "`: `" << cr::variant_spec(v.second) << "`\n";
     md << '\n';
 

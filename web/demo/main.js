@@ -178,12 +178,12 @@ function render(state) {
   i1('u_phase_model', v.phase); i1('u_lighting', v.lighting); i1('u_octaves', state.ms === 'production' ? v.octaves : msN); i1('u_powder', v.powder);
   i1('u_light_mode', v.light); i1('u_behind_mode', v.behind); f1('u_phase_mean_cosine', phaseMeanCosine(f, v.phase));
   i1('u_cone_samples', v.coneSamples); i1('u_light_steps', v.lightSteps); i1('u_integration', v.integration);
-  i1('u_view_steps', v.viewSteps); i1('u_schedule', v.schedule); i1('u_jitter', v.jitter); i1('u_haze', v.haze); i1('u_dither', v.dither);
+  i1('u_view_steps', v.viewSteps); i1('u_schedule', v.schedule); i1('u_jitter', v.jitter); i1('u_sun_disc', v.sun); i1('u_haze', v.haze); i1('u_dither', v.dither);
   gl.uniform2f(u('u_resolution'), canvas.width, canvas.height);
   v3('u_forward', f.forward); v3('u_right', f.right); v3('u_up', f.up); f1('u_tan_half_fov', f.tanHalfFov);
   f1('u_cam_altitude', s.cameraAltitude); f1('u_planet_radius', s.planetRadius); f1('u_layer_bottom', s.layerBottom); f1('u_layer_top', s.layerTop);
   v3('u_sun_dir', f.sunDir); v3('u_sun_radiance', f.sunRadiance); v3('u_ambient_top', f.ambientTop); v3('u_ambient_bottom', f.ambientBottom);
-  v3('u_sky_zenith', f.skyZenith); v3('u_sky_horizon', f.skyHorizon); v3('u_ground', f.ground); f1('u_sun_cos_radius', f.sunCosRadius);
+  v3('u_sky_zenith', f.skyZenith); v3('u_sky_horizon', f.skyHorizon); v3('u_ground', f.ground); f1('u_sun_angular_radius', f.sunAngularRadius);
   f1('u_coverage', s.coverage); f1('u_cloud_type', s.cloudType); f1('u_extinction', s.extinction); f1('u_albedo', s.albedo); f1('u_max_distance', s.maxDistance);
   f1('u_base_tile', s.baseTile); f1('u_detail_tile', s.detailTile); f1('u_weather_tile', s.weatherTile); gl.uniform2fv(u('u_wind'), s.wind);
   f1('u_exposure', s.exposure);

@@ -24,7 +24,7 @@ export const scenePresets = [
 // Lighting variants (scene.hpp's `variant`; the names of scripts/render-docs.sh). The default
 // is the diffusion model with a 6-step march toward the sun and the cone behind the sample;
 // `octaves` is the production octave choice it replaced.
-const standard = { lighting: 1, phase: 1, octaves: 3, powder: 0, light: 1, behind: 0, coneSamples: 6, lightSteps: 6, integration: 0, viewSteps: 64, schedule: 0, jitter: 1, haze: 1, dither: 1 };
+const standard = { lighting: 1, phase: 1, octaves: 3, powder: 0, light: 1, behind: 0, coneSamples: 6, lightSteps: 6, integration: 0, viewSteps: 64, schedule: 0, jitter: 1, sun: 1, haze: 1, dither: 1 };
 const octaves = { ...standard, lighting: 0, powder: 1, light: 0 };
 export const variants = {
   default: { ...standard },
@@ -89,7 +89,7 @@ export function frameConstants(s) {
   f.ground = scale([0.12, 0.11, 0.09], day);
   f.ambientTop = scale(mix(f.skyZenith, f.skyHorizon, 0.4), 1.1);
   f.ambientBottom = f.ground.map((g, i) => g * 1.5 + 0.25 * f.ambientTop[i]);
-  f.sunCosRadius = Math.cos(0.6 * degrees);
+  f.sunAngularRadius = 4.6524e-3;  // the real Sun (sun.hpp's sun_angular_radius)
   Object.assign(f, { phaseG: 0.8, phaseGBack: -0.25, phaseW: 0.2, dropletDiameter: 15, msA: 0.5, msB: 0.5, msC: 0.5,
     coneStep: 120, coneSpread: 0.4, coneFarDistance: 1800, coneFarLength: 900, lightMarchMax: 6000, minTransmittance: 0.01,
     marchNearDistance: 1000 });

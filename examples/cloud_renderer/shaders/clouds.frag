@@ -24,6 +24,7 @@ CR_PARAM(int, u_integration)      // 0 energy-conserving (analytic), 1 naive Rie
 CR_PARAM(int, u_view_steps)
 CR_PARAM(int, u_schedule)         // view steps: 0 uniform, 1 growing with distance
 CR_PARAM(int, u_jitter)
+CR_PARAM(int, u_sun_disc)         // 0 no sun disc, 1 the disc at its physical radiance
 CR_PARAM(int, u_haze)             // 0 off, 1 aerial perspective (air between camera and cloud)
 CR_PARAM(int, u_dither)           // 0 off, 1 triangular dither before the 8-bit store
 
@@ -34,7 +35,7 @@ uniform float u_tan_half_fov;
 uniform float u_cam_altitude, u_planet_radius, u_layer_bottom, u_layer_top;
 uniform vec3 u_sun_dir, u_sun_radiance, u_ambient_top, u_ambient_bottom;
 uniform vec3 u_sky_zenith, u_sky_horizon, u_ground;
-uniform float u_sun_cos_radius;
+uniform float u_sun_angular_radius;
 uniform float u_coverage, u_cloud_type, u_extinction, u_albedo, u_max_distance;
 uniform float u_base_tile, u_detail_tile, u_weather_tile;
 uniform vec2 u_wind;
@@ -140,7 +141,7 @@ vec3 cr_background(vec3 dir) {
     float mu = dot(dir, u_sun_dir);
     vec3 sky = mix(u_sky_horizon, u_sky_zenith, sqrt(cm_saturate(dir.y)));
     sky += u_sun_radiance * (0.05 * cm_phase_hg(mu, 0.75));  // glow around the sun
-    if (mu >= u_sun_cos_radius) sky += u_sun_radiance * 4.0;
+    if (u_sun_disc != 0) sky += u_sun_radiance * cm_sun_disc_radiance(1.0, mu, u_sun_angular_radius, 0.6);  // physical disc
     return sky;
 }
 

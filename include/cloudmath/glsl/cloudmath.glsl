@@ -13,5 +13,6 @@
 #include "geometry.glsl"
 #include "density.glsl"
 #include "noise.glsl"
+#include "sun.glsl"
 
 #endif  // CM_CLOUDMATH_GLSL
