@@ -4,12 +4,12 @@
 
 #include <cloudmath/glsl.hpp>
 
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
+#include "egl_headless.hpp"
+
 #include <GL/glcorearb.h>
 
 #include <chrono>
-#include <cstring>
+#include <cstdio>
 #include <map>
 #include <vector>
 
@@ -137,31 +137,9 @@ struct gl_api {
     }
 };
 
-namespace {
-
-std::string egl_error() {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "EGL error 0x%04x", static_cast<unsigned>(eglGetError()));
-    return buf;
-}
-
-bool has_extension(const char* list, const char* name) {
-    if (list == nullptr) return false;
-    const std::size_t len = std::strlen(name);
-    for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += len)
-        if ((p == list || p[-1] == ' ') && (p[len] == ' ' || p[len] == '\0')) return true;
-    return false;
-}
-
-void* egl_proc(const char* name) { return reinterpret_cast<void*>(eglGetProcAddress(name)); }
-
-}  // namespace
-
 struct gl_renderer::state {
-    // EGL objects, only for the headless context this class created.
-    EGLDisplay dpy = EGL_NO_DISPLAY;
-    EGLContext ctx = EGL_NO_CONTEXT;
-    EGLSurface surf = EGL_NO_SURFACE;
+    // Only for the headless context this class created (tools/egl); null on the caller's.
+    std::unique_ptr<cloudmath_egl::headless_context> egl;
 
     gl_api gl;
     GLuint vao = 0, queries[2] = {0, 0};  // GL_TIMESTAMP before and after the draw
@@ -242,14 +220,9 @@ struct gl_renderer::state {
         if (queries[0]) gl.DeleteQueries(2, queries);
     }
 
+    // GL objects go while the context is current; `egl` then destroys the context.
     ~state() {
-        if (ctx != EGL_NO_CONTEXT) {
-            if (eglMakeCurrent(dpy, surf, surf, ctx) == EGL_TRUE) release_gl();
-            eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-            eglDestroyContext(dpy, ctx);
-        }
-        if (surf != EGL_NO_SURFACE) eglDestroySurface(dpy, surf);
-        if (dpy != EGL_NO_DISPLAY) eglTerminate(dpy);
+        if (egl && egl->make_current()) release_gl();
     }
 };
 
@@ -276,70 +249,22 @@ bool init_gl(gl_renderer::state& s, gl_renderer::proc_loader load, std::string& 
     return why.empty();
 }
 
-// Creates a 4.1 core context on one EGL display; false with the reason.
-bool open_display(gl_renderer::state& s, EGLDisplay dpy, std::string& why) {
-    if (dpy == EGL_NO_DISPLAY) return why = "no display (" + egl_error() + ")", false;
-    if (eglInitialize(dpy, nullptr, nullptr) != EGL_TRUE) return why = "eglInitialize failed (" + egl_error() + ")", false;
-    s.dpy = dpy;
-    if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) return why = "no desktop OpenGL (" + egl_error() + ")", false;
-    const char* exts = eglQueryString(dpy, EGL_EXTENSIONS);
-    const bool surfaceless = has_extension(exts, "EGL_KHR_surfaceless_context");
-    EGLConfig config = nullptr;
-    if (!has_extension(exts, "EGL_KHR_no_config_context") || !surfaceless) {
-        const EGLint want[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, surfaceless ? 0 : EGL_PBUFFER_BIT,
-                               EGL_NONE};
-        EGLint count = 0;
-        if (eglChooseConfig(dpy, want, &config, 1, &count) != EGL_TRUE || count < 1)
-            return why = "no OpenGL EGL config (" + egl_error() + ")", false;
-    }
-    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 1,
-                              EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-    s.ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, attribs);
-    if (s.ctx == EGL_NO_CONTEXT) return why = "no OpenGL 4.1 core context (" + egl_error() + ")", false;
-    if (!surfaceless) {
-        const EGLint size[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
-        s.surf = eglCreatePbufferSurface(dpy, config, size);
-        if (s.surf == EGL_NO_SURFACE) return why = "eglCreatePbufferSurface failed (" + egl_error() + ")", false;
-    }
-    if (eglMakeCurrent(dpy, s.surf, s.surf, s.ctx) != EGL_TRUE) return why = "eglMakeCurrent failed (" + egl_error() + ")", false;
-    return init_gl(s, &egl_proc, why);
-}
-
 }  // namespace
 
 gl_renderer::gl_renderer(std::unique_ptr<state> s) : s_(std::move(s)) {}
 gl_renderer::~gl_renderer() {
-    if (s_ && s_->ctx == EGL_NO_CONTEXT) s_->release_gl();  // the caller's context: still current
+    if (s_ && !s_->egl) s_->release_gl();  // the caller's context: still current
 }
 
 std::unique_ptr<gl_renderer> gl_renderer::create_headless(std::string& why) {
-    const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    std::string tried;
-    const auto attempt = [&](const char* name, auto get_display) -> std::unique_ptr<gl_renderer> {
-        auto s = std::make_unique<state>();
-        std::string reason;
-        if (open_display(*s, get_display(), reason)) return std::unique_ptr<gl_renderer>(new gl_renderer(std::move(s)));
-        tried += (tried.empty() ? "" : "; ") + std::string(name) + ": " + reason;
+    auto s = std::make_unique<state>();
+    s->egl = cloudmath_egl::headless_context::open(4, 1, cloudmath_egl::platform::any, why);
+    if (!s->egl) {
+        why = "no OpenGL context could be created (" + why + ")";
         return nullptr;
-    };
-    if (has_extension(client, "EGL_MESA_platform_surfaceless")) {
-        if (auto r = attempt("surfaceless", [] {
-                return eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-            }))
-            return r;
     }
-    if (has_extension(client, "EGL_EXT_platform_device")) {
-        const auto query = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-        EGLDeviceEXT devices[8];
-        EGLint count = 0;
-        if (query != nullptr && query(8, devices, &count) == EGL_TRUE)
-            for (EGLint i = 0; i < count; ++i)
-                if (auto r = attempt("device", [&] { return eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr); }))
-                    return r;
-    }
-    if (auto r = attempt("default display", [] { return eglGetDisplay(EGL_DEFAULT_DISPLAY); })) return r;
-    why = "no OpenGL context could be created (" + tried + ")";
-    return nullptr;
+    if (!init_gl(*s, &cloudmath_egl::gl_proc, why)) return nullptr;
+    return std::unique_ptr<gl_renderer>(new gl_renderer(std::move(s)));
 }
 
 std::unique_ptr<gl_renderer> gl_renderer::create_for_current_context(proc_loader load, std::string& why) {

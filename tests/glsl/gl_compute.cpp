@@ -1,11 +1,12 @@
-// Implementation notes: EGL gives a context with no window system, so the same code runs on
-// a headless CI box (Mesa llvmpipe) and on a GPU server (NVIDIA through EGL devices). GL entry
-// points are loaded with eglGetProcAddress (EGL 1.5 and EGL_KHR_get_all_proc_addresses allow
-// it for core functions too), so no loader library and no link-time GL symbols are needed.
+// Implementation notes: the context comes from tools/egl (egl_headless.hpp, shared with the
+// cloud renderer): EGL with no window system, so the same code runs on a headless CI box (Mesa
+// llvmpipe) and on a GPU server (NVIDIA through EGL devices). GL entry points are loaded with
+// cloudmath_egl::gl_proc (eglGetProcAddress), so no loader library and no link-time GL symbols
+// are needed.
 #include "gl_compute.hpp"
 
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
+#include "egl_headless.hpp"
+
 #include <GL/glcorearb.h>
 
 #include <algorithm>
@@ -13,8 +14,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
-#include <map>
-#include <mutex>
 #include <utility>
 
 namespace cm_gl {
@@ -24,7 +23,6 @@ namespace {
 #define CM_GL_FUNCTIONS(X)                              \
     X(PFNGLGETERRORPROC, GetError)                      \
     X(PFNGLGETSTRINGPROC, GetString)                    \
-    X(PFNGLGETINTEGERVPROC, GetIntegerv)                \
     X(PFNGLGETINTEGERI_VPROC, GetIntegeri_v)            \
     X(PFNGLGETINTEGER64VPROC, GetInteger64v)            \
     X(PFNGLCREATESHADERPROC, CreateShader)              \
@@ -59,38 +57,13 @@ struct gl_api {
     // Empty on success, else the name of the first function the driver does not provide.
     std::string load() {
 #define CM_GL_LOAD(type, name)                                                     \
-    name = reinterpret_cast<type>(eglGetProcAddress("gl" #name));                  \
+    name = reinterpret_cast<type>(cloudmath_egl::gl_proc("gl" #name));             \
     if (name == nullptr) return "gl" #name;
         CM_GL_FUNCTIONS(CM_GL_LOAD)
 #undef CM_GL_LOAD
         return {};
     }
 };
-
-// Whole-token search: strstr would match EGL_EXT_foo inside EGL_EXT_foo_bar.
-bool has_extension(const char* list, const char* name) {
-    if (list == nullptr) return false;
-    const std::size_t len = std::strlen(name);
-    for (const char* p = list; (p = std::strstr(p, name)) != nullptr; p += len) {
-        const bool starts = p == list || p[-1] == ' ';
-        const bool ends = p[len] == ' ' || p[len] == '\0';
-        if (starts && ends) return true;
-    }
-    return false;
-}
-
-std::string egl_error() {
-    static const char* const names[] = {
-        "EGL_SUCCESS", "EGL_NOT_INITIALIZED", "EGL_BAD_ACCESS", "EGL_BAD_ALLOC",
-        "EGL_BAD_ATTRIBUTE", "EGL_BAD_CONFIG", "EGL_BAD_CONTEXT", "EGL_BAD_CURRENT_SURFACE",
-        "EGL_BAD_DISPLAY", "EGL_BAD_MATCH", "EGL_BAD_NATIVE_PIXMAP", "EGL_BAD_NATIVE_WINDOW",
-        "EGL_BAD_PARAMETER", "EGL_BAD_SURFACE", "EGL_CONTEXT_LOST"};
-    const EGLint e = eglGetError();
-    if (e >= EGL_SUCCESS && e <= EGL_CONTEXT_LOST) return names[e - EGL_SUCCESS];
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "EGL error 0x%04x", static_cast<unsigned>(e));
-    return buf;
-}
 
 const char* gl_error_name(GLenum e) {
     switch (e) {
@@ -106,42 +79,10 @@ const char* gl_error_name(GLenum e) {
     }
 }
 
-// eglTerminate is not reference counted (EGL returns the same EGLDisplay for the same
-// platform and device), so terminating when one context dies would break any other live
-// instance on that display. Count the users and terminate with the last one.
-std::mutex& display_mutex() {
-    static std::mutex m;
-    return m;
-}
-std::map<EGLDisplay, int>& display_users() {
-    static std::map<EGLDisplay, int> users;
-    return users;
-}
-bool acquire_display(EGLDisplay dpy, std::string& why) {
-    std::lock_guard<std::mutex> lock(display_mutex());
-    // eglInitialize is a no-op on an initialized display, so calling it every time is fine.
-    if (eglInitialize(dpy, nullptr, nullptr) != EGL_TRUE) {
-        why = "eglInitialize failed (" + egl_error() + ")";
-        return false;
-    }
-    ++display_users()[dpy];
-    return true;
-}
-void release_display(EGLDisplay dpy) {
-    std::lock_guard<std::mutex> lock(display_mutex());
-    auto it = display_users().find(dpy);
-    if (it != display_users().end() && --it->second == 0) {
-        display_users().erase(it);
-        eglTerminate(dpy);
-    }
-}
-
 }  // namespace
 
 struct compute_context::state {
-    EGLDisplay dpy = EGL_NO_DISPLAY;  // set only once acquire_display succeeded
-    EGLContext ctx = EGL_NO_CONTEXT;
-    EGLSurface surf = EGL_NO_SURFACE;  // a 1x1 pbuffer, only without EGL_KHR_surfaceless_context
+    std::unique_ptr<cloudmath_egl::headless_context> egl;  // display reference, context
     gl_api gl;
     GLuint program = 0;
     GLint local_x = 0;  // GL_COMPUTE_WORK_GROUP_SIZE.x of `program`
@@ -149,21 +90,18 @@ struct compute_context::state {
     GLint max_groups_x = 0;
     GLint64 max_ssbo_bytes = 0;
 
-    // Creates the context on one display and checks that it can do what run() needs.
-    // Returns nullptr with the reason in `why`; partial state is released by ~state.
-    static std::unique_ptr<state> open(EGLDisplay dpy, std::string& why);
+    // Creates the context (on the one platform `only`, unless any) and checks that it can do
+    // what run() needs. Returns nullptr with the reason in `why`; partial state is released
+    // by ~state.
+    static std::unique_ptr<state> open(cloudmath_egl::platform only, std::string& why);
 
     state() = default;
     state(const state&) = delete;
     state& operator=(const state&) = delete;
 
     // Several instances may live on one thread, so every public call re-selects its own
-    // context (cheap when it is already current). eglBindAPI is per-thread state as well.
-    bool make_current() const {
-        if (eglGetCurrentContext() == ctx) return true;
-        return eglBindAPI(EGL_OPENGL_API) == EGL_TRUE &&
-               eglMakeCurrent(dpy, surf, surf, ctx) == EGL_TRUE;
-    }
+    // context (cheap when it is already current).
+    bool make_current() const { return egl->make_current(); }
 
     // All pending GL errors as text, empty when there are none. Bounded because a lost
     // context may report the same error forever.
@@ -187,81 +125,26 @@ struct compute_context::state {
         local_x = 0;
     }
 
+    // GL objects go while the context is current; `egl` then destroys the context.
     ~state() {
-        if (ctx != EGL_NO_CONTEXT) {
-            if (gl.DeleteBuffers != nullptr && make_current()) {  // null: loading failed
-                drop_program();
-                gl.DeleteBuffers(2, buffers);
-            }
-            eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-            eglDestroyContext(dpy, ctx);
+        // No context or no functions (loading failed): no GL objects either.
+        if (egl != nullptr && gl.DeleteBuffers != nullptr && make_current()) {
+            drop_program();
+            gl.DeleteBuffers(2, buffers);
         }
-        if (surf != EGL_NO_SURFACE) eglDestroySurface(dpy, surf);
-        if (dpy != EGL_NO_DISPLAY) release_display(dpy);
     }
 };
 
-std::unique_ptr<compute_context::state> compute_context::state::open(EGLDisplay dpy,
-                                                                     std::string& why) {
-    if (dpy == EGL_NO_DISPLAY) {
-        why = "no display (" + egl_error() + ")";
-        return nullptr;
-    }
-    if (!acquire_display(dpy, why)) return nullptr;
+std::unique_ptr<compute_context::state> compute_context::state::open(
+    cloudmath_egl::platform only, std::string& why) {
     auto s = std::make_unique<state>();
-    s->dpy = dpy;
-    if (eglBindAPI(EGL_OPENGL_API) != EGL_TRUE) {
-        why = "desktop OpenGL not supported (eglBindAPI: " + egl_error() + ")";
-        return nullptr;
-    }
-    // Mesa and recent NVIDIA drivers need neither a config nor a surface; older drivers get
-    // a config and a 1x1 pbuffer, which costs nothing and is never drawn to.
-    const char* exts = eglQueryString(dpy, EGL_EXTENSIONS);
-    const bool surfaceless = has_extension(exts, "EGL_KHR_surfaceless_context");
-    const bool no_config = has_extension(exts, "EGL_KHR_no_config_context");
-    EGLConfig config = EGL_NO_CONFIG_KHR;
-    if (!no_config || !surfaceless) {
-        const EGLint want[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE,
-                               surfaceless ? 0 : EGL_PBUFFER_BIT, EGL_NONE};
-        EGLint count = 0;
-        if (eglChooseConfig(dpy, want, &config, 1, &count) != EGL_TRUE || count < 1) {
-            why = "no OpenGL EGL config (" + egl_error() + ")";
-            return nullptr;
-        }
-    }
-    // Asking for 4.3 core, the first version with compute shaders and SSBOs; drivers return
-    // the newest version compatible with it (4.5 or 4.6 in practice).
-    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 3,
-                              EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                              EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-    s->ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, attribs);
-    if (s->ctx == EGL_NO_CONTEXT) {
-        why = "no OpenGL 4.3 core context (eglCreateContext: " + egl_error() + ")";
-        return nullptr;
-    }
-    if (!surfaceless) {
-        const EGLint size[] = {EGL_WIDTH, 1, EGL_HEIGHT, 1, EGL_NONE};
-        s->surf = eglCreatePbufferSurface(dpy, config, size);
-        if (s->surf == EGL_NO_SURFACE) {
-            why = "eglCreatePbufferSurface failed (" + egl_error() + ")";
-            return nullptr;
-        }
-    }
-    if (!s->make_current()) {
-        why = "eglMakeCurrent failed (" + egl_error() + ")";
-        return nullptr;
-    }
+    // 4.3 core is the first version with compute shaders and SSBOs; drivers return the
+    // newest version compatible with it (4.5 or 4.6 in practice).
+    s->egl = cloudmath_egl::headless_context::open(4, 3, only, why);
+    if (s->egl == nullptr) return nullptr;
     const std::string missing = s->gl.load();
     if (!missing.empty()) {
         why = "GL entry point " + missing + " not found";
-        return nullptr;
-    }
-    GLint major = 0, minor = 0;
-    s->gl.GetIntegerv(GL_MAJOR_VERSION, &major);
-    s->gl.GetIntegerv(GL_MINOR_VERSION, &minor);
-    if (major * 10 + minor < 43) {
-        why = "OpenGL " + std::to_string(major) + "." + std::to_string(minor) +
-              " context, compute shaders need 4.3";
         return nullptr;
     }
     s->gl.GetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &s->max_groups_x);
@@ -278,49 +161,19 @@ compute_context::~compute_context() = default;
 std::unique_ptr<compute_context> compute_context::create(std::string& why) {
     why.clear();
     const char* env = std::getenv("CLOUDMATH_GL_PLATFORM");
-    const std::string only = env != nullptr ? env : "";
-    if (!only.empty() && only != "surfaceless" && only != "device" && only != "default") {
-        why = "CLOUDMATH_GL_PLATFORM=" + only + " is not surfaceless, device or default";
+    const std::string name = env != nullptr ? env : "";
+    using cloudmath_egl::platform;
+    platform only = platform::any;
+    if (name == "surfaceless") only = platform::surfaceless;
+    else if (name == "device") only = platform::device;
+    else if (name == "default") only = platform::default_display;
+    else if (!name.empty()) {
+        why = "CLOUDMATH_GL_PLATFORM=" + name + " is not surfaceless, device or default";
         return nullptr;
     }
-    // Client extensions say which platforms exist; NULL from an EGL 1.4 library means none.
-    const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    std::string tried;  // one "platform: reason" per failed attempt, for the one-line why
-    auto attempt = [&](const std::string& name, EGLDisplay dpy) -> std::unique_ptr<state> {
-        std::string reason;
-        auto s = state::open(dpy, reason);
-        if (s == nullptr) tried += (tried.empty() ? "" : "; ") + name + ": " + reason;
-        return s;
-    };
-
-    std::unique_ptr<state> s;
-    if (only.empty() || only == "surfaceless") {
-        if (has_extension(client, "EGL_MESA_platform_surfaceless"))
-            s = attempt("surfaceless",
-                        eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
-                                              nullptr));
-        else
-            tried += std::string(tried.empty() ? "" : "; ") + "surfaceless: not available";
-    }
-    if (s == nullptr && (only.empty() || only == "device")) {
-        const auto query = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(
-            eglGetProcAddress("eglQueryDevicesEXT"));
-        EGLDeviceEXT devices[16];
-        EGLint count = 0;
-        if (has_extension(client, "EGL_EXT_platform_device") && query != nullptr &&
-            query(16, devices, &count) == EGL_TRUE && count > 0) {
-            for (EGLint i = 0; i < count && s == nullptr; ++i)
-                s = attempt("device " + std::to_string(i),
-                            eglGetPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr));
-        } else {
-            tried += std::string(tried.empty() ? "" : "; ") + "device: no EGL devices";
-        }
-    }
-    if (s == nullptr && (only.empty() || only == "default"))
-        s = attempt("default", eglGetDisplay(EGL_DEFAULT_DISPLAY));
-
+    auto s = state::open(only, why);
     if (s == nullptr) {
-        why = "no headless OpenGL 4.3 context: " + tried;
+        why = "no headless OpenGL 4.3 context: " + why;
         return nullptr;
     }
     return std::unique_ptr<compute_context>(new compute_context(std::move(s)));
@@ -359,7 +212,7 @@ bool compute_context::compile(const std::string& source, std::string& log) {
     log.clear();
     state& s = *s_;
     if (!s.make_current()) {
-        log = "eglMakeCurrent failed (" + egl_error() + ")";
+        log = "eglMakeCurrent failed (" + cloudmath_egl::egl_error() + ")";
         return false;
     }
     const gl_api& gl = s.gl;
@@ -428,7 +281,8 @@ std::vector<std::array<float, 4>> compute_context::run(
         error_ = std::move(message);
         return std::vector<vec4>();
     };
-    if (!s.make_current()) return fail("eglMakeCurrent failed (" + egl_error() + ")");
+    if (!s.make_current())
+        return fail("eglMakeCurrent failed (" + cloudmath_egl::egl_error() + ")");
     if (s.program == 0) return fail("no program: compile() failed or was not called");
     if (inputs.empty()) return {};
     std::string errors = s.gl_errors("earlier calls (before run)");

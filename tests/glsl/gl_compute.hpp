@@ -2,10 +2,8 @@
 // one compute program at a time, vec4 in / vec4 out through two shader storage buffers.
 // No GL or EGL header leaks out of here (and no GLM), so test files include only this.
 //
-// Display choice, first that gives an OpenGL 4.3+ core context wins:
-//   1. EGL_PLATFORM_SURFACELESS_MESA   (Mesa; llvmpipe when there is no GPU)
-//   2. EGL_PLATFORM_DEVICE_EXT         (each device from eglQueryDevicesEXT; NVIDIA's driver)
-//   3. eglGetDisplay(EGL_DEFAULT_DISPLAY)
+// The context comes from tools/egl/egl_headless.hpp: Mesa's surfaceless platform, then each
+// EGL device (NVIDIA), then the default display; the first with OpenGL 4.3+ core wins.
 // The environment variable CLOUDMATH_GL_PLATFORM=surfaceless|device|default restricts the
 // choice to that one (e.g. `device` to run on the GPU of a machine that also has Mesa). Any
 // other non-empty value makes create() fail with a reason, which is how the skip/fail exit
