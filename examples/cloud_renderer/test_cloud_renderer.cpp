@@ -17,6 +17,7 @@
 #include <initializer_list>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace cloud_renderer;
@@ -38,6 +39,15 @@ fixture& shared() {
         return x;
     }();
     return f;
+}
+
+// The linear CPU images of a scene with a switch on and off ("haze", "sun"): the pair a
+// test compares.
+std::pair<image, image> render_switch(const scene& s, const char* key, int width, int height) {
+    variant on, off;
+    REQUIRE(apply_variant_spec(std::string(key) + "=on", on).empty());
+    REQUIRE(apply_variant_spec(std::string(key) + "=off", off).empty());
+    return {render_cpu_linear(s, on, shared().textures, width, height), render_cpu_linear(s, off, shared().textures, width, height)};
 }
 
 image render_gpu(const scene& s, const variant& v, bool compile_time = false, int width = 160, int height = 90) {
@@ -124,11 +134,8 @@ TEST_CASE("aerial perspective: distant clouds fade toward the horizon's haze, ne
     // Horizon preset: rows near the horizon see clouds tens of km away, rows high up see
     // clouds a few km away. The haze pulls the far ones toward the sky's horizon colour.
     const scene& s = *find_preset("horizon");
-    variant on, off;
-    REQUIRE(apply_variant_spec("haze=on", on).empty());
-    REQUIRE(apply_variant_spec("haze=off", off).empty());
     const int w = 160, h = 90;
-    const image a = render_cpu_linear(s, on, shared().textures, w, h), b = render_cpu_linear(s, off, shared().textures, w, h);
+    const auto [a, b] = render_switch(s, "haze", w, h);
     const frame_constants k = make_frame_constants(s);
     double far_on = 0, far_off = 0, near_change = 0;
     int far_n = 0, near_n = 0;
@@ -165,11 +172,8 @@ TEST_CASE("the sun disc: its physical radiance at the image centre, GPU and CPU 
     s.sun_azimuth = 120.0f;
     s.pitch = 30.0f;
     s.yaw = 120.0f;
-    variant on, off;
-    REQUIRE(apply_variant_spec("sun=on", on).empty());
-    REQUIRE(apply_variant_spec("sun=off", off).empty());
     const int w = 161, h = 91;
-    const image a = render_cpu_linear(s, on, shared().textures, w, h), b = render_cpu_linear(s, off, shared().textures, w, h);
+    const auto [a, b] = render_switch(s, "sun", w, h);
     const frame_constants k = make_frame_constants(s);
     const std::size_t centre = static_cast<std::size_t>((h / 2) * w + w / 2);
     const double omega = 2.0 * 3.14159265358979 * (1.0 - std::cos(double(k.sun_angular_radius)));
@@ -183,6 +187,7 @@ TEST_CASE("the sun disc: its physical radiance at the image centre, GPU and CPU 
     CHECK(a.pixels[centre + 2].r == b.pixels[centre + 2].r);
     // The GPU draws the same disc (the display image saturates at the centre, so compare the
     // images off the disc and the centre's saturation).
+    variant on;
     const image g = render_gpu(s, on, false, w, h), c = render_cpu(s, on, shared().textures, w, h);
     CHECK(compare(g, c).psnr_db >= 35.0);
     CHECK(g.pixels[centre].r >= 0.99f);
