@@ -30,10 +30,12 @@ struct pixel_program {
     cloud_density field;
     cm::mie_approx_parameters<float> mie;
     float phase_g_mean;  // the diffusion model's g
+    vec2 band;           // altitudes of the cloud type's band (height_range_for_type): no density outside
 
     pixel_program(const scene& sc, const variant& va, const cloud_textures& t)
         : s(sc), v(va), k(make_frame_constants(sc)), field(sc, t), mie(cm::mie_approx_params(k.droplet_diameter)),
-          phase_g_mean(phase_mean_cosine(k, va.phase)) {}
+          phase_g_mean(phase_mean_cosine(k, va.phase)),
+          band(cm::height_range_for_type(sc.cloud_type) * (sc.layer_top - sc.layer_bottom) + sc.layer_bottom) {}
 
     // Texture reads of one pixel (count_texture_reads); null when not counting.
     struct reads {
@@ -70,7 +72,6 @@ struct pixel_program {
             return cm::cone_optical_depth(p, toward, cone, [this, counter](const vec3& q) { return cone_extinction(q, counter); });
         }
         const vec3 up = glm::normalize(vec3(p.x, p.y + (s.planet_radius + s.camera_altitude), p.z));
-        const vec2 band = cm::height_range_for_type(s.cloud_type) * (s.layer_top - s.layer_bottom) + s.layer_bottom;
         const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up), s.planet_radius, band.x, band.y);
         const float length_to_exit = seg.y > seg.x ? std::min(seg.y, k.light_march_max) : 0.0f;
         const float ds = length_to_exit / float(v.light_steps);
@@ -101,17 +102,14 @@ struct pixel_program {
     vec4 shade_linear(int x, int y, int width, int height, reads* counted = nullptr) const {
         long* view_reads = counted ? &counted->view : nullptr;
         long* light_reads = counted ? &counted->light : nullptr;
-        const vec2 ndc = vec2(float(x) + 0.5f, float(y) + 0.5f) / vec2(float(width), float(height)) * 2.0f - 1.0f;
-        const float aspect = float(width) / float(height);
-        const vec3 dir = glm::normalize(k.forward + k.right * (ndc.x * aspect * k.tan_half_fov) + k.up * (ndc.y * k.tan_half_fov));
+        const vec3 dir = pixel_direction(k, x, y, width, height);
 
         cm::march_accumulator<vec3, vec3> acc;
         // The view stretch: from where the ray enters the layer, at most max_distance. The
         // march covers the part of it inside the cloud type's altitude band (no density outside).
         const vec2 layer = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, s.layer_bottom, s.layer_top);
-        const vec2 band_altitudes = cm::height_range_for_type(s.cloud_type) * (s.layer_top - s.layer_bottom) + s.layer_bottom;
-        const vec2 band = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, band_altitudes.x, band_altitudes.y);
-        const vec2 seg(std::max(layer.x, band.x), std::min(std::min(layer.y, layer.x + s.max_distance), band.y));
+        const vec2 in_band = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, band.x, band.y);
+        const vec2 seg(std::max(layer.x, in_band.x), std::min(std::min(layer.y, layer.x + s.max_distance), in_band.y));
         if (counted) counted->in_layer = layer.y > layer.x;
         if (seg.y > seg.x) {
             const float t1 = seg.y;
@@ -124,9 +122,12 @@ struct pixel_program {
             };
             float tau_view = 0.0f;    // optical depth from the camera to the start of the step
             float depth_sum = 0.0f;   // sum of each step's opacity times its distance
+            float step_begin = seg.x; // = at(0), for both schedules
             for (int i = 0; i < v.view_steps; ++i) {
                 const float t = at((float(i) + offset) / n);
-                const float ds = at((float(i) + 1.0f) / n) - at(float(i) / n);
+                const float step_end = at((float(i) + 1.0f) / n);
+                const float ds = step_end - step_begin;
+                step_begin = step_end;
                 const float alt = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, t);
                 const float d = density(dir * t, alt, view_reads);
                 if (d <= 0.0f) continue;

@@ -8,8 +8,6 @@
 #include "textures.hpp"
 #include "window.hpp"
 
-#include <glm/geometric.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -89,6 +87,21 @@ bool accumulate_frames(scene s, int n, Render render, image& out) {
     return true;
 }
 
+// The options' image averaged over o.accumulate frames, on the CPU and on the GPU.
+image render_cpu_frames(const options& o, const cloud_textures& t) {
+    image out;
+    (void)accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& img) {
+        img = render_cpu(s, o.var, t, o.width, o.height);
+        return true;
+    }, out);
+    return out;
+}
+bool render_gpu_frames(gl_renderer& gpu, const options& o, image& out, std::string& why) {
+    return accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& img) {
+        return gpu.render(s, o.var, o.compile_time, o.width, o.height, img, nullptr, why);
+    }, out);
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -105,9 +118,7 @@ int run_headless(const options& o) {
     // takes seconds), so the second draw is the frame time.
     if (!gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &first, why) ||
         !gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &ft, why) ||
-        (o.accumulate > 1 && !accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& out) {
-             return gpu->render(s, o.var, o.compile_time, o.width, o.height, out, nullptr, why);
-         }, img))) {
+        (o.accumulate > 1 && !render_gpu_frames(*gpu, o, img, why))) {
         std::fprintf(stderr, "error: %s\n", why.c_str());
         return 1;
     }
@@ -123,11 +134,7 @@ int run_cpu(const options& o) {
     cloud_textures t;
     if (!load_textures(o, t)) return 1;
     const auto t0 = std::chrono::steady_clock::now();
-    image img;
-    (void)accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& out) {
-        out = render_cpu(s, o.var, t, o.width, o.height);
-        return true;
-    }, img);
+    const image img = render_cpu_frames(o, t);
     std::printf("CPU: preset %s, %d x %d, %s: %.2f s\n", o.sc.name.c_str(), o.width, o.height, variant_spec(o.var).c_str(),
                 seconds_since(t0));
     print_stats("CPU image", img);
@@ -143,18 +150,12 @@ int run_compare(const options& o) {
     std::string why;
     frame_timing ft;
     if (!gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, g, &ft, why) ||
-        (o.accumulate > 1 && !accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& out) {
-             return gpu->render(s, o.var, o.compile_time, o.width, o.height, out, nullptr, why);
-         }, g))) {
+        (o.accumulate > 1 && !render_gpu_frames(*gpu, o, g, why))) {
         std::fprintf(stderr, "error: %s\n", why.c_str());
         return 1;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    image c;
-    (void)accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& out) {
-        out = render_cpu(s, o.var, t, o.width, o.height);
-        return true;
-    }, c);
+    const image c = render_cpu_frames(o, t);
     const double cpu_s = seconds_since(t0);
     const image_difference d = compare(g, c);
     std::printf("preset %s, %d x %d, %s: GPU %.1f ms, CPU %.2f s\n", o.sc.name.c_str(), o.width, o.height,
@@ -281,12 +282,11 @@ int run_convergence(const options& o) {
     const char* const reference_spec = "steps=1024,light=march,light-steps=128,behind=march,schedule=uniform,jitter=off";
     // The variant, then one change each: the other step schedule, 4x the view steps, and
     // converged light (which error dominates: the view march's or the light estimate's).
-    const char* const other_schedule = o.var.schedule == step_schedule::uniform ? "schedule=growing" : "schedule=uniform";
-    const std::pair<const char*, const char*> rows[] = {{"the variant", ""},
-                                                        {"the other step schedule", other_schedule},
-                                                        {"4x the view steps", nullptr},
-                                                        {"light marches of 128 steps both ways", "light=march,light-steps=128,behind=march"}};
-    const std::string four_times = "steps=" + std::to_string(std::min(1024, 4 * o.var.view_steps));
+    const std::pair<std::string, std::string> rows[] = {
+        {"the variant", ""},
+        {"the other step schedule", o.var.schedule == step_schedule::uniform ? "schedule=growing" : "schedule=uniform"},
+        {"4x the view steps", "steps=" + std::to_string(std::min(1024, 4 * o.var.view_steps))},
+        {"light marches of 128 steps both ways", "light=march,light-steps=128,behind=march"}};
     std::ostringstream table;
     table << "| Preset | Variant | PSNR, image (dB) | PSNR, horizon band (dB) | texture reads per pixel |\n"
           << "|---|---|---:|---:|---:|\n";
@@ -298,19 +298,15 @@ int run_convergence(const options& o) {
         const image reference = render_cpu(s, reference_variant, t, o.width, o.height);
         // The horizon band: |elevation| <= 5 degrees (the camera has no roll).
         const frame_constants k = make_frame_constants(s);
-        const float aspect = float(o.width) / float(o.height);
         std::vector<char> band(reference.pixels.size(), 0);
         for (int y = 0; y < o.height; ++y)
             for (int x = 0; x < o.width; ++x) {
-                const float nx = (float(x) + 0.5f) / float(o.width) * 2.0f - 1.0f;
-                const float ny = (float(y) + 0.5f) / float(o.height) * 2.0f - 1.0f;
-                const glm::vec3 d = glm::normalize(k.forward + k.right * (nx * aspect * k.tan_half_fov) + k.up * (ny * k.tan_half_fov));
+                const glm::vec3 d = pixel_direction(k, x, y, o.width, o.height);
                 band[static_cast<std::size_t>(y) * static_cast<std::size_t>(o.width) + static_cast<std::size_t>(x)] =
                     std::fabs(d.y) <= std::sin(5.0f * 3.14159265f / 180.0f) ? 1 : 0;
             }
-        for (const auto& [label, spec] : rows) {
+        for (const auto& [label, row_spec] : rows) {
             variant v = o.var;
-            const std::string row_spec = spec ? spec : four_times;
             const std::string why = apply_variant_spec(row_spec, v);
             if (!why.empty()) {
                 std::fprintf(stderr, "error: %s\n", why.c_str());
@@ -323,7 +319,7 @@ int run_convergence(const options& o) {
             char horizon_text[32];
             if (std::isnan(horizon)) std::snprintf(horizon_text, sizeof horizon_text, "-");
             else std::snprintf(horizon_text, sizeof horizon_text, "%.1f", horizon);
-            std::snprintf(line, sizeof line, "| %s | %s%s%s%s | %.1f | %s | %.0f |\n", s.name.c_str(), label,
+            std::snprintf(line, sizeof line, "| %s | %s%s%s%s | %.1f | %s | %.0f |\n", s.name.c_str(), label.c_str(),
                           row_spec.empty() ? "" : " (`", row_spec.c_str(), row_spec.empty() ? "" : "`)", whole, horizon_text,
                           reads.mean);
             table << line;

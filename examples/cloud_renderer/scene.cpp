@@ -116,6 +116,12 @@ frame_constants make_frame_constants(const scene& s) {
     return f;
 }
 
+glm::vec3 pixel_direction(const frame_constants& k, int x, int y, int width, int height) {
+    const glm::vec2 ndc = glm::vec2(float(x) + 0.5f, float(y) + 0.5f) / glm::vec2(float(width), float(height)) * 2.0f - 1.0f;
+    const float aspect = float(width) / float(height);
+    return glm::normalize(k.forward + k.right * (ndc.x * aspect * k.tan_half_fov) + k.up * (ndc.y * k.tan_half_fov));
+}
+
 const char* name(phase_model p) {
     switch (p) {
     case phase_model::hg: return "hg";

@@ -109,6 +109,11 @@ struct frame_constants {
 
 frame_constants make_frame_constants(const scene& s);
 
+// The unit view direction through the centre of pixel (x, y) of a width x height image (y = 0
+// the bottom row): the shader's ray (clouds.frag main), shared by the CPU renderer, the
+// volume tracer's camera and the convergence report's horizon band.
+glm::vec3 pixel_direction(const frame_constants& k, int x, int y, int width, int height);
+
 // "phase=mie,lighting=diffusion,octaves=4,powder=off,light=march,light-steps=32,
 // integration=naive,steps=128,jitter=off" (any subset, applied over `v`). Returns an empty string on success, else the
 // message for the user.

@@ -262,11 +262,7 @@ std::vector<camera_ray> make_camera_rays(const cr::scene& s, int width, int heig
     rays.reserve(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            // The renderer's direction (cpu_renderer.cpp shade_linear), in float as there.
-            const glm::vec2 ndc = glm::vec2(float(x) + 0.5f, float(y) + 0.5f) / glm::vec2(float(width), float(height)) * 2.0f - 1.0f;
-            const float aspect = float(width) / float(height);
-            const glm::vec3 dir = glm::normalize(k.forward + k.right * (ndc.x * aspect * k.tan_half_fov) +
-                                                 k.up * (ndc.y * k.tan_half_fov));
+            const glm::vec3 dir = cr::pixel_direction(k, x, y, width, height);  // the renderer's, in float
             const glm::vec2 seg = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, s.layer_bottom, s.layer_top);
             camera_ray r;
             r.origin = {0.0, 0.0, 0.0};

@@ -366,27 +366,22 @@ int run_report(int argc, char** argv) {
         names.push_back(n);
     }
     for (const std::string& n : names) (void)preset(n);
+    std::vector<std::string> specs;
+    for (auto [it, end] = f.values.equal_range("--variant"); it != end; ++it) specs.push_back(it->second);
+    if (specs.empty())
+        specs = {"default=", "octaves=lighting=octaves,powder=on,light=cone", "single=lighting=octaves,octaves=1,light=cone",
+                 "mie=phase=mie"};
     std::vector<std::pair<std::string, cr::variant>> variants;
-    for (auto [it, end] = f.values.equal_range("--variant"); it != end; ++it) {
-        const std::size_t eq = it->second.find('=');
-        if (eq == std::string::npos || eq == 0) throw usage_error("--variant must be NAME=SPEC, not '" + it->second + "'");
+    for (const std::string& spec : specs) {
+        const std::size_t eq = spec.find('=');
+        if (eq == std::string::npos || eq == 0) throw usage_error("--variant must be NAME=SPEC, not '" + spec + "'");
         cr::variant v;
-        const std::string why = cr::apply_variant_spec(it->second.substr(eq + 1), v);
-        if (!why.empty()) throw usage_error("--variant " + it->second + ": " + why);
+        const std::string why = cr::apply_variant_spec(spec.substr(eq + 1), v);
+        if (!why.empty()) throw usage_error("--variant " + spec + ": " + why);
         v.haze = false;  // the truth has no air between the camera and the clouds,
         v.sun = false;   // and no sun disc (cloud_medium.cpp)
-        variants.emplace_back(it->second.substr(0, eq), v);
+        variants.emplace_back(spec.substr(0, eq), v);
     }
-    if (variants.empty())
-        for (const char* spec : {"default=", "octaves=lighting=octaves,powder=on,light=cone",
-                                 "single=lighting=octaves,octaves=1,light=cone", "mie=phase=mie"}) {
-            const std::string s = spec;
-            cr::variant v;
-            (void)cr::apply_variant_spec(s.substr(s.find('=') + 1), v);
-            v.haze = false;
-            v.sun = false;
-            variants.emplace_back(s.substr(0, s.find('=')), v);
-        }
     const std::string data = f.get("--data", "docs/data"), docs = f.get("--docs", "docs");
     const auto threads = static_cast<unsigned>(f.integer("--threads", 0, 0, 1024));
     const bool quiet = f.has("--quiet");

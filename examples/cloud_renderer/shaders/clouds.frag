@@ -63,6 +63,7 @@ float cr_phase(float mu, float scale);
 #include "cloudmath.glsl"
 
 CmMieApproxParams cr_mie;  // set once per pixel in main()
+vec2 cr_band;              // altitudes of the cloud type's band (no density outside), set in main()
 
 // Altitude of a camera-relative point, without |p - centre| - R's cancellation.
 float cr_altitude(vec3 p) {
@@ -109,8 +110,7 @@ float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode) {
     }
     // March: midpoint steps up to where the ray leaves the cloud type's band.
     vec3 up = normalize(vec3(p.x, p.y + (u_planet_radius + u_cam_altitude), p.z));
-    vec2 band = cm_height_range_for_type(u_cloud_type) * (u_layer_top - u_layer_bottom) + u_layer_bottom;
-    vec2 seg = cm_cloud_layer_segment(altitude, dot(toward, up), u_planet_radius, band.x, band.y);
+    vec2 seg = cm_cloud_layer_segment(altitude, dot(toward, up), u_planet_radius, cr_band.x, cr_band.y);
     float length_to_exit = seg.y > seg.x ? min(seg.y, u_light_march_max) : 0.0;
     float ds = length_to_exit / float(u_light_steps);
     float tau = 0.0;
@@ -165,24 +165,27 @@ void main() {
     float aspect = u_resolution.x / u_resolution.y;
     vec3 dir = normalize(u_forward + u_right * (ndc.x * aspect * u_tan_half_fov) + u_up * (ndc.y * u_tan_half_fov));
     cr_mie = cm_mie_approx_params(u_droplet_diameter);
+    cr_band = cm_height_range_for_type(u_cloud_type) * (u_layer_top - u_layer_bottom) + u_layer_bottom;
 
     CmMarchAccumulator acc = cm_march_accumulator();
     // The view stretch: from where the ray enters the layer, at most u_max_distance. The
     // march covers the part of it inside the cloud type's altitude band (no density outside).
     vec2 layer = cm_cloud_layer_segment(u_cam_altitude, dir.y, u_planet_radius, u_layer_bottom, u_layer_top);
-    vec2 band_altitudes = cm_height_range_for_type(u_cloud_type) * (u_layer_top - u_layer_bottom) + u_layer_bottom;
-    vec2 band = cm_cloud_layer_segment(u_cam_altitude, dir.y, u_planet_radius, band_altitudes.x, band_altitudes.y);
-    vec2 seg = vec2(max(layer.x, band.x), min(min(layer.y, layer.x + u_max_distance), band.y));
+    vec2 in_band = cm_cloud_layer_segment(u_cam_altitude, dir.y, u_planet_radius, cr_band.x, cr_band.y);
+    vec2 seg = vec2(max(layer.x, in_band.x), min(min(layer.y, layer.x + u_max_distance), in_band.y));
     if (seg.y > seg.x) {
         float t1 = seg.y;
         float offset = u_jitter != 0 ? cr_jitter(gl_FragCoord.xy) : 0.5;
         float mu = dot(dir, u_sun_dir);
         float n = float(u_view_steps);
         float tau_view = 0.0;  // optical depth from the camera to the start of the step
-        float depth_sum = 0.0;  // sum of each step's opacity times its distance
+        float depth_sum = 0.0;      // sum of each step's opacity times its distance
+        float step_begin = seg.x;   // = cr_march_distance(0), for both schedules
         for (int i = 0; i < u_view_steps; ++i) {
             float t = cr_march_distance((float(i) + offset) / n, seg.x, t1);
-            float ds = cr_march_distance((float(i) + 1.0) / n, seg.x, t1) - cr_march_distance(float(i) / n, seg.x, t1);
+            float step_end = cr_march_distance((float(i) + 1.0) / n, seg.x, t1);
+            float ds = step_end - step_begin;
+            step_begin = step_end;
             float altitude = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, t);
             float density = cr_density(dir * t, altitude);
             if (density <= 0.0) continue;
