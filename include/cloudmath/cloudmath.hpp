@@ -14,5 +14,6 @@
 #include "density.hpp"
 #include "noise.hpp"
 #include "sun.hpp"
+#include "reprojection.hpp"
 
 #endif  // CLOUDMATH_CLOUDMATH_HPP

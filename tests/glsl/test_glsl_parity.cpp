@@ -511,6 +511,45 @@ std::vector<parity_case> make_cases() {
         add({"cm_sun_disc_radiance", "vec4(cm_sun_disc_radiance(a.x, a.y, a.z, a.w))",
              [](vec4 a, vec4) { return vec4(cm::sun_disc_radiance(a.x, a.y, a.z, a.w)); }, disc, 1, 1.5e4f, 1e-4});
     }
+    // reprojection: the Bayer order (bit-identical), projections of points in front of,
+    // beside and behind a tilted camera, footprints at and between texel centres, and the
+    // blend weight across its cap, with NaN and negative counts.
+    {
+        std::vector<std::pair<vec4, vec4>> pixels;
+        for (int i = 0; i < 40; ++i)
+            pixels.push_back({vec4(float(i * 7 % 23), float(i * 5 % 17), float(i), float(i * 977 + 65519)), vec4(0)});
+        add({"cm_bayer_index_4x4",
+             "vec4(float(cm_bayer_index_4x4(uint(a.x), uint(a.y))), vec2(cm_temporal_update_offset(uint(a.z))), "
+             "float(cm_temporal_update_offset(uint(a.w)).x + 4u * cm_temporal_update_offset(uint(a.w)).y))",
+             [](vec4 a, vec4) {
+                 const glm::uvec2 o = cm::temporal_update_offset(std::uint32_t(a.z)), w = cm::temporal_update_offset(std::uint32_t(a.w));
+                 return vec4(float(cm::bayer_index_4x4(std::uint32_t(a.x), std::uint32_t(a.y))), float(o.x), float(o.y), float(w.x + 4U * w.y)); },
+             pixels, 4, 1.0f, 0.0});
+        const vec3 f = glm::normalize(vec3(0.4f, 0.17f, -0.9f));
+        std::vector<std::pair<vec4, vec4>> points;
+        for (float x : {-3000.0f, -20.0f, 0.0f, 450.0f, 30000.0f})
+            for (float y : {-500.0f, 0.0f, 1500.0f, 4000.0f})
+                for (float z : {-35000.0f, -800.0f, 0.0f, 2000.0f}) points.push_back({vec4(x, y, z, 0.57735f), vec4(1.7778f)});
+        const std::string basis = "vec3(" + std::to_string(f.x) + ", " + std::to_string(f.y) + ", " + std::to_string(f.z) + ")";
+        const vec3 fq(std::stof(std::to_string(f.x)), std::stof(std::to_string(f.y)), std::stof(std::to_string(f.z)));
+        const std::string right = "normalize(cross(" + basis + ", vec3(0.0, 1.0, 0.0)))";
+        add({"cm_camera_project",
+             "vec4(cm_camera_project(a.xyz, " + basis + ", " + right + ", cross(" + right + ", " + basis + "), a.w, b.x), 0.0)",
+             [fq](vec4 a, vec4 b) {
+                 const vec3 rq = glm::normalize(glm::cross(fq, vec3(0.0f, 1.0f, 0.0f)));
+                 return vec4(cm::camera_project(vec3(a), fq, rq, glm::cross(rq, fq), a.w, b.x), 0.0f); },
+             points, 3, 1.0f, 1e-4});
+        std::vector<std::pair<vec4, vec4>> uvs;
+        for (float u : {0.0f, 0.5f / 320.0f, 0.1f, 0.5f, 0.73f, 1.0f - 0.5f / 320.0f, 1.2f})
+            for (float v : {-0.1f, 0.5f / 180.0f, 0.33f, 0.999f}) uvs.push_back({vec4(u, v, 0.0f, 0.0f), vec4(320.0f, 180.0f, 0.0f, 0.0f)});
+        add({"cm_texel_bilinear", "cm_texel_bilinear(a.xy, b.xy)",
+             [](vec4 a, vec4 b) { return cm::texel_bilinear(vec2(a), vec2(b)); }, uvs, 4, 1.0f, 1e-4});
+        std::vector<std::pair<vec4, vec4>> counts;
+        for (float n : {-1.0f, 0.0f, 1.0f, 3.0f, 7.0f, 8.0f, 100.0f})
+            for (float m : {0.0f, 1.0f, 8.0f, 16.0f}) counts.push_back({vec4(n, m, 0.0f, 0.0f), vec4(0)});
+        add({"cm_temporal_blend_weight", "vec4(cm_temporal_blend_weight(a.x, a.y))",
+             [](vec4 a, vec4) { return vec4(cm::temporal_blend_weight(a.x, a.y)); }, counts, 1, 1.0f, 1e-6});
+    }
     return cs;
 }
 

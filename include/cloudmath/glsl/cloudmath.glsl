@@ -14,5 +14,6 @@
 #include "density.glsl"
 #include "noise.glsl"
 #include "sun.glsl"
+#include "reprojection.glsl"
 
 #endif  // CM_CLOUDMATH_GLSL
