@@ -98,11 +98,13 @@ struct pixel_program {
     }
 
     // main() of the shader for the pixel whose centre is (x + 0.5, y + 0.5), before the
-    // tonemap: rgb linear radiance, a opacity.
-    vec4 shade_linear(int x, int y, int width, int height, reads* counted = nullptr) const {
+    // tonemap: rgb linear radiance, a opacity. depth (optional): the cloud's
+    // transmittance-weighted distance, 0 where the ray meets no cloud (out_depth).
+    vec4 shade_linear(int x, int y, int width, int height, reads* counted = nullptr, float* depth = nullptr) const {
         long* view_reads = counted ? &counted->view : nullptr;
         long* light_reads = counted ? &counted->light : nullptr;
         const vec3 dir = pixel_direction(k, x, y, width, height);
+        if (depth != nullptr) *depth = 0.0f;
 
         cm::march_accumulator<vec3, vec3> acc;
         // The view stretch: from where the ray enters the layer, at most max_distance. The
@@ -153,6 +155,7 @@ struct pixel_program {
             // transmittance-weighted depth dims its light and adds the horizon's haze in
             // proportion to its opacity (the sky behind already holds its air).
             const float opacity = 1.0f - acc.transmittance.r;
+            if (depth != nullptr && opacity > 0.0f) *depth = depth_sum / opacity;
             if (v.haze && opacity > 0.0f) {
                 const vec3 tau_air = cm::air_optical_depth(s.camera_altitude, dir.y, depth_sum / opacity);
                 acc.luminance = cm::aerial_perspective(acc.luminance, k.sky_horizon * opacity, tau_air);
@@ -167,14 +170,8 @@ struct pixel_program {
     vec4 shade(int x, int y, int width, int height) const {
         const vec4 c = shade_linear(x, y, width, height);
         vec3 display = tonemap(vec3(c), s.exposure);
-        if (v.dither) display += cm::triangular_dither(dither_hash(x, y)) * (1.0f / 255.0f);
+        if (v.dither) display += cm::triangular_dither(dither_hash(x, y, s.frame)) * (1.0f / 255.0f);
         return vec4(display, c.a);
-    }
-
-    // The dither's hash: another hash of the pixel than the jitter's, new each frame.
-    std::uint32_t dither_hash(int x, int y) const {
-        const std::uint32_t pixel = static_cast<std::uint32_t>(x) + static_cast<std::uint32_t>(y) * 8192u;
-        return cm::noise_hash(cm::noise_hash(pixel) + s.frame * 0x9e3779b9u);
     }
 };
 
@@ -199,6 +196,11 @@ image render_rows(int width, int height, unsigned threads, const Shade& shade) {
 }
 
 }  // namespace
+
+std::uint32_t dither_hash(int x, int y, std::uint32_t frame) {
+    const std::uint32_t pixel = static_cast<std::uint32_t>(x) + static_cast<std::uint32_t>(y) * 8192u;
+    return cm::noise_hash(cm::noise_hash(pixel) + frame * 0x9e3779b9u);
+}
 
 image render_cpu(const scene& s, const variant& v, const cloud_textures& textures, int width, int height, unsigned threads) {
     const pixel_program program(s, v, textures);
@@ -235,6 +237,126 @@ image render_cpu_linear(const scene& s, const variant& v, const cloud_textures& 
                         unsigned threads) {
     const pixel_program program(s, v, textures);
     return render_rows(width, height, threads, [&](int x, int y) { return program.shade_linear(x, y, width, height); });
+}
+
+}  // namespace cloud_renderer
+
+namespace cloud_renderer {
+
+cpu_temporal_renderer::cpu_temporal_renderer(int width, int height, int max_samples)
+    : width_(width), height_(height), max_samples_(max_samples),
+      color_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height)),
+      aux_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) {}
+
+image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud_textures& textures, unsigned threads) {
+    const int w = width_, h = height_;
+    const int lw = (w + 3) / 4, lh = (h + 3) / 4;  // the quarter-resolution pass
+    const glm::uvec2 offset = cm::temporal_update_offset(s.frame);
+    // The shading pass: pixel (4 i + offset.x, 4 j + offset.y), with the march jitter of
+    // frame / 16 (each pixel's own sample count). Blocks on the right and top edges may
+    // shade a pixel just outside the image: its sample still stands in for the block.
+    scene shading = s;
+    shading.frame = s.frame >> 4U;
+    const pixel_program program(shading, v, textures);
+    std::vector<vec4> fresh(static_cast<std::size_t>(lw) * static_cast<std::size_t>(lh));
+    std::vector<float> fresh_depth(fresh.size(), 0.0f);
+    std::vector<pixel_program::reads> counts(fresh.size());
+    (void)render_rows(lw, lh, threads, [&](int i, int j) {
+        const std::size_t b = static_cast<std::size_t>(j) * static_cast<std::size_t>(lw) + static_cast<std::size_t>(i);
+        fresh[b] = program.shade_linear(4 * i + int(offset.x), 4 * j + int(offset.y), w, h, &counts[b], &fresh_depth[b]);
+        return vec4(0.0f);
+    });
+
+    // The resolve pass (temporal_resolve.frag).
+    const frame_constants k = make_frame_constants(s);
+    const frame_constants pk = make_frame_constants(has_history_ ? previous_ : s);
+    const vec3 motion = has_history_ ? vec3(s.wind.x - previous_.wind.x, s.camera_altitude - previous_.camera_altitude,
+                                            s.wind.y - previous_.wind.y)
+                                     : vec3(0.0f);
+    const float aspect = float(w) / float(h);
+    std::vector<vec4> color(color_.size());
+    std::vector<vec2> aux(aux_.size());
+    image display = render_rows(w, h, threads, [&](int x, int y) {
+        const std::size_t b = static_cast<std::size_t>(y / 4) * static_cast<std::size_t>(lw) + static_cast<std::size_t>(x / 4);
+        const bool is_fresh = (x & 3) == int(offset.x) && (y & 3) == int(offset.y);
+        const float depth = fresh_depth[b] > 0.0f ? fresh_depth[b] : 1e7f;
+        const vec3 uvz = cm::camera_project(pixel_direction(k, x, y, w, h) * depth + motion, pk.forward, pk.right, pk.up,
+                                            pk.tan_half_fov, aspect);
+        const bool valid = has_history_ && uvz.z > 0.0f && uvz.x >= 0.0f && uvz.x <= 1.0f && uvz.y >= 0.0f && uvz.y <= 1.0f;
+        vec4 hc(0.0f);
+        vec2 ha(0.0f);
+        if (valid) {
+            // Bilinear taps clamped to the image (a point on screen always has its texels).
+            const vec4 fp = cm::texel_bilinear(vec2(uvz), vec2(float(w), float(h)));
+            const int x0 = int(fp.x), y0 = int(fp.y);
+            for (int dy = 0; dy < 2; ++dy)
+                for (int dx = 0; dx < 2; ++dx) {
+                    const int tx = std::clamp(x0 + dx, 0, w - 1), ty = std::clamp(y0 + dy, 0, h - 1);
+                    const float weight = (dx ? fp.z : 1.0f - fp.z) * (dy ? fp.w : 1.0f - fp.w);
+                    const std::size_t ti = static_cast<std::size_t>(ty) * static_cast<std::size_t>(w) + static_cast<std::size_t>(tx);
+                    hc += color_[ti] * weight;
+                    ha += aux_[ti] * weight;
+                }
+        }
+        vec4 c;
+        vec2 a;
+        if (is_fresh) {
+            const float weight = valid ? cm::temporal_blend_weight(ha.y, float(max_samples_)) : 1.0f;
+            c = glm::mix(hc, fresh[b], weight);
+            a = vec2(fresh_depth[b], valid ? std::min(ha.y, float(max_samples_) - 1.0f) + 1.0f : 1.0f);
+        } else if (valid) {
+            c = hc;
+            a = ha;
+        } else {
+            // No history (first frame, or the point was off the previous screen): the new
+            // samples interpolated bilinearly (they sit at 4 (i, j) + offset) until this
+            // pixel's turn; 0 samples, so its own sample replaces this one.
+            const vec2 q = (vec2(float(x), float(y)) - vec2(offset)) * 0.25f;
+            const vec2 q0(std::floor(q.x), std::floor(q.y));
+            const vec2 f = q - q0;
+            c = vec4(0.0f);
+            for (int dy = 0; dy < 2; ++dy)
+                for (int dx = 0; dx < 2; ++dx) {
+                    const int i = std::clamp(int(q0.x) + dx, 0, lw - 1), j = std::clamp(int(q0.y) + dy, 0, lh - 1);
+                    c += fresh[static_cast<std::size_t>(j) * static_cast<std::size_t>(lw) + static_cast<std::size_t>(i)] *
+                         ((dx ? f.x : 1.0f - f.x) * (dy ? f.y : 1.0f - f.y));
+                }
+            a = vec2(fresh_depth[b], 0.0f);
+        }
+        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+        color[i] = c;
+        aux[i] = a;
+        vec3 shown = tonemap(vec3(c), s.exposure);
+        if (v.dither) shown += cm::triangular_dither(dither_hash(x, y, s.frame)) * (1.0f / 255.0f);
+        return vec4(shown, c.a);
+    });
+    color_.swap(color);
+    aux_.swap(aux);
+    previous_ = s;
+    has_history_ = true;
+
+    // Reads per in-layer pixel of the whole image: the shaded pixels' reads, over the count of
+    // pixels whose ray enters the layer (a segment test, no texture read).
+    long total = 0, light = 0;
+    for (const pixel_program::reads& r : counts) {
+        total += r.view + r.light;
+        light += r.light;
+    }
+    int in_layer = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const vec3 dir = pixel_direction(k, x, y, w, h);
+            const vec2 layer = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, s.layer_bottom, s.layer_top);
+            if (layer.y > layer.x) ++in_layer;
+        }
+    reads_ = texture_read_stats{};
+    reads_.pixels_in_layer = in_layer;
+    if (in_layer > 0) {
+        reads_.mean = double(total) / double(in_layer);
+        reads_.light_share = total > 0 ? double(light) / double(total) : 0.0;
+        reads_.p95 = 0.0;  // per-pixel percentiles do not apply: 15 of 16 pixels read nothing
+    }
+    return display;
 }
 
 }  // namespace cloud_renderer

@@ -9,6 +9,12 @@
 #include "scene.hpp"
 #include "textures.hpp"
 
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <vector>
+
 namespace cloud_renderer {
 
 // threads = 0: one per hardware thread. rgb: the display colour (tonemapped), a: opacity.
@@ -29,6 +35,40 @@ texture_read_stats count_texture_reads(const scene& s, const variant& v, const c
 
 image render_cpu_linear(const scene& s, const variant& v, const cloud_textures& textures, int width, int height,
                         unsigned threads = 0);
+
+// The dither's hash of pixel (x, y) on a frame: another hash of the pixel than the march
+// jitter's, new each frame (clouds.frag and temporal_resolve.frag compute the same).
+std::uint32_t dither_hash(int x, int y, std::uint32_t frame);
+
+// Temporal rendering, Horizon Zero Dawn's scheme (reprojection.hpp): frame f shades one pixel
+// of every 4 x 4 block (temporal_update_offset(f): a quarter-resolution pass, 1/16 of the
+// pixels) and takes the other 15 from a full-resolution history, reprojected by the motion
+// since the previous frame: the camera's rotation, its change of altitude and the wind's
+// offset, at the depth of the block's new sample (the cloud's transmittance-weighted
+// distance; 1e7 m where it meets no cloud). A shaded pixel joins its history as a running
+// mean of at most max_samples (temporal_blend_weight); its march jitter advances once per
+// 16 frames (frame_jitter with frame / 16), so each pixel's samples follow R1. A pixel whose
+// point was off the previous screen (disocclusion at the screen edge, or the first frame)
+// takes its block's new sample until its own turn. temporal_resolve.frag is the GPU twin.
+class cpu_temporal_renderer {
+public:
+    cpu_temporal_renderer(int width, int height, int max_samples = 8);
+    // Frame s.frame of the sequence (frames should count up by one); returns the display image.
+    image frame(const scene& s, const variant& v, const cloud_textures& textures, unsigned threads = 0);
+    // Forgets the history (the next frame is a first frame).
+    void reset() { has_history_ = false; }
+    // Texture reads of the last frame per pixel whose ray enters the cloud layer: the shaded
+    // pixels' reads over all in-layer pixels of the image.
+    const texture_read_stats& last_reads() const { return reads_; }
+
+private:
+    int width_, height_, max_samples_;
+    bool has_history_ = false;
+    scene previous_;
+    std::vector<glm::vec4> color_;
+    std::vector<glm::vec2> aux_;
+    texture_read_stats reads_;
+};
 
 }  // namespace cloud_renderer
 

@@ -3,6 +3,7 @@
 #include "clouds_frag.hpp"
 
 #include <cloudmath/glsl.hpp>
+#include <cloudmath/reprojection.hpp>
 
 #include "egl_headless.hpp"
 
@@ -71,6 +72,14 @@ std::string fragment_shader_source(const variant& v, bool compile_time) {
     return head + body;
 }
 
+std::string temporal_resolve_shader_source() {
+    std::string body = temporal_resolve_frag_text;
+    const std::string include_line = "\n#include \"cloudmath.glsl\"\n";
+    const std::size_t at = body.find(include_line);
+    if (at != std::string::npos) body.replace(at, include_line.size(), "\n" + cloudmath::glsl_source("cloudmath") + "\n");
+    return "#version 410 core\n" + body;
+}
+
 // ---------------------------------------------------------------------------------------
 // GL entry points, loaded at run time (no loader library).
 
@@ -94,6 +103,10 @@ std::string fragment_shader_source(const variant& v, bool compile_time) {
     X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)          \
     X(PFNGLUNIFORM1IPROC, Uniform1i)                            \
     X(PFNGLUNIFORM1UIPROC, Uniform1ui)                          \
+    X(PFNGLUNIFORM2UIPROC, Uniform2ui)                          \
+    X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                        \
+    X(PFNGLREADBUFFERPROC, ReadBuffer)                          \
+    X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                \
     X(PFNGLUNIFORM1FPROC, Uniform1f)                            \
     X(PFNGLUNIFORM2FPROC, Uniform2f)                            \
     X(PFNGLUNIFORM3FPROC, Uniform3f)                            \
@@ -148,6 +161,19 @@ struct gl_renderer::state {
     int target_w = 0, target_h = 0;
     std::map<std::string, GLuint> programs;  // "" for the run-time program, else the variant spec
 
+    // Temporal rendering (render_temporal): the quarter-resolution shading target (linear
+    // radiance + opacity, depth), two full-resolution histories (colour, depth + samples)
+    // written in turn, and the display image the resolve pass writes beside the history.
+    struct temporal_targets {
+        int width = 0, height = 0;
+        GLuint fresh_fbo = 0, fresh[2] = {0, 0};
+        GLuint history_fbo[2] = {0, 0}, history[2][2] = {{0, 0}, {0, 0}}, display = 0;
+        GLuint resolve_program = 0;
+        int current = 0;          // the history the next resolve reads
+        bool has_history = false;
+        scene previous;
+    } temporal;
+
     std::string gl_errors(const char* where) const {
         std::string text;
         for (int i = 0; i < 8; ++i) {
@@ -190,6 +216,13 @@ struct gl_renderer::state {
             gl.DeleteShader(vs);
             return 0;
         }
+        const GLuint p = link(vs, fs, why);
+        if (p != 0) programs[key] = p;
+        return p;
+    }
+
+    // Links a vertex and a fragment shader (and deletes them); 0 and the log on failure.
+    GLuint link(GLuint vs, GLuint fs, std::string& why) const {
         const GLuint p = gl.CreateProgram();
         gl.AttachShader(p, vs);
         gl.AttachShader(p, fs);
@@ -205,7 +238,6 @@ struct gl_renderer::state {
             gl.DeleteProgram(p);
             return 0;
         }
-        programs[key] = p;
         return p;
     }
 
@@ -218,6 +250,19 @@ struct gl_renderer::state {
         if (fbo) gl.DeleteFramebuffers(1, &fbo);
         if (vao) gl.DeleteVertexArrays(1, &vao);
         if (queries[0]) gl.DeleteQueries(2, queries);
+        release_temporal();
+    }
+
+    void release_temporal() {
+        temporal_targets& t = temporal;
+        if (t.resolve_program) gl.DeleteProgram(t.resolve_program);
+        if (t.fresh_fbo) gl.DeleteFramebuffers(1, &t.fresh_fbo);
+        if (t.history_fbo[0]) gl.DeleteFramebuffers(2, t.history_fbo);
+        if (t.fresh[0]) gl.DeleteTextures(2, t.fresh);
+        for (GLuint* h : t.history)
+            if (h[0]) gl.DeleteTextures(2, h);
+        if (t.display) gl.DeleteTextures(1, &t.display);
+        t = temporal_targets{};
     }
 
     // GL objects go while the context is current; `egl` then destroys the context.
@@ -305,11 +350,16 @@ bool gl_renderer::upload_textures(const cloud_textures& t, std::string& why) {
     return why.empty();
 }
 
-bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, unsigned fbo, int width, int height,
-                       frame_timing* timing, std::string& why) {
-    const gl_api& gl = s_->gl;
-    const GLuint program = s_->program_for(v, compile_time, why);
-    if (program == 0) return false;
+namespace {
+
+// Makes the clouds program of the variant current with every uniform of the scene set and
+// the cloud textures bound; 0 on failure. temporal_pass 1: the shading pass of the temporal
+// scheme (clouds.frag's u_temporal_pass), shading pixel 4 (i, j) + offset.
+GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bool compile_time, int width, int height,
+                   int temporal_pass, glm::uvec2 offset, std::string& why) {
+    const gl_api& gl = st.gl;
+    const GLuint program = st.program_for(v, compile_time, why);
+    if (program == 0) return 0;
     gl.UseProgram(program);
     const auto loc = [&](const char* n) { return gl.GetUniformLocation(program, n); };
     const auto set1i = [&](const char* n, int x) { gl.Uniform1i(loc(n), x); };
@@ -361,33 +411,211 @@ bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, uns
     set1f("u_cone_far_length", k.cone_far_length);
     set1f("u_light_march_max", k.light_march_max);
     set1f("u_min_transmittance", k.min_transmittance);
+    set1i("u_temporal_pass", temporal_pass);
+    gl.Uniform2ui(loc("u_update_offset"), offset.x, offset.y);
     const char* samplers[3] = {"u_base", "u_detail", "u_weather"};
     const GLenum kinds[3] = {GL_TEXTURE_3D, GL_TEXTURE_3D, GL_TEXTURE_2D};
     for (int i = 0; i < 3; ++i) {
         gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + i));
-        gl.BindTexture(kinds[i], s_->textures[i]);
+        gl.BindTexture(kinds[i], st.textures[i]);
         set1i(samplers[i], i);
     }
-    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-    gl.Viewport(0, 0, width, height);
-    gl.BindVertexArray(s_->vao);
-    // Two GPU timestamps around the draw rather than a GL_TIME_ELAPSED query: Mesa 22's
-    // llvmpipe returns a timestamp, not a duration, for the latter.
+    return program;
+}
+
+// Runs `draws` (which issues the draw calls) between two GPU timestamps and glFinish calls.
+// Two timestamps rather than a GL_TIME_ELAPSED query: Mesa 22's llvmpipe returns a
+// timestamp, not a duration, for the latter.
+template <class Draws>
+bool timed(gl_renderer::state& st, frame_timing* timing, std::string& why, Draws draws) {
+    const gl_api& gl = st.gl;
+    gl.BindVertexArray(st.vao);
     gl.Finish();  // nothing earlier in the wall time
     const auto wall_start = std::chrono::steady_clock::now();
-    gl.QueryCounter(s_->queries[0], GL_TIMESTAMP);
-    gl.DrawArrays(GL_TRIANGLES, 0, 3);
-    gl.QueryCounter(s_->queries[1], GL_TIMESTAMP);
+    gl.QueryCounter(st.queries[0], GL_TIMESTAMP);
+    draws();
+    gl.QueryCounter(st.queries[1], GL_TIMESTAMP);
     gl.Finish();
     const double wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall_start).count();
     GLuint64 start = 0, end = 0;
-    gl.GetQueryObjectui64v(s_->queries[0], GL_QUERY_RESULT, &start);
-    gl.GetQueryObjectui64v(s_->queries[1], GL_QUERY_RESULT, &end);
+    gl.GetQueryObjectui64v(st.queries[0], GL_QUERY_RESULT, &start);
+    gl.GetQueryObjectui64v(st.queries[1], GL_QUERY_RESULT, &end);
     if (timing != nullptr) {
         timing->gpu_ms = end > start ? double(end - start) * 1e-6 : 0.0;
         timing->wall_ms = wall_ms;
     }
-    why = s_->gl_errors("draw");
+    why = st.gl_errors("draw");
+    return why.empty();
+}
+
+// A float texture of the given format for a render target (nearest filtering: read with
+// texelFetch).
+void make_target(const gl_api& gl, GLuint tex, GLenum internal_format, GLenum format, int width, int height) {
+    gl.BindTexture(GL_TEXTURE_2D, tex);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal_format), width, height, 0, format, GL_FLOAT, nullptr);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+// The temporal targets for a width x height image (a new history when the size changes).
+bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std::string& why) {
+    auto& t = st.temporal;
+    const gl_api& gl = st.gl;
+    if (t.resolve_program == 0) {
+        const GLuint vs = st.compile(GL_VERTEX_SHADER, vertex_shader_source(), why);
+        if (vs == 0) return false;
+        const GLuint fs = st.compile(GL_FRAGMENT_SHADER, temporal_resolve_shader_source(), why);
+        if (fs == 0) {
+            gl.DeleteShader(vs);
+            return false;
+        }
+        t.resolve_program = st.link(vs, fs, why);
+        if (t.resolve_program == 0) return false;
+    }
+    if (t.width == width && t.height == height) return true;
+    if (t.fresh_fbo == 0) {
+        gl.GenFramebuffers(1, &t.fresh_fbo);
+        gl.GenFramebuffers(2, t.history_fbo);
+        gl.GenTextures(2, t.fresh);
+        gl.GenTextures(2, t.history[0]);
+        gl.GenTextures(2, t.history[1]);
+        gl.GenTextures(1, &t.display);
+    }
+    const int lw = (width + 3) / 4, lh = (height + 3) / 4;
+    make_target(gl, t.fresh[0], GL_RGBA32F, GL_RGBA, lw, lh);
+    make_target(gl, t.fresh[1], GL_R32F, GL_RED, lw, lh);
+    make_target(gl, t.display, GL_RGBA32F, GL_RGBA, width, height);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, t.fresh_fbo);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.fresh[0], 0);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, t.fresh[1], 0);
+    bool complete = gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    for (int i = 0; i < 2; ++i) {
+        make_target(gl, t.history[i][0], GL_RGBA32F, GL_RGBA, width, height);
+        make_target(gl, t.history[i][1], GL_RG32F, GL_RG, width, height);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, t.history_fbo[i]);
+        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.history[i][0], 0);
+        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, t.history[i][1], 0);
+        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, t.display, 0);
+        complete = complete && gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    }
+    if (!complete) {
+        why = "the temporal float targets are not supported (framebuffer incomplete)";
+        return false;
+    }
+    t.width = width;
+    t.height = height;
+    t.has_history = false;
+    why = st.gl_errors("temporal targets");
+    return why.empty();
+}
+
+}  // namespace
+
+bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, unsigned fbo, int width, int height,
+                       frame_timing* timing, std::string& why) {
+    if (bind_clouds(*s_, sc, v, compile_time, width, height, 0, glm::uvec2(0), why) == 0) return false;
+    const gl_api& gl = s_->gl;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    gl.Viewport(0, 0, width, height);
+    return timed(*s_, timing, why, [&] { gl.DrawArrays(GL_TRIANGLES, 0, 3); });
+}
+
+void gl_renderer::reset_temporal() { s_->temporal.has_history = false; }
+
+bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_time, int width, int height,
+                                frame_timing* timing, std::string& why) {
+    if (!ensure_temporal_targets(*s_, width, height, why)) return false;
+    auto& t = s_->temporal;
+    const gl_api& gl = s_->gl;
+    const glm::uvec2 offset = cloudmath::temporal_update_offset(sc.frame);
+    // The shading pass: one pixel of every 4 x 4 block, the jitter of frame / 16.
+    scene shading = sc;
+    shading.frame = sc.frame >> 4U;
+    if (bind_clouds(*s_, shading, v, compile_time, width, height, 1, offset, why) == 0) return false;
+    const GLenum two[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    const GLenum three[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    const int lw = (width + 3) / 4, lh = (height + 3) / 4;
+    const GLuint clouds = [&] { GLint p = 0; gl.GetIntegerv(GL_CURRENT_PROGRAM, &p); return static_cast<GLuint>(p); }();
+
+    // The resolve pass's uniforms (temporal_resolve.frag).
+    const GLuint r = t.resolve_program;
+    gl.UseProgram(r);
+    const auto loc = [&](const char* n) { return gl.GetUniformLocation(r, n); };
+    const auto set3f = [&](const char* n, const glm::vec3& x) { gl.Uniform3f(loc(n), x.x, x.y, x.z); };
+    const frame_constants k = make_frame_constants(sc);
+    const scene& prev = t.has_history ? t.previous : sc;
+    const frame_constants pk = make_frame_constants(prev);
+    gl.Uniform2f(loc("u_resolution"), float(width), float(height));
+    set3f("u_forward", k.forward);
+    set3f("u_right", k.right);
+    set3f("u_up", k.up);
+    set3f("u_prev_forward", pk.forward);
+    set3f("u_prev_right", pk.right);
+    set3f("u_prev_up", pk.up);
+    gl.Uniform1f(loc("u_tan_half_fov"), k.tan_half_fov);
+    gl.Uniform1f(loc("u_prev_tan_half_fov"), pk.tan_half_fov);
+    set3f("u_motion", glm::vec3(sc.wind.x - prev.wind.x, sc.camera_altitude - prev.camera_altitude, sc.wind.y - prev.wind.y));
+    gl.Uniform2ui(loc("u_update_offset"), offset.x, offset.y);
+    gl.Uniform1i(loc("u_has_history"), t.has_history ? 1 : 0);
+    gl.Uniform1f(loc("u_max_samples"), float(temporal_max_samples));
+    gl.Uniform1f(loc("u_exposure"), sc.exposure);
+    gl.Uniform1ui(loc("u_frame"), sc.frame);
+    gl.Uniform1i(loc("u_dither"), v.dither ? 1 : 0);
+    const char* samplers[4] = {"u_fresh", "u_fresh_depth", "u_history", "u_history_aux"};
+    const GLuint inputs[4] = {t.fresh[0], t.fresh[1], t.history[t.current][0], t.history[t.current][1]};
+    const int out = 1 - t.current;
+
+    const bool ok = timed(*s_, timing, why, [&] {
+        gl.UseProgram(clouds);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, t.fresh_fbo);
+        gl.DrawBuffers(2, two);
+        gl.Viewport(0, 0, lw, lh);
+        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        gl.UseProgram(r);
+        for (int i = 0; i < 4; ++i) {
+            gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + i));
+            gl.BindTexture(GL_TEXTURE_2D, inputs[i]);
+            gl.Uniform1i(loc(samplers[i]), i);
+        }
+        gl.BindFramebuffer(GL_FRAMEBUFFER, t.history_fbo[out]);
+        gl.DrawBuffers(3, three);
+        gl.Viewport(0, 0, width, height);
+        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    });
+    if (!ok) return false;
+    t.current = out;
+    t.previous = sc;
+    t.has_history = true;
+    return true;
+}
+
+bool gl_renderer::show_temporal(unsigned fbo, std::string& why) {
+    auto& t = s_->temporal;
+    const gl_api& gl = s_->gl;
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, t.history_fbo[t.current]);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT2);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    gl.BlitFramebuffer(0, 0, t.width, t.height, 0, 0, t.width, t.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    why = s_->gl_errors("temporal display");
+    return why.empty();
+}
+
+bool gl_renderer::render_temporal(const scene& sc, const variant& v, bool compile_time, int width, int height, image& out,
+                                  frame_timing* timing, std::string& why) {
+    if (!draw_temporal(sc, v, compile_time, width, height, timing, why)) return false;
+    const gl_api& gl = s_->gl;
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, s_->temporal.history_fbo[s_->temporal.current]);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT2);
+    out.width = width;
+    out.height = height;
+    out.pixels.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), glm::vec4(0.0f));
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, out.pixels.data());
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    why = s_->gl_errors("temporal read back");
     return why.empty();
 }
 

@@ -18,6 +18,10 @@ namespace cloud_renderer {
 // constants when compile_time), the shader file with cloudmath.glsl resolved in.
 std::string fragment_shader_source(const variant& v, bool compile_time);
 std::string vertex_shader_source();
+// shaders/temporal_resolve.frag as compiled (#version, cloudmath.glsl resolved in).
+std::string temporal_resolve_shader_source();
+// The running mean's cap of the temporal scheme (temporal_blend_weight), on the CPU and GPU.
+inline constexpr int temporal_max_samples = 8;
 
 // Time of one draw: from GL timestamp queries around it (the GPU's own clock; what a real
 // GPU's profiler shows), and on the host from before the draw to the end of glFinish()
@@ -53,6 +57,19 @@ public:
     // Draws offscreen into a float target and reads it back.
     bool render(const scene& s, const variant& v, bool compile_time, int width, int height, image& out,
                 frame_timing* timing, std::string& why);
+
+    // Temporal rendering, the twin of cpu_temporal_renderer (cpu_renderer.hpp): frame s.frame
+    // shades one pixel of every 4 x 4 block (clouds.frag's temporal pass) and resolves the
+    // full image from the reprojected history (temporal_resolve.frag). Frames should count
+    // up by one; a new size or reset_temporal() starts a new history. timing covers both
+    // passes. draw_temporal keeps the display image on the GPU (show_temporal copies it
+    // into framebuffer fbo, 0 the window); render_temporal reads it back.
+    bool draw_temporal(const scene& s, const variant& v, bool compile_time, int width, int height, frame_timing* timing,
+                       std::string& why);
+    bool show_temporal(unsigned fbo, std::string& why);
+    bool render_temporal(const scene& s, const variant& v, bool compile_time, int width, int height, image& out,
+                         frame_timing* timing, std::string& why);
+    void reset_temporal();
 
     struct state;
 

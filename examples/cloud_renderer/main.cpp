@@ -70,6 +70,36 @@ void print_stats(const char* who, const image& img) {
                 100.0 * s.cloud_fraction, s.nan_pixels);
 }
 
+// Frame f of the --temporal sequence: the options' scene on frame f, panned and drifted.
+scene temporal_scene(const options& o, int f) {
+    scene s = o.sc;
+    s.frame = static_cast<std::uint32_t>(f);
+    s.yaw += o.pan * float(f);
+    s.wind.x += o.drift * float(f);
+    return s;
+}
+
+// Frames 0..o.temporal-1 of the temporal scheme by render(scene, image&); the last is left in
+// `out`; with --save-every, every Nth frame is also written. The median host time of the
+// frames after the first 16 (whose history is still filling) goes to *median_ms.
+template <class Render>
+bool temporal_frames(const options& o, const char* default_out, Render render, image& out, double* median_ms = nullptr) {
+    std::vector<double> ms;
+    for (int f = 0; f < o.temporal; ++f) {
+        frame_timing ft;
+        if (!render(temporal_scene(o, f), out, ft)) return false;
+        if (f >= std::min(16, o.temporal - 1)) ms.push_back(ft.wall_ms);
+        if (o.save_every > 0 && (f + 1) % o.save_every == 0) {
+            char suffix[32];
+            std::snprintf(suffix, sizeof suffix, "_f%03d", f);
+            if (!write_png(with_suffix(o.out.empty() ? default_out : o.out, suffix), out)) return false;
+        }
+    }
+    std::sort(ms.begin(), ms.end());
+    if (median_ms != nullptr) *median_ms = ms.empty() ? 0.0 : ms[ms.size() / 2];
+    return true;
+}
+
 // The average of frames 0..n-1 of a scene, each drawn by render(scene, image&) with its
 // own march jitter (scene::frame): the converged image of the temporal jitter, the same on
 // the CPU and the GPU. Display colours are averaged (what a history buffer holds).
@@ -87,16 +117,32 @@ bool accumulate_frames(scene s, int n, Render render, image& out) {
     return true;
 }
 
-// The options' image averaged over o.accumulate frames, on the CPU and on the GPU.
-image render_cpu_frames(const options& o, const cloud_textures& t) {
+// The options' image: averaged over o.accumulate frames, or the last of o.temporal frames of
+// the temporal scheme, on the CPU and on the GPU.
+image render_cpu_frames(const options& o, const cloud_textures& t, texture_read_stats* temporal_reads = nullptr) {
     image out;
+    if (o.temporal > 0) {
+        cpu_temporal_renderer r(o.width, o.height, temporal_max_samples);
+        (void)temporal_frames(o, "clouds_cpu.png", [&](const scene& s, image& img, frame_timing&) {
+            img = r.frame(s, o.var, t);
+            return true;
+        }, out);
+        if (temporal_reads != nullptr) *temporal_reads = r.last_reads();
+        return out;
+    }
     (void)accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& img) {
         img = render_cpu(s, o.var, t, o.width, o.height);
         return true;
     }, out);
     return out;
 }
-bool render_gpu_frames(gl_renderer& gpu, const options& o, image& out, std::string& why) {
+bool render_gpu_frames(gl_renderer& gpu, const options& o, image& out, std::string& why, double* temporal_ms = nullptr) {
+    if (o.temporal > 0) {
+        gpu.reset_temporal();
+        return temporal_frames(o, "clouds.png", [&](const scene& s, image& img, frame_timing& ft) {
+            return gpu.render_temporal(s, o.var, o.compile_time, o.width, o.height, img, &ft, why);
+        }, out, temporal_ms);
+    }
     return accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& img) {
         return gpu.render(s, o.var, o.compile_time, o.width, o.height, img, nullptr, why);
     }, out);
@@ -116,9 +162,10 @@ int run_headless(const options& o) {
     frame_timing first, ft;
     // Twice: drivers compile the shader for the GPU at the first draw (Mesa's llvmpipe JIT
     // takes seconds), so the second draw is the frame time.
+    double temporal_ms = 0.0;
     if (!gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &first, why) ||
         !gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &ft, why) ||
-        (o.accumulate > 1 && !render_gpu_frames(*gpu, o, img, why))) {
+        ((o.accumulate > 1 || o.temporal > 0) && !render_gpu_frames(*gpu, o, img, why, &temporal_ms))) {
         std::fprintf(stderr, "error: %s\n", why.c_str());
         return 1;
     }
@@ -126,6 +173,9 @@ int run_headless(const options& o) {
                 "first draw %.0f ms (with any shader compilation the driver defers to it)\n",
                 o.sc.name.c_str(), o.width, o.height, variant_spec(o.var).c_str(), o.compile_time ? " (compile-time)" : "",
                 ft.wall_ms, ft.gpu_ms, first.wall_ms);
+    if (o.temporal > 0)
+        std::printf("GPU temporal: %d frames, %.1f ms per frame (median after the first 16; both passes)\n", o.temporal,
+                    temporal_ms);
     print_stats("GPU image", img);
     return save(img, o.out.empty() ? "clouds.png" : o.out) ? 0 : 1;
 }
@@ -134,10 +184,22 @@ int run_cpu(const options& o) {
     cloud_textures t;
     if (!load_textures(o, t)) return 1;
     const auto t0 = std::chrono::steady_clock::now();
-    const image img = render_cpu_frames(o, t);
+    texture_read_stats reads;
+    const image img = render_cpu_frames(o, t, &reads);
     std::printf("CPU: preset %s, %d x %d, %s: %.2f s\n", o.sc.name.c_str(), o.width, o.height, variant_spec(o.var).c_str(),
                 seconds_since(t0));
     print_stats("CPU image", img);
+    if (o.temporal > 0) {
+        // What the scheme gives up (or gains) against paying for every pixel: the same frame
+        // drawn in full, and the texture reads of the last frame against a full frame's.
+        const scene last = temporal_scene(o, o.temporal - 1);
+        const image full = render_cpu(last, o.var, t, o.width, o.height);
+        const texture_read_stats full_reads = count_texture_reads(last, o.var, t, o.width, o.height);
+        std::printf("temporal: %d frames; last frame against its full render: PSNR %.2f dB; texture reads per in-layer "
+                    "pixel %.1f (full frame %.1f, %.1fx fewer)\n",
+                    o.temporal, compare(img, full).psnr_db, reads.mean, full_reads.mean,
+                    reads.mean > 0.0 ? full_reads.mean / reads.mean : 0.0);
+    }
     return save(img, o.out.empty() ? "clouds_cpu.png" : o.out) ? 0 : 1;
 }
 
@@ -150,7 +212,7 @@ int run_compare(const options& o) {
     std::string why;
     frame_timing ft;
     if (!gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, g, &ft, why) ||
-        (o.accumulate > 1 && !render_gpu_frames(*gpu, o, g, why))) {
+        ((o.accumulate > 1 || o.temporal > 0) && !render_gpu_frames(*gpu, o, g, why))) {
         std::fprintf(stderr, "error: %s\n", why.c_str());
         return 1;
     }
@@ -178,6 +240,7 @@ struct bench_row {
     const char* label;
     const char* spec;
     bool compile_time;
+    bool temporal = false;  // the temporal scheme: frames 0..15 fill the history, then the timed ones
 };
 const std::vector<bench_row>& bench_rows() {
     static const std::vector<bench_row> rows = {
@@ -185,6 +248,8 @@ const std::vector<bench_row>& bench_rows() {
          "steps=256,light=march,light-steps=32,behind=march,phase=mie,jitter=off", false},
         {"default: diffusion model, 64 steps, 6-step march toward the sun, cone behind, dual-lobe HG", "", false},
         {"default, variant compiled in as constants", "", true},
+        {"temporal scheme: the default on 1 of 16 pixels per frame, resolved from the reprojected history", "", false, true},
+        {"temporal scheme, compiled in as constants", "", true, true},
         {"phase: HG", "phase=hg", false},
         {"phase: Cornette-Shanks", "phase=cs", false},
         {"phase: Mie fit", "phase=mie", false},
@@ -216,7 +281,8 @@ int run_bench(const options& o) {
     table << "Preset `" << o.sc.name << "`, " << o.width << " x " << o.height << ", " << gpu->device() << ". Times: medians of "
           << o.frames << " frames after one warm-up frame; host: from the draw call to the end of glFinish(); GL: GPU "
           << "timestamps around the draw (Mesa's llvmpipe stamps them when the draw is queued, so only the host column "
-          << "means anything there). PSNR: against the first row. Texture reads: the shader's texture() calls per "
+          << "means anything there). Temporal rows: both passes of frames 16 onward, after 16 frames that fill the "
+          << "history; their image is the last frame's. PSNR: against the first row. Texture reads: the shader's texture() calls per "
           << "pixel whose ray enters the layer, counted on its CPU twin (the same program) at 160 x 90: mean, 95th "
           << "percentile and the light's share (toward the sun, and away from it for the diffusion model).\n\n"
           << "| Variant | --variant | ms per frame (host) | ms per frame (GL timestamps) | PSNR against the reference (dB) "
@@ -229,10 +295,16 @@ int run_bench(const options& o) {
         std::string why = apply_variant_spec(row.spec, v);
         image img;
         std::vector<double> wall, gl;
-        for (int f = 0; f <= o.frames && why.empty(); ++f) {
+        const int warm_up = row.temporal ? 16 : 1;  // the temporal history fills in 16 frames
+        if (row.temporal) gpu->reset_temporal();
+        for (int f = 0; f < warm_up + o.frames && why.empty(); ++f) {
             frame_timing ft;
-            if (!gpu->render(o.sc, v, row.compile_time, o.width, o.height, img, &ft, why)) break;
-            if (f > 0) {
+            scene s = o.sc;
+            s.frame = static_cast<std::uint32_t>(f);
+            if (!(row.temporal ? gpu->render_temporal(s, v, row.compile_time, o.width, o.height, img, &ft, why)
+                               : gpu->render(o.sc, v, row.compile_time, o.width, o.height, img, &ft, why)))
+                break;
+            if (f >= warm_up) {
                 wall.push_back(ft.wall_ms);
                 gl.push_back(ft.gpu_ms);
             }
@@ -250,11 +322,22 @@ int run_bench(const options& o) {
         if (r == 0) std::snprintf(psnr_text, sizeof psnr_text, "reference");
         else if (std::isinf(psnr)) std::snprintf(psnr_text, sizeof psnr_text, "identical");
         else std::snprintf(psnr_text, sizeof psnr_text, "%.1f", psnr);
-        const texture_read_stats reads = count_texture_reads(o.sc, v, t, 160, 90);
+        texture_read_stats reads;
+        if (row.temporal) {
+            cpu_temporal_renderer counter(160, 90, temporal_max_samples);
+            (void)counter.frame(o.sc, v, t);
+            reads = counter.last_reads();
+        } else {
+            reads = count_texture_reads(o.sc, v, t, 160, 90);
+        }
         char line[640];
-        std::snprintf(line, sizeof line, "| %s | `%s`%s | %.1f | %.1f | %s | %.0f / %.0f / %.0f%% |\n", row.label,
-                      *row.spec ? row.spec : "(default)", row.compile_time ? " `--compile-time`" : "", median, median_gl,
-                      psnr_text, reads.mean, reads.p95, 100.0 * reads.light_share);
+        char p95_text[32];
+        if (row.temporal) std::snprintf(p95_text, sizeof p95_text, "-");  // 15 of 16 pixels read nothing
+        else std::snprintf(p95_text, sizeof p95_text, "%.0f", reads.p95);
+        std::snprintf(line, sizeof line, "| %s | `%s`%s%s | %.1f | %.1f | %s | %.0f / %s / %.0f%% |\n", row.label,
+                      *row.spec ? row.spec : "(default)", row.compile_time ? " `--compile-time`" : "",
+                      row.temporal ? " `--temporal`" : "", median, median_gl, psnr_text, reads.mean, p95_text,
+                      100.0 * reads.light_share);
         table << line;
         if (!o.quiet) std::fprintf(stderr, "bench: %s: %.1f ms\n", row.label, median);
     }
@@ -284,11 +367,12 @@ int run_convergence(const options& o) {
     // converged light (which error dominates: the view march's or the light estimate's).
     const std::pair<std::string, std::string> rows[] = {
         {"the variant", ""},
+        {"the variant, temporal scheme: frame 127 of a still camera", "temporal"},
         {"the other step schedule", o.var.schedule == step_schedule::uniform ? "schedule=growing" : "schedule=uniform"},
         {"4x the view steps", "steps=" + std::to_string(std::min(1024, 4 * o.var.view_steps))},
         {"light marches of 128 steps both ways", "light=march,light-steps=128,behind=march"}};
     std::ostringstream table;
-    table << "| Preset | Variant | PSNR, image (dB) | PSNR, horizon band (dB) | texture reads per pixel |\n"
+    table << "| Preset | Variant | PSNR, image (dB) | PSNR, horizon band (dB) | texture reads per pixel per frame |\n"
           << "|---|---|---:|---:|---:|\n";
     const auto t0 = std::chrono::steady_clock::now();
     for (const scene& preset : presets()) {
@@ -307,28 +391,43 @@ int run_convergence(const options& o) {
             }
         for (const auto& [label, row_spec] : rows) {
             variant v = o.var;
-            const std::string why = apply_variant_spec(row_spec, v);
+            const bool temporal = row_spec == "temporal";
+            const std::string why = temporal ? std::string() : apply_variant_spec(row_spec, v);
             if (!why.empty()) {
                 std::fprintf(stderr, "error: %s\n", why.c_str());
                 return 1;
             }
-            const image img = render_cpu(s, v, t, o.width, o.height);
+            image img;
+            texture_read_stats reads;
+            if (temporal) {
+                // 128 frames: every pixel shaded 8 times (8 jitter offsets), the running mean's cap.
+                cpu_temporal_renderer r(o.width, o.height, temporal_max_samples);
+                for (std::uint32_t f = 0; f < 128; ++f) {
+                    scene sf = s;
+                    sf.frame = f;
+                    img = r.frame(sf, v, t);
+                }
+                reads = r.last_reads();
+            } else {
+                img = render_cpu(s, v, t, o.width, o.height);
+                reads = count_texture_reads(s, v, t, o.width, o.height);
+            }
             const double whole = compare(img, reference).psnr_db, horizon = compare(img, reference, band).psnr_db;
-            const texture_read_stats reads = count_texture_reads(s, v, t, o.width, o.height);
             char line[512];
             char horizon_text[32];
             if (std::isnan(horizon)) std::snprintf(horizon_text, sizeof horizon_text, "-");
             else std::snprintf(horizon_text, sizeof horizon_text, "%.1f", horizon);
+            const bool plain = row_spec.empty() || temporal;
             std::snprintf(line, sizeof line, "| %s | %s%s%s%s | %.1f | %s | %.0f |\n", s.name.c_str(), label.c_str(),
-                          row_spec.empty() ? "" : " (`", row_spec.c_str(), row_spec.empty() ? "" : "`)", whole, horizon_text,
+                          plain ? "" : " (`", plain ? "" : row_spec.c_str(), plain ? "" : "`)", whole, horizon_text,
                           reads.mean);
             table << line;
         }
         if (!o.quiet) std::fprintf(stderr, "convergence: %s (%.0f s)\n", s.name.c_str(), seconds_since(t0));
     }
     std::printf("Variant: `%s`. Reference: the same with `%s`. %d x %d, CPU renderer (the GPU image's twin); "
-                "horizon band: pixels whose ray is within 5 degrees of the horizon; texture reads: per pixel whose ray "
-                "enters the cloud type's band.\n\n%s",
+                "horizon band: pixels whose ray is within 5 degrees of the horizon; texture reads: per frame, per pixel "
+                "whose ray enters the cloud layer (the temporal scheme shades 1 of 16 pixels per frame).\n\n%s",
                 variant_spec(o.var).c_str(), reference_spec, o.width, o.height, table.str().c_str());
     return 0;
 }

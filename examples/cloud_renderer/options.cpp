@@ -51,6 +51,12 @@ const char* usage_text() {
            "  --bench-out FILE    also write the --bench table to FILE\n"
            "  --accumulate N      --headless, --cpu, --compare: the average of frames 0..N-1, each\n"
            "                      with its own march jitter (deterministic; default 1)\n"
+           "  --temporal N        --headless, --cpu, --compare: frames 0..N-1 of the temporal scheme\n"
+           "                      (1 of 16 pixels shaded per frame, the rest reprojected from the\n"
+           "                      history; 128 frames converge a still camera), the last written;\n"
+           "                      --cpu also prints its PSNR against a full render of that frame\n"
+           "  --pan DEG, --drift M    --temporal: camera yaw and wind (+x) added per frame\n"
+           "  --save-every N      --temporal: also write every Nth frame as FILE_fNNN.png\n"
            "  --frames N          --bench: timed frames per variant, after one warm-up (default 3);\n"
            "                      window: close after N frames (default: when closed)\n"
            "  --min-psnr DB       --compare: exit with status 1 if the PSNR is below DB\n"
@@ -120,6 +126,10 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
         } else if (a == "--width") err = number(16, 8192, [&](double x) { o.width = static_cast<int>(x); });
         else if (a == "--height") err = number(16, 8192, [&](double x) { o.height = static_cast<int>(x); });
         else if (a == "--frames") err = number(1, 100000, [&](double x) { o.frames = static_cast<int>(x); o.frames_given = true; });
+        else if (a == "--temporal") err = number(1, 100000, [&](double x) { o.temporal = static_cast<int>(x); });
+        else if (a == "--save-every") err = number(1, 100000, [&](double x) { o.save_every = static_cast<int>(x); });
+        else if (a == "--pan") err = number(-45, 45, [&](double x) { o.pan = float(x); });
+        else if (a == "--drift") err = number(-10000, 10000, [&](double x) { o.drift = float(x); });
         else if (a == "--accumulate") err = number(1, 4096, [&](double x) { o.accumulate = static_cast<int>(x); });
         else if (a == "--min-psnr") err = number(0, 200, [&](double x) { o.min_psnr = x; });
         else if (a == "--altitude") err = number(0, 100000, [&](double x) { o.sc.camera_altitude = float(x); });
@@ -140,9 +150,13 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
         }
         if (!err.empty()) return err;
         // Whole-number options given a fraction: say so rather than truncate silently.
-        if ((a == "--width" || a == "--height" || a == "--frames" || a == "--accumulate") && args[i].find_first_not_of("0123456789") != std::string::npos)
+        if ((a == "--width" || a == "--height" || a == "--frames" || a == "--accumulate" || a == "--temporal" ||
+             a == "--save-every") && args[i].find_first_not_of("0123456789") != std::string::npos)
             return a + " must be a whole number, not '" + args[i] + "'";
     }
+    if (o.temporal > 0 && o.accumulate > 1) return "--temporal and --accumulate exclude each other (the scheme accumulates itself)";
+    if ((o.pan != 0.0f || o.drift != 0.0f || o.save_every > 0) && o.temporal == 0)
+        return "--pan, --drift and --save-every need --temporal N";
     return {};
 }
 

@@ -23,6 +23,11 @@ struct options {
                                  // window: close after this many frames, if frames_given
     bool frames_given = false;
     int accumulate = 1;          // --headless, --cpu, --compare: average of frames 0..N-1
+    int temporal = 0;            // --headless, --cpu, --compare: frames 0..N-1 of the temporal
+                                 // scheme, the last one written (0: a full frame)
+    float pan = 0.0f;            // --temporal: yaw added per frame (degrees)
+    float drift = 0.0f;          // --temporal: wind added per frame along +x (metres)
+    int save_every = 0;          // --temporal: also write every Nth frame (FILE_fNNN.png)
     double min_psnr = 0;         // --compare: fail below this (0: never)
     bool quiet = false;
 };

@@ -242,6 +242,67 @@ TEST_CASE("no NaN inside the layer, at its boundaries and at tangent rays") {
     }
 }
 
+TEST_CASE("temporal scheme: a still camera's 16 frames are the full frame; GPU and CPU agree in motion") {
+    const scene& preset = *find_preset("ground");
+    variant v;
+    REQUIRE(apply_variant_spec("dither=off", v).empty());
+    const int w = 160, h = 90;
+    // Still camera: frames 0..15 shade every pixel once, all with the jitter of frame 0
+    // (frame / 16), and a static history is carried unchanged; so frame 15 is the full
+    // render of frame 0 up to the history's bilinear taps at texel centres.
+    cpu_temporal_renderer cpu(w, h, temporal_max_samples);
+    image still;
+    for (std::uint32_t f = 0; f < 16; ++f) {
+        scene s = preset;
+        s.frame = f;
+        still = cpu.frame(s, v, shared().textures);
+    }
+    scene s0 = preset;
+    s0.frame = 0;
+    const image full = render_cpu(s0, v, shared().textures, w, h);
+    const double still_psnr = compare(still, full).psnr_db;
+    MESSAGE("still camera, frame 15 against the full frame 0: PSNR " << still_psnr << " dB");
+    CHECK(still_psnr >= 60.0);
+    // The reads of one frame: about 1/16 of a full frame's (each block shades one pixel).
+    const texture_read_stats full_reads = count_texture_reads(s0, v, shared().textures, w, h);
+    const double ratio = full_reads.mean / cpu.last_reads().mean;
+    MESSAGE("texture reads, full frame over temporal frame: " << ratio);
+    CHECK(ratio >= 12.0);
+    CHECK(ratio <= 20.0);
+
+    // In motion (pan 0.7 degrees and 60 m of wind per frame): deterministic on the CPU, and
+    // the GPU's frames (clouds.frag's temporal pass + temporal_resolve.frag) match the CPU's.
+    cpu_temporal_renderer a(w, h, temporal_max_samples), b(w, h, temporal_max_samples);
+    shared().gpu->reset_temporal();
+    image ca, cb, g;
+    std::string why;
+    for (std::uint32_t f = 0; f < 24; ++f) {
+        scene s = preset;
+        s.frame = f;
+        s.yaw += 0.7f * float(f);
+        s.wind.x += 60.0f * float(f);
+        ca = a.frame(s, v, shared().textures);
+        cb = b.frame(s, v, shared().textures, 1);  // one thread: the same image
+        REQUIRE_MESSAGE(shared().gpu->render_temporal(s, v, false, w, h, g, nullptr, why), why);
+    }
+    CHECK(std::isinf(compare(ca, cb).psnr_db));
+    const image_difference d = compare(g, ca);
+    MESSAGE("temporal, 24 frames in motion: GPU against CPU PSNR " << d.psnr_db << " dB");
+    CHECK(d.psnr_db >= 35.0);
+    CHECK(statistics(g).nan_pixels == 0);
+    // Reprojection follows the motion: against a full render of the last frame the image is
+    // close (the history is valid), and far closer than the unmoved first frame is.
+    scene last = preset;
+    last.frame = 23;
+    last.yaw += 0.7f * 23.0f;
+    last.wind.x += 60.0f * 23.0f;
+    const image last_full = render_cpu(last, v, shared().textures, w, h);
+    const double moving = compare(ca, last_full).psnr_db, unmoved = compare(full, last_full).psnr_db;
+    MESSAGE("in motion: " << moving << " dB against the full last frame; the first frame: " << unmoved << " dB");
+    CHECK(moving >= 28.0);
+    CHECK(moving >= unmoved + 8.0);
+}
+
 TEST_CASE("command-line errors are clear") {
     const auto parse = [](std::vector<const char*> args) {
         args.insert(args.begin(), "cloudmath_cloud_renderer");
@@ -269,6 +330,9 @@ TEST_CASE("command-line errors are clear") {
     CHECK(back.behind == light_mode::march);
     CHECK(back.schedule == step_schedule::growing);
     CHECK(parse({"--headless", "--cpu"}).find("choose one mode") == 0);
+    CHECK(parse({"--cpu", "--temporal", "16", "--accumulate", "4"}).find("exclude each other") != std::string::npos);
+    CHECK(parse({"--cpu", "--pan", "1"}) == "--pan, --drift and --save-every need --temporal N");
+    CHECK(parse({"--cpu", "--temporal", "2.5"}) == "--temporal must be a whole number, not '2.5'");
     // Scene flags override the preset wherever they stand.
     options o;
     const char* args[] = {"x", "--altitude", "123", "--preset", "above"};

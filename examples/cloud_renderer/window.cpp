@@ -13,6 +13,7 @@ const char* const key_help =
     "keys: mouse drag or arrows look around; W/S altitude up/down; Q/E sun azimuth; R/F sun elevation;\n"
     "      1-7 presets; M diffusion/octaves; P phase model; O octaves; B powder; L cone/march toward\n"
     "      the sun; K cone/march behind; I integration; J jitter; [ ] view steps;\n"
+    "      T temporal scheme on/off (1 of 16 pixels per frame, reprojected history; on at start);\n"
     "      C uniforms/compile-time; H this help; Esc quit\n";
 
 struct window_state {
@@ -20,6 +21,7 @@ struct window_state {
     bool drag = false;
     double last_x = 0, last_y = 0;
     bool changed = true;  // print the variant after a change
+    bool temporal = true;  // the temporal scheme (gl_renderer::draw_temporal)
 };
 
 void on_key(GLFWwindow* w, int key, int, int action, int) {
@@ -54,6 +56,7 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
     case GLFW_KEY_LEFT_BRACKET: v.view_steps = v.view_steps / 2 < 8 ? 8 : v.view_steps / 2; break;
     case GLFW_KEY_RIGHT_BRACKET: v.view_steps = v.view_steps * 2 > 1024 ? 1024 : v.view_steps * 2; break;
     case GLFW_KEY_C: st.o.compile_time = !st.o.compile_time; break;
+    case GLFW_KEY_T: st.temporal = !st.temporal; break;
     case GLFW_KEY_H: std::printf("%s", key_help); break;
     default:
         if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && static_cast<std::size_t>(key - GLFW_KEY_1) < presets().size())
@@ -131,7 +134,17 @@ int run_window(const options& o, const cloud_textures& textures) {
                 int fw = 0, fh = 0;
                 glfwGetFramebufferSize(w, &fw, &fh);
                 frame_timing ft;
-                if (fw > 0 && fh > 0 && !gpu->draw(st.o.sc, st.o.var, st.o.compile_time, 0, fw, fh, &ft, why)) {
+                bool ok = true;
+                if (fw > 0 && fh > 0 && st.temporal) {
+                    // The live temporal result: frame numbers count up, the history follows
+                    // the camera (a new size starts a new history).
+                    scene s = st.o.sc;
+                    s.frame = static_cast<std::uint32_t>(total_frames);
+                    ok = gpu->draw_temporal(s, st.o.var, st.o.compile_time, fw, fh, &ft, why) && gpu->show_temporal(0, why);
+                } else if (fw > 0 && fh > 0) {
+                    ok = gpu->draw(st.o.sc, st.o.var, st.o.compile_time, 0, fw, fh, &ft, why);
+                }
+                if (!ok) {
                     std::fprintf(stderr, "error: %s\n", why.c_str());
                     status = 1;
                     break;
@@ -142,9 +155,11 @@ int run_window(const options& o, const cloud_textures& textures) {
                 sum_gl_ms += ft.gpu_ms;
                 ++frames;
                 // --frames N: close after N frames (scripted runs and the test under Xvfb).
-                if (o.frames_given && ++total_frames >= o.frames) glfwSetWindowShouldClose(w, GLFW_TRUE);
+                ++total_frames;
+                if (o.frames_given && total_frames >= o.frames) glfwSetWindowShouldClose(w, GLFW_TRUE);
                 if (st.changed) {
-                    std::printf("variant %s%s\n", variant_spec(st.o.var).c_str(), st.o.compile_time ? " (compile-time)" : "");
+                    std::printf("variant %s%s%s\n", variant_spec(st.o.var).c_str(), st.o.compile_time ? " (compile-time)" : "",
+                                st.temporal ? " (temporal)" : "");
                     st.changed = false;
                 }
                 const double now = glfwGetTime();

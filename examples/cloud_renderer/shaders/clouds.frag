@@ -52,7 +52,15 @@ uniform sampler3D u_base;      // 128^3 RGBA8: Perlin-Worley + Worley fBm (noise
 uniform sampler3D u_detail;    // 32^3 RGB8: Worley fBm
 uniform sampler2D u_weather;   // 256^2 RGB8: R coverage (G type and B rain unused here)
 
-out vec4 out_color;  // rgb: display colour in [0, 1]; a: cloud opacity
+// Temporal rendering (temporal_resolve.frag): 0 a full frame; 1 the shading pass of the
+// temporal scheme, one pixel of every 4 x 4 block: the output pixel (i, j) shades the image's
+// pixel (4 i, 4 j) + u_update_offset (u_resolution stays the full image's size) and writes
+// linear radiance and the cloud's depth, for the resolve pass to blend and tonemap.
+uniform int u_temporal_pass;
+uniform uvec2 u_update_offset;
+
+layout(location = 0) out vec4 out_color;   // rgb: display colour in [0, 1] (pass 1: linear radiance); a: cloud opacity
+layout(location = 1) out float out_depth;  // pass 1: the cloud's transmittance-weighted distance, 0 for none
 
 // cloudmath calls these back (declared before the include, defined below).
 float cr_cone_extinction(vec3 p, int i);
@@ -161,13 +169,16 @@ float cr_jitter(vec2 pixel) {
 }
 
 void main() {
-    vec2 ndc = gl_FragCoord.xy / u_resolution * 2.0 - 1.0;
+    // The centre of the image pixel this invocation shades.
+    vec2 pixel = u_temporal_pass != 0 ? floor(gl_FragCoord.xy) * 4.0 + vec2(u_update_offset) + 0.5 : gl_FragCoord.xy;
+    vec2 ndc = pixel / u_resolution * 2.0 - 1.0;
     float aspect = u_resolution.x / u_resolution.y;
     vec3 dir = normalize(u_forward + u_right * (ndc.x * aspect * u_tan_half_fov) + u_up * (ndc.y * u_tan_half_fov));
     cr_mie = cm_mie_approx_params(u_droplet_diameter);
     cr_band = cm_height_range_for_type(u_cloud_type) * (u_layer_top - u_layer_bottom) + u_layer_bottom;
 
     CmMarchAccumulator acc = cm_march_accumulator();
+    float cloud_depth = 0.0;  // transmittance-weighted distance of the cloud, 0 for none
     // The view stretch: from where the ray enters the layer, at most u_max_distance. The
     // march covers the part of it inside the cloud type's altitude band (no density outside).
     vec2 layer = cm_cloud_layer_segment(u_cam_altitude, dir.y, u_planet_radius, u_layer_bottom, u_layer_top);
@@ -175,7 +186,7 @@ void main() {
     vec2 seg = vec2(max(layer.x, in_band.x), min(min(layer.y, layer.x + u_max_distance), in_band.y));
     if (seg.y > seg.x) {
         float t1 = seg.y;
-        float offset = u_jitter != 0 ? cr_jitter(gl_FragCoord.xy) : 0.5;
+        float offset = u_jitter != 0 ? cr_jitter(pixel) : 0.5;
         float mu = dot(dir, u_sun_dir);
         float n = float(u_view_steps);
         float tau_view = 0.0;  // optical depth from the camera to the start of the step
@@ -210,18 +221,25 @@ void main() {
         // Aerial perspective at the cloud's transmittance-weighted depth: the air dims its
         // light and adds the horizon's haze in proportion to its opacity.
         float opacity = 1.0 - acc.transmittance.r;
+        if (opacity > 0.0) cloud_depth = depth_sum / opacity;
         if (u_haze != 0 && opacity > 0.0) {
             vec3 tau_air = cm_air_optical_depth(u_cam_altitude, dir.y, depth_sum / opacity);
             acc.luminance = cm_aerial_perspective(acc.luminance, u_sky_horizon * opacity, tau_air);
         }
     }
     vec3 color = cr_background(dir) * acc.transmittance + acc.luminance;
+    float alpha = 1.0 - (acc.transmittance.r + acc.transmittance.g + acc.transmittance.b) / 3.0;
+    out_depth = cloud_depth;
+    if (u_temporal_pass != 0) {
+        out_color = vec4(color, alpha);
+        return;
+    }
     vec3 display = cr_tonemap(color);
     if (u_dither != 0) {
         // Triangular dither of one 8-bit step (no banding in the sky's slow gradients); its
         // hash is another hash of the pixel than the jitter's, new each frame.
-        uint pixel = uint(gl_FragCoord.x) + uint(gl_FragCoord.y) * 8192u;
-        display += cm_triangular_dither(cm_noise_hash(cm_noise_hash(pixel) + u_frame * 0x9e3779b9u)) * (1.0 / 255.0);
+        uint index = uint(gl_FragCoord.x) + uint(gl_FragCoord.y) * 8192u;
+        display += cm_triangular_dither(cm_noise_hash(cm_noise_hash(index) + u_frame * 0x9e3779b9u)) * (1.0 / 255.0);
     }
-    out_color = vec4(display, 1.0 - (acc.transmittance.r + acc.transmittance.g + acc.transmittance.b) / 3.0);
+    out_color = vec4(display, alpha);
 }
