@@ -73,7 +73,7 @@ float cloud_density::altitude(vec3 p) const {
     return t > 0.0f ? cm::altitude_along_ray(s_.camera_altitude, p.y / t, s_.planet_radius, t) : s_.camera_altitude;
 }
 
-float cloud_density::density(vec3 p, float alt, long* texture_reads) const {
+float cloud_density::base_density(vec3 p, float alt, long* texture_reads) const {
     const float h = cm::height_fraction(alt, s_.layer_bottom, s_.layer_top);
     if (h <= 0.0f || h >= 1.0f) return 0.0f;
     if (texture_reads) *texture_reads += 2;
@@ -81,9 +81,15 @@ float cloud_density::density(vec3 p, float alt, long* texture_reads) const {
     const float coverage = cm::saturate(weather_.sample2(vec2(q.x, q.z) / s_.weather_tile).r - 0.5f + s_.coverage);
     const vec4 b = base_.sample3(q / s_.base_tile);
     const float shaped = cm::nubis_base_cloud(b) * cm::height_gradient_for_type(h, s_.cloud_type);
-    const float covered = cm::apply_coverage(shaped, coverage);
+    return cm::apply_coverage(shaped, coverage);
+}
+
+float cloud_density::density(vec3 p, float alt, long* texture_reads) const {
+    const float covered = base_density(p, alt, texture_reads);
     if (covered <= 0.0f) return 0.0f;
     if (texture_reads) *texture_reads += 1;
+    const float h = cm::height_fraction(alt, s_.layer_bottom, s_.layer_top);
+    const vec3 q(p.x + s_.wind.x, alt, p.z + s_.wind.y);
     const vec3 d = vec3(detail_.sample3(q / s_.detail_tile));
     return cm::erode(covered, cm::nubis_detail_erosion(d, h));
 }

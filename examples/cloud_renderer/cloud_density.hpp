@@ -48,6 +48,10 @@ public:
     // outside the layer, the weather map and the base volume inside it, and the detail
     // volume where the base cloud survives coverage (cr_density's early exits).
     float density(glm::vec3 p, float alt, long* texture_reads) const;
+    // The base shape alone (cr_base_density): the density before the detail erodes it, an
+    // upper bound of density() from the weather map and the base volume only (2 reads inside
+    // the layer, none outside).
+    float base_density(glm::vec3 p, float alt, long* texture_reads = nullptr) const;
 
     const scene& scene_data() const { return s_; }
     const linear_texture& base() const { return base_; }

@@ -125,14 +125,32 @@ struct pixel_program {
             float tau_view = 0.0f;    // optical depth from the camera to the start of the step
             float depth_sum = 0.0f;   // sum of each step's opacity times its distance
             float step_begin = seg.x; // = at(0), for both schedules
+            int empty_steps = skip_block;  // empty-space skipping starts by probing
             for (int i = 0; i < v.view_steps; ++i) {
+                if (v.skip && empty_steps >= skip_block) {
+                    // Probe the next block of steps with the base shape at a jittered point;
+                    // step over it when empty, else march it in full steps.
+                    const int j = std::min(i + skip_block, v.view_steps);
+                    const float tp = at((float(i) + offset * float(j - i)) / n);
+                    const float altp = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, tp);
+                    if (field.base_density(dir * tp, altp, view_reads) <= 0.0f) {
+                        step_begin = at(float(j) / n);
+                        i = j - 1;
+                        continue;
+                    }
+                    empty_steps = 0;
+                }
                 const float t = at((float(i) + offset) / n);
                 const float step_end = at((float(i) + 1.0f) / n);
                 const float ds = step_end - step_begin;
                 step_begin = step_end;
                 const float alt = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, t);
                 const float d = density(dir * t, alt, view_reads);
-                if (d <= 0.0f) continue;
+                if (d <= 0.0f) {
+                    ++empty_steps;
+                    continue;
+                }
+                empty_steps = 0;
                 const float sigma_t = s.extinction * d;
                 const float tau_light = light_optical_depth(dir * t, alt, k.sun_dir, v.light, light_reads);
                 const float tau_behind = v.lighting == lighting_model::diffusion

@@ -48,6 +48,7 @@ std::vector<shader_int> variant_values(const variant& v) {
             {"u_integration", static_cast<int>(v.integration)},
             {"u_view_steps", v.view_steps},
             {"u_schedule", static_cast<int>(v.schedule)},
+            {"u_skip", v.skip ? 1 : 0},
             {"u_jitter", v.jitter ? 1 : 0},
             {"u_sun_disc", v.sun ? 1 : 0},
             {"u_haze", v.haze ? 1 : 0},

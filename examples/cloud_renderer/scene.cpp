@@ -215,9 +215,11 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             if (!parse_switch(value, out.haze)) return "haze must be on or off, not '" + value + "'";
         } else if (key == "dither") {
             if (!parse_switch(value, out.dither)) return "dither must be on or off, not '" + value + "'";
+        } else if (key == "skip") {
+            if (!parse_switch(value, out.skip)) return "skip must be on or off, not '" + value + "'";
         } else {
             return "unknown variant key '" + key +
-                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, schedule, sun, haze, dither, "
+                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, schedule, skip, sun, haze, dither, "
                    "jitter)";
         }
     }
@@ -229,7 +231,7 @@ std::string variant_spec(const variant& v) {
     std::ostringstream s;
     s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",octaves=" << v.octaves << ",powder=" << (v.powder ? "on" : "off")
       << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
-      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",schedule=" << name(v.schedule) << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
+      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
     return s.str();
 }
 

@@ -50,6 +50,11 @@ struct variant {
     integration_mode integration = integration_mode::analytic;
     int view_steps = 64;             // steps along the view ray through the layer (8..1024)
     step_schedule schedule = step_schedule::uniform;
+    // Empty-space skipping: after skip_block empty steps, the march probes the next
+    // skip_block steps with one sample of the base shape (weather map and base volume, no
+    // detail, no light) and steps over them when it is empty; a probe that finds cloud
+    // resumes full steps there.
+    bool skip = false;
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
     bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
     bool sun = true;                 // draw the sun disc (sun_disc_radiance) in the background
@@ -81,6 +86,9 @@ struct scene {
     std::uint32_t frame = 0;         // frame number: advances each pixel's march jitter (frame_jitter)
     float exposure = 1.0f;
 };
+
+// Steps per empty-space probe (variant::skip).
+inline constexpr int skip_block = 4;
 
 // Every preset, in the order --list-presets prints them; the first is the default.
 const std::vector<scene>& presets();

@@ -15,5 +15,6 @@
 #include "noise.hpp"
 #include "sun.hpp"
 #include "reprojection.hpp"
+#include "shadow_map.hpp"
 
 #endif  // CLOUDMATH_CLOUDMATH_HPP

@@ -29,3 +29,10 @@ float cm_test_add_segment(CmMarchAccumulator acc, vec3 S, float sigma_t, float d
     cm_march_add_segment(acc, S, sigma_t, ds);
     return cm_test_sum(acc);
 }
+
+// cm_beer_shadow_add_step on an accumulator started at (a.x, a.y, a.z): the texel after a step.
+float cm_test_beer_shadow(vec4 a, vec4 b) {
+    CmBeerShadowAccumulator acc = CmBeerShadowAccumulator(a.x, a.y, a.z);
+    cm_beer_shadow_add_step(acc, b.x, b.y, b.z);
+    return cm_test_sum(cm_beer_shadow_texel(acc));
+}

@@ -70,6 +70,15 @@ vec4 cm_test_march(vec4 a, vec4 b, bool grey) {
     }
     return vec4(acc.luminance, acc.transmittance.y);
 }
+vec4 cm_test_beer_shadow_march(float start, float scale, float depth) {
+    CmBeerShadowAccumulator acc = cm_beer_shadow_accumulator();
+    for (int i = 0; i < 24; ++i) {
+        float t = start + 100.0 * float(i);
+        cm_beer_shadow_add_step(acc, t, 100.0, (i % 7 < 3 ? scale : 0.0) * (1.0 + 0.1 * float(i)));
+    }
+    vec3 texel = cm_beer_shadow_texel(acc);
+    return vec4(texel.x, texel.y * 1000.0, cm_beer_shadow_optical_depth(texel, depth), cm_beer_shadow_transmittance(texel, depth));
+}
 )";
 float cpp_test_phase(float mu, float scale) { return cm::phase_hg_dual(mu, 0.8f * scale, -0.5f * scale, 0.5f); }
 float cpp_test_extinction(const vec3& p, int i) {
@@ -549,6 +558,36 @@ std::vector<parity_case> make_cases() {
             for (float m : {0.0f, 1.0f, 8.0f, 16.0f}) counts.push_back({vec4(n, m, 0.0f, 0.0f), vec4(0)});
         add({"cm_temporal_blend_weight", "vec4(cm_temporal_blend_weight(a.x, a.y))",
              [](vec4 a, vec4) { return vec4(cm::temporal_blend_weight(a.x, a.y)); }, counts, 1, 1.0f, 1e-6});
+    }
+    // shadow_map: a texel built by a march over clouds with gaps (the accumulator and its
+    // steps), looked up at depths in front of, inside and behind the column; projections.
+    {
+        std::vector<std::pair<vec4, vec4>> marches;
+        for (float start : {0.0f, 300.0f, 2500.0f})
+            for (float scale : {0.0f, 0.004f, 0.05f})
+                for (float depth : {-10.0f, 400.0f, 1200.0f, 2600.0f, 9000.0f})
+                    marches.push_back({vec4(start, scale, depth, 0.0f), vec4(0)});
+        add({"cm_beer_shadow_add_step",
+             "cm_test_beer_shadow_march(a.x, a.y, a.z)",
+             [](vec4 a, vec4) {
+                 cm::beer_shadow_accumulator<float> acc;
+                 for (int i = 0; i < 24; ++i) {
+                     const float t = a.x + 100.0f * float(i);
+                     acc.add_step(t, 100.0f, (i % 7 < 3 ? a.y : 0.0f) * (1.0f + 0.1f * float(i)));
+                 }
+                 const vec3 texel = acc.texel();
+                 return vec4(texel.x, texel.y * 1000.0f, cm::beer_shadow_optical_depth(texel, a.z), cm::beer_shadow_transmittance(texel, a.z)); },
+             marches, 4, 1.0f, 1e-5});
+        std::vector<std::pair<vec4, vec4>> projections;
+        for (float x : {-30000.0f, 0.0f, 4000.0f})
+            for (float y : {0.0f, 2000.0f, 9000.0f})
+                for (float z : {-20000.0f, 100.0f}) projections.push_back({vec4(x, y, z, 24000.0f), vec4(500.0f, 6000.0f, -800.0f, 0.0f)});
+        add({"cm_shadow_map_project",
+             "vec4(cm_shadow_map_project(a.xyz, b.xyz, vec3(0.6, 0.0, 0.8), vec3(-0.48, 0.6, 0.64), vec3(0.64, 0.8, -0.48), a.w), 0.0)",
+             [](vec4 a, vec4 b) {
+                 return vec4(cm::shadow_map_project(vec3(a), vec3(b), vec3(0.6f, 0.0f, 0.8f), vec3(-0.48f, 0.6f, 0.64f),
+                                                    vec3(0.64f, 0.8f, -0.48f), a.w), 0.0f); },
+             projections, 3, 1.0f, 1e-5});
     }
     return cs;
 }

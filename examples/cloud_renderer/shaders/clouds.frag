@@ -23,6 +23,7 @@ CR_PARAM(int, u_light_steps)
 CR_PARAM(int, u_integration)      // 0 energy-conserving (analytic), 1 naive Riemann sum
 CR_PARAM(int, u_view_steps)
 CR_PARAM(int, u_schedule)         // view steps: 0 uniform, 1 growing with distance
+CR_PARAM(int, u_skip)             // empty-space skipping: 0 off, 1 probe CR_SKIP_BLOCK steps with the base shape
 CR_PARAM(int, u_jitter)
 CR_PARAM(int, u_sun_disc)         // 0 no sun disc, 1 the disc at its physical radiance
 CR_PARAM(int, u_haze)             // 0 off, 1 aerial perspective (air between camera and cloud)
@@ -70,6 +71,8 @@ float cr_phase(float mu, float scale);
 #define CM_DIFFUSION_PHASE cr_phase
 #include "cloudmath.glsl"
 
+const int CR_SKIP_BLOCK = 4;  // steps per empty-space probe (scene.hpp's skip_block)
+
 CmMieApproxParams cr_mie;  // set once per pixel in main()
 vec2 cr_band;              // altitudes of the cloud type's band (no density outside), set in main()
 
@@ -79,17 +82,25 @@ float cr_altitude(vec3 p) {
     return t > 0.0 ? cm_altitude_along_ray(u_cam_altitude, p.y / t, u_planet_radius, t) : u_cam_altitude;
 }
 
-// Nubis density at p, step by step so that the detail volume is read only where the base
-// cloud survives coverage (what cm_nubis_density computes in one call).
-float cr_density(vec3 p, float altitude) {
+// The base shape at p: the density before the detail erodes it (an upper bound of
+// cr_density), from the weather map and the base volume only.
+float cr_base_density(vec3 p, float altitude) {
     float h = cm_height_fraction(altitude, u_layer_bottom, u_layer_top);
     if (h <= 0.0 || h >= 1.0) return 0.0;
     vec3 q = vec3(p.x + u_wind.x, altitude, p.z + u_wind.y);
     float coverage = cm_saturate(texture(u_weather, q.xz / u_weather_tile).r - 0.5 + u_coverage);
     vec4 base = texture(u_base, q / u_base_tile);
     float shaped = cm_nubis_base_cloud(base) * cm_height_gradient_for_type(h, u_cloud_type);
-    float covered = cm_apply_coverage(shaped, coverage);
+    return cm_apply_coverage(shaped, coverage);
+}
+
+// Nubis density at p, step by step so that the detail volume is read only where the base
+// cloud survives coverage (what cm_nubis_density computes in one call).
+float cr_density(vec3 p, float altitude) {
+    float covered = cr_base_density(p, altitude);
     if (covered <= 0.0) return 0.0;
+    float h = cm_height_fraction(altitude, u_layer_bottom, u_layer_top);
+    vec3 q = vec3(p.x + u_wind.x, altitude, p.z + u_wind.y);
     vec3 detail = texture(u_detail, q / u_detail_tile).rgb;
     return cm_erode(covered, cm_nubis_detail_erosion(detail, h));
 }
@@ -192,14 +203,32 @@ void main() {
         float tau_view = 0.0;  // optical depth from the camera to the start of the step
         float depth_sum = 0.0;      // sum of each step's opacity times its distance
         float step_begin = seg.x;   // = cr_march_distance(0), for both schedules
+        int empty_steps = CR_SKIP_BLOCK;  // empty-space skipping starts by probing
         for (int i = 0; i < u_view_steps; ++i) {
+            if (u_skip != 0 && empty_steps >= CR_SKIP_BLOCK) {
+                // Probe the next block of steps with the base shape at a jittered point;
+                // step over it when empty, else march it in full steps.
+                int j = min(i + CR_SKIP_BLOCK, u_view_steps);
+                float tp = cr_march_distance((float(i) + offset * float(j - i)) / n, seg.x, t1);
+                float altp = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, tp);
+                if (cr_base_density(dir * tp, altp) <= 0.0) {
+                    step_begin = cr_march_distance(float(j) / n, seg.x, t1);
+                    i = j - 1;
+                    continue;
+                }
+                empty_steps = 0;
+            }
             float t = cr_march_distance((float(i) + offset) / n, seg.x, t1);
             float step_end = cr_march_distance((float(i) + 1.0) / n, seg.x, t1);
             float ds = step_end - step_begin;
             step_begin = step_end;
             float altitude = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, t);
             float density = cr_density(dir * t, altitude);
-            if (density <= 0.0) continue;
+            if (density <= 0.0) {
+                ++empty_steps;
+                continue;
+            }
+            empty_steps = 0;
             float sigma_t = u_extinction * density;
             float tau_light = cr_light_optical_depth(dir * t, altitude, u_sun_dir, u_light_mode);
             float tau_behind = u_lighting == 1 ? cr_light_optical_depth(dir * t, altitude, -u_sun_dir, u_behind_mode) : 0.0;

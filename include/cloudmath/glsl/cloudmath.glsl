@@ -15,5 +15,6 @@
 #include "noise.glsl"
 #include "sun.glsl"
 #include "reprojection.glsl"
+#include "shadow_map.glsl"
 
 #endif  // CM_CLOUDMATH_GLSL
