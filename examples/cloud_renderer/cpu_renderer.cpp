@@ -31,11 +31,59 @@ struct pixel_program {
     cm::mie_approx_parameters<float> mie;
     float phase_g_mean;  // the diffusion model's g
     vec2 band;           // altitudes of the cloud type's band (height_range_for_type): no density outside
+    std::vector<vec3> shadow_map;  // the Beer shadow map (v.shadows), row j = 0 first
 
     pixel_program(const scene& sc, const variant& va, const cloud_textures& t)
         : s(sc), v(va), k(make_frame_constants(sc)), field(sc, t), mie(cm::mie_approx_params(k.droplet_diameter)),
           phase_g_mean(phase_mean_cosine(k, va.phase)),
-          band(cm::height_range_for_type(sc.cloud_type) * (sc.layer_top - sc.layer_bottom) + sc.layer_bottom) {}
+          band(cm::height_range_for_type(sc.cloud_type) * (sc.layer_top - sc.layer_bottom) + sc.layer_bottom) {
+        if (v.shadows) {
+            shadow_map.resize(static_cast<std::size_t>(shadow_map_size) * static_cast<std::size_t>(shadow_map_size));
+            for (int j = 0; j < shadow_map_size; ++j)
+                for (int i = 0; i < shadow_map_size; ++i)
+                    shadow_map[static_cast<std::size_t>(j * shadow_map_size + i)] = shadow_texel(i, j);
+        }
+    }
+
+    // Texel (i, j) of the Beer shadow map (the shader's pass 2, cr_shadow_texel): midpoint
+    // steps along the sunlight through the cloud type's band, depths from the map's plane.
+    vec3 shadow_texel(int i, int j) const {
+        const vec2 ab = (vec2(float(i) + 0.5f, float(j) + 0.5f) / float(shadow_map_size) * 2.0f - 1.0f) * k.shadow_half_extent;
+        const vec3 p0 = k.shadow_origin + k.shadow_right * ab.x + k.shadow_up * ab.y;
+        const vec3 up0 = glm::normalize(vec3(p0.x, p0.y + (s.planet_radius + s.camera_altitude), p0.z));
+        const vec2 seg = cm::cloud_layer_segment(altitude(p0), -glm::dot(k.sun_dir, up0), s.planet_radius, band.x, band.y);
+        cm::beer_shadow_accumulator<float> acc;
+        if (seg.y > seg.x) {
+            const float ds = (seg.y - seg.x) / float(shadow_map_steps);
+            for (int m = 0; m < shadow_map_steps; ++m) {
+                const float t = seg.x + float(m) * ds;
+                const vec3 q = p0 - k.sun_dir * (t + 0.5f * ds);
+                acc.add_step(t, ds, s.extinction * density(q, altitude(q)));
+            }
+        }
+        return acc.texel();
+    }
+
+    // What the shadow map leaves of the ground's light where the ray in direction dir meets
+    // the ground: the sky's share plus the sun's times the clouds' transmittance (1 where the
+    // ray meets sky, or ground outside the map). Bilinear texels (texel_bilinear), clamped.
+    float ground_shadow(vec3 dir) const {
+        const vec2 g = cm::ray_sphere_intersect_altitude(s.camera_altitude, dir.y, s.planet_radius, 0.0f);
+        if (!(g.x >= 0.0f && g.y > g.x)) return 1.0f;
+        const vec3 uvd = cm::shadow_map_project(dir * g.x, k.shadow_origin, k.shadow_right, k.shadow_up, k.sun_dir,
+                                                k.shadow_half_extent);
+        if (!(uvd.x >= 0.0f && uvd.x <= 1.0f && uvd.y >= 0.0f && uvd.y <= 1.0f)) return 1.0f;
+        const vec4 fp = cm::texel_bilinear(vec2(uvd), vec2(float(shadow_map_size)));
+        vec3 texel(0.0f);
+        for (int dy = 0; dy < 2; ++dy)
+            for (int dx = 0; dx < 2; ++dx) {
+                const int tx = std::clamp(int(fp.x) + dx, 0, shadow_map_size - 1);
+                const int ty = std::clamp(int(fp.y) + dy, 0, shadow_map_size - 1);
+                texel += shadow_map[static_cast<std::size_t>(ty * shadow_map_size + tx)] *
+                         ((dx ? fp.z : 1.0f - fp.z) * (dy ? fp.w : 1.0f - fp.w));
+            }
+        return glm::mix(ground_sky_share, 1.0f, cm::beer_shadow_transmittance(texel, uvd.z));
+    }
 
     // Texture reads of one pixel (count_texture_reads); null when not counting.
     struct reads {
@@ -179,7 +227,8 @@ struct pixel_program {
                 acc.luminance = cm::aerial_perspective(acc.luminance, k.sky_horizon * opacity, tau_air);
             }
         }
-        const vec3 color = background(s, k, dir, v.sun) * acc.transmittance + acc.luminance;
+        const vec3 behind = background(s, k, dir, v.sun) * (v.shadows ? ground_shadow(dir) : 1.0f);
+        const vec3 color = behind * acc.transmittance + acc.luminance;
         const vec3 t = acc.transmittance;
         return vec4(color, 1.0f - (t.r + t.g + t.b) / 3.0f);
     }

@@ -49,6 +49,7 @@ std::vector<shader_int> variant_values(const variant& v) {
             {"u_view_steps", v.view_steps},
             {"u_schedule", static_cast<int>(v.schedule)},
             {"u_skip", v.skip ? 1 : 0},
+            {"u_shadows", v.shadows ? 1 : 0},
             {"u_jitter", v.jitter ? 1 : 0},
             {"u_sun_disc", v.sun ? 1 : 0},
             {"u_haze", v.haze ? 1 : 0},
@@ -159,6 +160,7 @@ struct gl_renderer::state {
     GLuint vao = 0, queries[2] = {0, 0};  // GL_TIMESTAMP before and after the draw
     GLuint textures[3] = {0, 0, 0};  // base, detail, weather
     GLuint fbo = 0, target = 0;      // offscreen float target for render()
+    GLuint shadow_fbo = 0, shadow_map = 0;  // the Beer shadow map (clouds.frag's pass 2)
     int target_w = 0, target_h = 0;
     std::map<std::string, GLuint> programs;  // "" for the run-time program, else the variant spec
 
@@ -248,6 +250,8 @@ struct gl_renderer::state {
         programs.clear();
         gl.DeleteTextures(3, textures);
         if (target) gl.DeleteTextures(1, &target);
+        if (shadow_map) gl.DeleteTextures(1, &shadow_map);
+        if (shadow_fbo) gl.DeleteFramebuffers(1, &shadow_fbo);
         if (fbo) gl.DeleteFramebuffers(1, &fbo);
         if (vao) gl.DeleteVertexArrays(1, &vao);
         if (queries[0]) gl.DeleteQueries(2, queries);
@@ -353,6 +357,17 @@ bool gl_renderer::upload_textures(const cloud_textures& t, std::string& why) {
 
 namespace {
 
+// A float texture of the given format for a render target (nearest filtering: read with
+// texelFetch).
+void make_target(const gl_api& gl, GLuint tex, GLenum internal_format, GLenum format, int width, int height) {
+    gl.BindTexture(GL_TEXTURE_2D, tex);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal_format), width, height, 0, format, GL_FLOAT, nullptr);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
 // Makes the clouds program of the variant current with every uniform of the scene set and
 // the cloud textures bound; 0 on failure. temporal_pass 1: the shading pass of the temporal
 // scheme (clouds.frag's u_temporal_pass), shading pixel 4 (i, j) + offset.
@@ -412,8 +427,12 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
     set1f("u_cone_far_length", k.cone_far_length);
     set1f("u_light_march_max", k.light_march_max);
     set1f("u_min_transmittance", k.min_transmittance);
-    set1i("u_temporal_pass", temporal_pass);
+    set1i("u_pass", temporal_pass);
     gl.Uniform2ui(loc("u_update_offset"), offset.x, offset.y);
+    set3f("u_shadow_origin", k.shadow_origin);
+    set3f("u_shadow_right", k.shadow_right);
+    set3f("u_shadow_up", k.shadow_up);
+    set1f("u_shadow_half_extent", k.shadow_half_extent);
     const char* samplers[3] = {"u_base", "u_detail", "u_weather"};
     const GLenum kinds[3] = {GL_TEXTURE_3D, GL_TEXTURE_3D, GL_TEXTURE_2D};
     for (int i = 0; i < 3; ++i) {
@@ -421,7 +440,41 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
         gl.BindTexture(kinds[i], st.textures[i]);
         set1i(samplers[i], i);
     }
+    set1i("u_shadow_map", 3);
     return program;
+}
+
+// Draws the Beer shadow map with the current clouds program (clouds.frag's pass 2) when the
+// variant has shadows, then binds it to unit 3 for the passes that read it; restores u_pass.
+// Unit 3 holds no texture while the map is drawn (no feedback loop).
+bool shadow_pass(gl_renderer::state& st, const variant& v, GLuint program, int restore_pass, std::string& why) {
+    const gl_api& gl = st.gl;
+    gl.ActiveTexture(GL_TEXTURE3);  // make_target binds to the active unit: not the clouds' 0-2
+    if (st.shadow_fbo == 0) {
+        gl.GenFramebuffers(1, &st.shadow_fbo);
+        gl.GenTextures(1, &st.shadow_map);
+        make_target(gl, st.shadow_map, GL_RGBA32F, GL_RGBA, shadow_map_size, shadow_map_size);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, st.shadow_fbo);
+        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, st.shadow_map, 0);
+        if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+            why = "the shadow map's float target is not supported (framebuffer incomplete)";
+            return false;
+        }
+    }
+    gl.ActiveTexture(GL_TEXTURE3);
+    gl.BindTexture(GL_TEXTURE_2D, 0);
+    if (v.shadows) {
+        const GLenum one = GL_COLOR_ATTACHMENT0;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, st.shadow_fbo);
+        gl.DrawBuffers(1, &one);
+        gl.Viewport(0, 0, shadow_map_size, shadow_map_size);
+        gl.Uniform1i(gl.GetUniformLocation(program, "u_pass"), 2);
+        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        gl.Uniform1i(gl.GetUniformLocation(program, "u_pass"), restore_pass);
+    }
+    gl.ActiveTexture(GL_TEXTURE3);
+    gl.BindTexture(GL_TEXTURE_2D, st.shadow_map);
+    return true;
 }
 
 // Runs `draws` (which issues the draw calls) between two GPU timestamps and glFinish calls.
@@ -447,17 +500,6 @@ bool timed(gl_renderer::state& st, frame_timing* timing, std::string& why, Draws
     }
     why = st.gl_errors("draw");
     return why.empty();
-}
-
-// A float texture of the given format for a render target (nearest filtering: read with
-// texelFetch).
-void make_target(const gl_api& gl, GLuint tex, GLenum internal_format, GLenum format, int width, int height) {
-    gl.BindTexture(GL_TEXTURE_2D, tex);
-    gl.TexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal_format), width, height, 0, format, GL_FLOAT, nullptr);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
 // The temporal targets for a width x height image (a new history when the size changes).
@@ -516,11 +558,19 @@ bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std:
 
 bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, unsigned fbo, int width, int height,
                        frame_timing* timing, std::string& why) {
-    if (bind_clouds(*s_, sc, v, compile_time, width, height, 0, glm::uvec2(0), why) == 0) return false;
+    const GLuint program = bind_clouds(*s_, sc, v, compile_time, width, height, 0, glm::uvec2(0), why);
+    if (program == 0) return false;
     const gl_api& gl = s_->gl;
-    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-    gl.Viewport(0, 0, width, height);
-    return timed(*s_, timing, why, [&] { gl.DrawArrays(GL_TRIANGLES, 0, 3); });
+    bool shadow_ok = true;
+    const GLenum one = GL_COLOR_ATTACHMENT0;
+    const bool ok = timed(*s_, timing, why, [&] {
+        shadow_ok = shadow_pass(*s_, v, program, 0, why);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+        if (fbo != 0) gl.DrawBuffers(1, &one);
+        gl.Viewport(0, 0, width, height);
+        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    });
+    return shadow_ok && ok;
 }
 
 void gl_renderer::reset_temporal() { s_->temporal.has_history = false; }
@@ -568,8 +618,10 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
     const GLuint inputs[4] = {t.fresh[0], t.fresh[1], t.history[t.current][0], t.history[t.current][1]};
     const int out = 1 - t.current;
 
+    bool shadow_ok = true;
     const bool ok = timed(*s_, timing, why, [&] {
         gl.UseProgram(clouds);
+        shadow_ok = shadow_pass(*s_, v, clouds, 1, why);
         gl.BindFramebuffer(GL_FRAMEBUFFER, t.fresh_fbo);
         gl.DrawBuffers(2, two);
         gl.Viewport(0, 0, lw, lh);
@@ -585,7 +637,7 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
         gl.Viewport(0, 0, width, height);
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
     });
-    if (!ok) return false;
+    if (!ok || !shadow_ok) return false;
     t.current = out;
     t.previous = sc;
     t.has_history = true;

@@ -268,6 +268,8 @@ const std::vector<bench_row>& bench_rows() {
         {"view steps: 32", "steps=32", false},
         {"view steps: 128", "steps=128", false},
         {"jitter off", "jitter=off", false},
+        {"empty-space skipping (base-shape probe per 4 steps)", "skip=on", false},
+        {"no cloud shadows (no shadow-map pass)", "shadows=off", false},
     };
     return rows;
 }
@@ -362,7 +364,7 @@ int run_bench(const options& o) {
 int run_convergence(const options& o) {
     cloud_textures t;
     if (!load_textures(o, t)) return 1;
-    const char* const reference_spec = "steps=1024,light=march,light-steps=128,behind=march,schedule=uniform,jitter=off";
+    const char* const reference_spec = "steps=1024,light=march,light-steps=128,behind=march,schedule=uniform,skip=off,jitter=off";
     // The variant, then one change each: the other step schedule, 4x the view steps, and
     // converged light (which error dominates: the view march's or the light estimate's).
     const std::pair<std::string, std::string> rows[] = {

@@ -113,6 +113,18 @@ frame_constants make_frame_constants(const scene& s) {
     f.light_march_max = 6000.0f;
     f.march_near_distance = 1000.0f;
     f.min_transmittance = 0.01f;
+
+    // The shadow map's frame. The sun's elevation is clamped to 3 degrees for the plane's
+    // height (below it the map would stretch over hundreds of kilometres).
+    const glm::vec3 ahead = std::fabs(f.forward.x) + std::fabs(f.forward.z) > 1e-4f
+                                ? glm::normalize(glm::vec3(f.forward.x, 0.0f, f.forward.z))
+                                : glm::vec3(0.0f, 0.0f, -1.0f);
+    const glm::vec3 centre = glm::vec3(0.0f, -s.camera_altitude, 0.0f) + ahead * 12000.0f;
+    f.shadow_origin = centre + f.sun_dir * ((s.layer_top + 500.0f) / std::fmax(f.sun_dir.y, std::sin(3.0f * degrees)));
+    const glm::vec3 across = glm::cross(f.sun_dir, glm::vec3(0.0f, 1.0f, 0.0f));
+    f.shadow_right = glm::length(across) > 1e-4f ? glm::normalize(across) : glm::vec3(1.0f, 0.0f, 0.0f);
+    f.shadow_up = glm::cross(f.shadow_right, f.sun_dir);
+    f.shadow_half_extent = 24000.0f;
     return f;
 }
 
@@ -217,9 +229,11 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             if (!parse_switch(value, out.dither)) return "dither must be on or off, not '" + value + "'";
         } else if (key == "skip") {
             if (!parse_switch(value, out.skip)) return "skip must be on or off, not '" + value + "'";
+        } else if (key == "shadows") {
+            if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
         } else {
             return "unknown variant key '" + key +
-                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, schedule, skip, sun, haze, dither, "
+                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, schedule, skip, shadows, sun, haze, dither, "
                    "jitter)";
         }
     }
@@ -231,7 +245,7 @@ std::string variant_spec(const variant& v) {
     std::ostringstream s;
     s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",octaves=" << v.octaves << ",powder=" << (v.powder ? "on" : "off")
       << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
-      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
+      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
     return s.str();
 }
 

@@ -55,6 +55,9 @@ struct variant {
     // detail, no light) and steps over them when it is empty; a probe that finds cloud
     // resumes full steps there.
     bool skip = false;
+    // Cloud shadows on the ground from a Beer shadow map (shadow_map.hpp) of
+    // shadow_map_size^2 texels, each a shadow_map_steps march along the sunlight.
+    bool shadows = true;
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
     bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
     bool sun = true;                 // draw the sun disc (sun_disc_radiance) in the background
@@ -89,6 +92,11 @@ struct scene {
 
 // Steps per empty-space probe (variant::skip).
 inline constexpr int skip_block = 4;
+// The Beer shadow map (variant::shadows): texels per side, midpoint steps per texel, and the
+// share of the ground's light that comes from the sky (what a full shadow leaves).
+inline constexpr int shadow_map_size = 128;
+inline constexpr int shadow_map_steps = 24;
+inline constexpr float ground_sky_share = 0.4f;
 
 // Every preset, in the order --list-presets prints them; the first is the default.
 const std::vector<scene>& presets();
@@ -113,6 +121,11 @@ struct frame_constants {
     float light_march_max;           // the light march covers at most this far
     float march_near_distance;       // growing view steps: nearly uniform closer than this
     float min_transmittance;         // early exit of the view march
+    // The Beer shadow map: a sun-aligned square of 2 shadow_half_extent around the ground
+    // 12 km ahead of the camera, its plane (through shadow_origin, normal sun_dir) above the
+    // cloud layer on the sun's side; shadow_right, shadow_up, sun_dir: its basis.
+    glm::vec3 shadow_origin, shadow_right, shadow_up;
+    float shadow_half_extent;
 };
 
 frame_constants make_frame_constants(const scene& s);

@@ -87,7 +87,8 @@ TEST_CASE("the variants agree with the CPU too, and compile-time equals run-time
     const scene& s = *find_preset("ground");
     for (const char* spec : {"phase=mie,light=march,light-steps=8,steps=32", "phase=cs,octaves=1,powder=off,integration=naive,jitter=off",
                              "lighting=octaves,powder=on,light=cone", "lighting=diffusion,phase=mie,behind=march,light-steps=8,steps=32",
-                             "schedule=growing", "schedule=uniform,steps=16", "haze=off,dither=off"}) {
+                             "schedule=growing", "schedule=uniform,steps=16", "haze=off,dither=off", "skip=on",
+                             "skip=on,schedule=growing,steps=24"}) {
         CAPTURE(std::string(spec));
         variant v;
         REQUIRE(apply_variant_spec(spec, v).empty());
@@ -301,6 +302,69 @@ TEST_CASE("temporal scheme: a still camera's 16 frames are the full frame; GPU a
     MESSAGE("in motion: " << moving << " dB against the full last frame; the first frame: " << unmoved << " dB");
     CHECK(moving >= 28.0);
     CHECK(moving >= unmoved + 8.0);
+}
+
+TEST_CASE("empty-space skipping: fewer view reads, the same image where no cloud is skipped") {
+    // With skipping, a march over an empty stretch reads 2 textures per 4 steps instead of
+    // 2 per step; a probe that meets the base shape resumes full steps, so clouds are kept
+    // wherever the probe finds them (the image stays close to the unskipped one).
+    for (const char* name : {"ground", "above"}) {
+        CAPTURE(std::string(name));
+        const scene& s = *find_preset(name);
+        variant off, on;
+        REQUIRE(apply_variant_spec("skip=off,dither=off", off).empty());
+        REQUIRE(apply_variant_spec("skip=on,dither=off", on).empty());
+        const texture_read_stats r_off = count_texture_reads(s, off, shared().textures, 160, 90);
+        const texture_read_stats r_on = count_texture_reads(s, on, shared().textures, 160, 90);
+        MESSAGE(std::string(name) << ": reads per in-layer pixel " << r_off.mean << " without skipping, " << r_on.mean << " with");
+        CHECK(r_on.mean < r_off.mean);
+        // The light's reads do not grow: skipping only removes empty view steps.
+        CHECK(r_on.mean * r_on.light_share <= r_off.mean * r_off.light_share * 1.05);
+        const double psnr = compare(render_cpu(s, on, shared().textures, 160, 90), render_cpu(s, off, shared().textures, 160, 90)).psnr_db;
+        MESSAGE(std::string(name) << ": skipping against not, PSNR " << psnr << " dB");
+        CHECK(psnr >= 30.0);
+    }
+}
+
+TEST_CASE("cloud shadows: only the ground darkens, by at most the sun's share, GPU and CPU alike") {
+    const scene& s = *find_preset("above");  // the ground shows between the clouds
+    variant on, off;
+    REQUIRE(apply_variant_spec("shadows=on", on).empty());
+    REQUIRE(apply_variant_spec("shadows=off", off).empty());
+    const image lit = render_cpu_linear(s, on, shared().textures, 160, 90);
+    const image plain = render_cpu_linear(s, off, shared().textures, 160, 90);
+    const frame_constants k = make_frame_constants(s);
+    int ground = 0, shadowed = 0, sunny = 0;
+    for (int y = 0; y < 90; ++y)
+        for (int x = 0; x < 160; ++x) {
+            const glm::vec3 dir = pixel_direction(k, x, y, 160, 90);
+            const glm::vec4 a = lit.pixels[static_cast<std::size_t>(y * 160 + x)];
+            const glm::vec4 b = plain.pixels[static_cast<std::size_t>(y * 160 + x)];
+            CHECK(a.a == b.a);  // the clouds themselves do not change
+            if (dir.y >= 0.0f) {
+                CHECK(a.r == b.r);  // sky: untouched
+                continue;
+            }
+            // The ground behind transmittance T: lit = plain - (1 - f) T ground, f in [0.4, 1].
+            ++ground;
+            CHECK(a.r <= b.r + 1e-6f);
+            CHECK(a.r >= b.r - (1.0f - ground_sky_share) * k.ground.r * (1.0f - b.a) - 1e-5f);
+            if (b.a < 0.05f) {  // bare ground: the shadow factor itself
+                const float f = a.r / b.r;
+                if (f < 0.6f) ++shadowed;
+                if (f > 0.99f) ++sunny;
+            }
+        }
+    MESSAGE("ground pixels " << ground << ", bare and in deep shadow " << shadowed << ", bare and sunlit " << sunny);
+    CHECK(ground > 2000);
+    CHECK(shadowed > 50);
+    CHECK(sunny > 50);
+    // The GPU draws the same map (clouds.frag's pass 2) and the same lookups.
+    const image g = render_gpu(s, on);
+    const image c = render_cpu(s, on, shared().textures, 160, 90);
+    const double psnr = compare(g, c).psnr_db;
+    MESSAGE("shadows, GPU against CPU: PSNR " << psnr << " dB");
+    CHECK(psnr >= 35.0);
 }
 
 TEST_CASE("command-line errors are clear") {

@@ -379,7 +379,8 @@ int run_report(int argc, char** argv) {
         const std::string why = cr::apply_variant_spec(spec.substr(eq + 1), v);
         if (!why.empty()) throw usage_error("--variant " + spec + ": " + why);
         v.haze = false;  // the truth has no air between the camera and the clouds,
-        v.sun = false;   // and no sun disc (cloud_medium.cpp)
+        v.sun = false;   // no sun disc (cloud_medium.cpp)
+        v.shadows = false;  // and no cloud shadows on its ground
         variants.emplace_back(spec.substr(0, eq), v);
     }
     const std::string data = f.get("--data", "docs/data"), docs = f.get("--docs", "docs");
@@ -419,9 +420,9 @@ int run_report(int argc, char** argv) {
           "the others): truth | model | difference\n"
           "of the display images, 0.5 + 2 (model - truth) per channel (mid-grey: no difference,\n"
           "brighter: the model is too bright).\n\n";
-    md << "Variants (the renderer's `--variant` notation over the defaults; `sun=off,haze=off` in all of them,\n"
-          "as the truth has no sun disc (18,000 times the irradiance, it would dominate any metric where it is\n"
-          "in view) and no air between the camera and the clouds):\n\n";
+    md << "Variants (the renderer's `--variant` notation over the defaults; `sun=off,haze=off,shadows=off` in all of\n"
+          "them, as the truth has no sun disc (18,000 times the irradiance, it would dominate any metric where it\n"
+          "is in view), no air between the camera and the clouds and a constant ground):\n\n";
     for (const auto& v : variants) md << "- `" << v.first << "`: `" << cr::variant_spec(v.second) << "`\n";
     md << '\n';
 

@@ -24,6 +24,7 @@ CR_PARAM(int, u_integration)      // 0 energy-conserving (analytic), 1 naive Rie
 CR_PARAM(int, u_view_steps)
 CR_PARAM(int, u_schedule)         // view steps: 0 uniform, 1 growing with distance
 CR_PARAM(int, u_skip)             // empty-space skipping: 0 off, 1 probe CR_SKIP_BLOCK steps with the base shape
+CR_PARAM(int, u_shadows)          // 0 off, 1 cloud shadows on the ground from the Beer shadow map
 CR_PARAM(int, u_jitter)
 CR_PARAM(int, u_sun_disc)         // 0 no sun disc, 1 the disc at its physical radiance
 CR_PARAM(int, u_haze)             // 0 off, 1 aerial perspective (air between camera and cloud)
@@ -48,16 +49,20 @@ uniform float u_phase_mean_cosine;  // the diffusion model's g for u_phase_model
 uniform float u_cone_step, u_cone_spread, u_cone_far_distance, u_cone_far_length;
 uniform float u_light_march_max, u_min_transmittance;
 uniform float u_march_near_distance;  // growing view steps: nearly uniform closer than this
+uniform vec3 u_shadow_origin, u_shadow_right, u_shadow_up;  // the Beer shadow map's frame (scene.hpp)
+uniform float u_shadow_half_extent;
 
 uniform sampler3D u_base;      // 128^3 RGBA8: Perlin-Worley + Worley fBm (noise_bake.hpp)
 uniform sampler3D u_detail;    // 32^3 RGB8: Worley fBm
 uniform sampler2D u_weather;   // 256^2 RGB8: R coverage (G type and B rain unused here)
+uniform sampler2D u_shadow_map;  // CR_SHADOW_MAP_SIZE^2 RGBA32F: (front, mean extinction, optical depth) of pass 2
 
-// Temporal rendering (temporal_resolve.frag): 0 a full frame; 1 the shading pass of the
-// temporal scheme, one pixel of every 4 x 4 block: the output pixel (i, j) shades the image's
-// pixel (4 i, 4 j) + u_update_offset (u_resolution stays the full image's size) and writes
-// linear radiance and the cloud's depth, for the resolve pass to blend and tonemap.
-uniform int u_temporal_pass;
+// The pass: 0 a full frame. 1 the shading pass of the temporal scheme
+// (temporal_resolve.frag), one pixel of every 4 x 4 block: the output pixel (i, j) shades the
+// image's pixel (4 i, 4 j) + u_update_offset (u_resolution stays the full image's size) and
+// writes linear radiance and the cloud's depth, for the resolve pass to blend and tonemap.
+// 2 the Beer shadow map: output pixel (i, j) is texel (i, j) (cr_shadow_texel).
+uniform int u_pass;
 uniform uvec2 u_update_offset;
 
 layout(location = 0) out vec4 out_color;   // rgb: display colour in [0, 1] (pass 1: linear radiance); a: cloud opacity
@@ -72,6 +77,9 @@ float cr_phase(float mu, float scale);
 #include "cloudmath.glsl"
 
 const int CR_SKIP_BLOCK = 4;  // steps per empty-space probe (scene.hpp's skip_block)
+const int CR_SHADOW_MAP_SIZE = 128;      // scene.hpp's shadow_map_size
+const int CR_SHADOW_MAP_STEPS = 24;      // ... shadow_map_steps
+const float CR_GROUND_SKY_SHARE = 0.4;   // ... ground_sky_share
 
 CmMieApproxParams cr_mie;  // set once per pixel in main()
 vec2 cr_band;              // altitudes of the cloud type's band (no density outside), set in main()
@@ -154,9 +162,43 @@ vec3 cr_in_scattering(float tau_light, float tau_behind, float tau_view, float m
     return u_sun_radiance * sun + mix(u_ambient_bottom, u_ambient_top, h);
 }
 
+// Texel (i, j) of the Beer shadow map (pass 2): midpoint steps along the sunlight through the
+// cloud type's band, depths from the map's plane.
+vec3 cr_shadow_texel(vec2 ij) {
+    vec2 ab = ((ij + 0.5) / float(CR_SHADOW_MAP_SIZE) * 2.0 - 1.0) * u_shadow_half_extent;
+    vec3 p0 = u_shadow_origin + u_shadow_right * ab.x + u_shadow_up * ab.y;
+    vec3 up0 = normalize(vec3(p0.x, p0.y + (u_planet_radius + u_cam_altitude), p0.z));
+    vec2 seg = cm_cloud_layer_segment(cr_altitude(p0), -dot(u_sun_dir, up0), u_planet_radius, cr_band.x, cr_band.y);
+    CmBeerShadowAccumulator acc = cm_beer_shadow_accumulator();
+    if (seg.y > seg.x) {
+        float ds = (seg.y - seg.x) / float(CR_SHADOW_MAP_STEPS);
+        for (int m = 0; m < CR_SHADOW_MAP_STEPS; ++m) {
+            float t = seg.x + float(m) * ds;
+            vec3 q = p0 - u_sun_dir * (t + 0.5 * ds);
+            cm_beer_shadow_add_step(acc, t, ds, u_extinction * cr_density(q, cr_altitude(q)));
+        }
+    }
+    return cm_beer_shadow_texel(acc);
+}
+
+// What the shadow map leaves of the ground's light at ground point g: the sky's share plus
+// the sun's times the clouds' transmittance (1 outside the map). Bilinear texels, clamped.
+float cr_ground_shadow(vec3 g) {
+    vec3 uvd = cm_shadow_map_project(g, u_shadow_origin, u_shadow_right, u_shadow_up, u_sun_dir, u_shadow_half_extent);
+    if (!(uvd.x >= 0.0 && uvd.x <= 1.0 && uvd.y >= 0.0 && uvd.y <= 1.0)) return 1.0;
+    vec4 fp = cm_texel_bilinear(uvd.xy, vec2(float(CR_SHADOW_MAP_SIZE)));
+    vec3 texel = vec3(0.0);
+    for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) {
+            ivec2 t = clamp(ivec2(fp.xy) + ivec2(dx, dy), ivec2(0), ivec2(CR_SHADOW_MAP_SIZE - 1));
+            texel += texelFetch(u_shadow_map, t, 0).xyz * ((dx != 0 ? fp.z : 1.0 - fp.z) * (dy != 0 ? fp.w : 1.0 - fp.w));
+        }
+    return mix(CR_GROUND_SKY_SHARE, 1.0, cm_beer_shadow_transmittance(texel, uvd.z));
+}
+
 vec3 cr_background(vec3 dir) {
     vec2 ground = cm_ray_sphere_intersect_altitude(u_cam_altitude, dir.y, u_planet_radius, 0.0);
-    if (ground.x >= 0.0 && ground.y > ground.x) return u_ground;
+    if (ground.x >= 0.0 && ground.y > ground.x) return u_shadows != 0 ? u_ground * cr_ground_shadow(dir * ground.x) : u_ground;
     float mu = dot(dir, u_sun_dir);
     vec3 sky = mix(u_sky_horizon, u_sky_zenith, sqrt(cm_saturate(dir.y)));
     sky += u_sun_radiance * (0.05 * cm_phase_hg(mu, 0.75));  // glow around the sun
@@ -181,12 +223,17 @@ float cr_jitter(vec2 pixel) {
 
 void main() {
     // The centre of the image pixel this invocation shades.
-    vec2 pixel = u_temporal_pass != 0 ? floor(gl_FragCoord.xy) * 4.0 + vec2(u_update_offset) + 0.5 : gl_FragCoord.xy;
+    vec2 pixel = u_pass != 0 ? floor(gl_FragCoord.xy) * 4.0 + vec2(u_update_offset) + 0.5 : gl_FragCoord.xy;
     vec2 ndc = pixel / u_resolution * 2.0 - 1.0;
     float aspect = u_resolution.x / u_resolution.y;
     vec3 dir = normalize(u_forward + u_right * (ndc.x * aspect * u_tan_half_fov) + u_up * (ndc.y * u_tan_half_fov));
     cr_mie = cm_mie_approx_params(u_droplet_diameter);
     cr_band = cm_height_range_for_type(u_cloud_type) * (u_layer_top - u_layer_bottom) + u_layer_bottom;
+    if (u_pass == 2) {
+        out_color = vec4(cr_shadow_texel(floor(gl_FragCoord.xy)), 0.0);
+        out_depth = 0.0;
+        return;
+    }
 
     CmMarchAccumulator acc = cm_march_accumulator();
     float cloud_depth = 0.0;  // transmittance-weighted distance of the cloud, 0 for none
@@ -259,7 +306,7 @@ void main() {
     vec3 color = cr_background(dir) * acc.transmittance + acc.luminance;
     float alpha = 1.0 - (acc.transmittance.r + acc.transmittance.g + acc.transmittance.b) / 3.0;
     out_depth = cloud_depth;
-    if (u_temporal_pass != 0) {
+    if (u_pass != 0) {
         out_color = vec4(color, alpha);
         return;
     }
