@@ -25,7 +25,8 @@ done
 # name|variant spec|caption, all on the "horizon" preset (low sun ahead: phase and powder show)
 variants=(
   "default||default: diffusion model, dual-lobe HG, 6-step march toward the sun, cone behind, 64 steps"
-  "octaves|lighting=octaves,powder=on,light=cone|octaves: 3, powder, cone (the previous default)"
+  "octaves|lighting=octaves,powder=on,light=cone,ambient=flat|octaves: 3, powder, cone, flat sky light (the previous default)"
+  "flat_ambient|ambient=flat|sky light not occluded inside the clouds"
   "hg|phase=hg|phase: HG"
   "mie|phase=mie|phase: Mie fit (15 um droplets)"
   "octaves1|lighting=octaves,octaves=1,light=cone|1 octave (single scattering), cone"

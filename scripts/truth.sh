@@ -26,12 +26,13 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 presets=(ground horizon inside above)
 selection=(sun_behind cumulus stratus)
-# default: the diffusion model (6-step march toward the sun, cone behind); octaves: the
-# production octaves it replaced; octaves_march: the octaves given an accurate light march.
-variants=(default= octaves=lighting=octaves,powder=on,light=cone
-          octaves_march=lighting=octaves,powder=on,light=march,light-steps=64
-          single=lighting=octaves,octaves=1,light=cone mie=phase=mie
-          diffusion_cone=light=cone diffusion_march=behind=march)
+# default: the diffusion model (6-step march toward the sun, cone behind, occluded sky light);
+# octaves: the production octaves it replaced (flat sky light); octaves_march: the octaves
+# given an accurate light march; flat_ambient: the default without the sky light's occlusion.
+variants=(default= octaves=lighting=octaves,powder=on,light=cone,ambient=flat
+          octaves_march=lighting=octaves,powder=on,light=march,light-steps=64,ambient=flat
+          single=lighting=octaves,octaves=1,light=cone,ambient=flat mie=phase=mie
+          diffusion_cone=light=cone diffusion_march=behind=march flat_ambient=ambient=flat)
 width=160 height=90 spp=1536 selection_spp=384
 reports_only=0 build="" check="" cache=()
 while [[ $# -gt 0 ]]; do

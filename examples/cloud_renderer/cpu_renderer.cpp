@@ -31,23 +31,24 @@ struct pixel_program {
     cm::mie_approx_parameters<float> mie;
     float phase_g_mean;  // the diffusion model's g
     vec2 band;           // altitudes of the cloud type's band (height_range_for_type): no density outside
-    std::vector<vec3> shadow_map;  // the Beer shadow map (v.shadows), row j = 0 first
+    std::vector<vec3> shadow_map;  // the Beer shadow map (needs_shadow_map), row j = 0 first
+    long shadow_map_reads = 0;     // texture reads of building it (once per frame)
 
     pixel_program(const scene& sc, const variant& va, const cloud_textures& t)
         : s(sc), v(va), k(make_frame_constants(sc)), field(sc, t), mie(cm::mie_approx_params(k.droplet_diameter)),
           phase_g_mean(phase_mean_cosine(k, va.phase)),
           band(cm::height_range_for_type(sc.cloud_type) * (sc.layer_top - sc.layer_bottom) + sc.layer_bottom) {
-        if (v.shadows) {
+        if (needs_shadow_map(v)) {
             shadow_map.resize(static_cast<std::size_t>(shadow_map_size) * static_cast<std::size_t>(shadow_map_size));
             for (int j = 0; j < shadow_map_size; ++j)
                 for (int i = 0; i < shadow_map_size; ++i)
-                    shadow_map[static_cast<std::size_t>(j * shadow_map_size + i)] = shadow_texel(i, j);
+                    shadow_map[static_cast<std::size_t>(j * shadow_map_size + i)] = shadow_texel(i, j, &shadow_map_reads);
         }
     }
 
     // Texel (i, j) of the Beer shadow map (the shader's pass 2, cr_shadow_texel): midpoint
     // steps along the sunlight through the cloud type's band, depths from the map's plane.
-    vec3 shadow_texel(int i, int j) const {
+    vec3 shadow_texel(int i, int j, long* counter = nullptr) const {
         const vec2 ab = (vec2(float(i) + 0.5f, float(j) + 0.5f) / float(shadow_map_size) * 2.0f - 1.0f) * k.shadow_half_extent;
         const vec3 p0 = k.shadow_origin + k.shadow_right * ab.x + k.shadow_up * ab.y;
         const vec3 up0 = glm::normalize(vec3(p0.x, p0.y + (s.planet_radius + s.camera_altitude), p0.z));
@@ -58,7 +59,7 @@ struct pixel_program {
             for (int m = 0; m < shadow_map_steps; ++m) {
                 const float t = seg.x + float(m) * ds;
                 const vec3 q = p0 - k.sun_dir * (t + 0.5f * ds);
-                acc.add_step(t, ds, s.extinction * density(q, altitude(q)));
+                acc.add_step(t, ds, s.extinction * density(q, altitude(q), counter));
             }
         }
         return acc.texel();
@@ -72,8 +73,16 @@ struct pixel_program {
         if (!(g.x >= 0.0f && g.y > g.x)) return 1.0f;
         const vec3 uvd = cm::shadow_map_project(dir * g.x, k.shadow_origin, k.shadow_right, k.shadow_up, k.sun_dir,
                                                 k.shadow_half_extent);
-        if (!(uvd.x >= 0.0f && uvd.x <= 1.0f && uvd.y >= 0.0f && uvd.y <= 1.0f)) return 1.0f;
-        const vec4 fp = cm::texel_bilinear(vec2(uvd), vec2(float(shadow_map_size)));
+        if (!on_map(uvd)) return 1.0f;
+        return glm::mix(ground_sky_share, 1.0f, cm::beer_shadow_transmittance(shadow_lookup(vec2(uvd)), uvd.z));
+    }
+
+    static bool on_map(vec3 uvd) { return uvd.x >= 0.0f && uvd.x <= 1.0f && uvd.y >= 0.0f && uvd.y <= 1.0f; }
+
+    // The map's texel at uv: bilinear (texel_bilinear), taps clamped to the map (4 reads).
+    vec3 shadow_lookup(vec2 uv, long* counter = nullptr) const {
+        if (counter) *counter += 4;
+        const vec4 fp = cm::texel_bilinear(uv, vec2(float(shadow_map_size)));
         vec3 texel(0.0f);
         for (int dy = 0; dy < 2; ++dy)
             for (int dx = 0; dx < 2; ++dx) {
@@ -82,7 +91,7 @@ struct pixel_program {
                 texel += shadow_map[static_cast<std::size_t>(ty * shadow_map_size + tx)] *
                          ((dx ? fp.z : 1.0f - fp.z) * (dy ? fp.w : 1.0f - fp.w));
             }
-        return glm::mix(ground_sky_share, 1.0f, cm::beer_shadow_transmittance(texel, uvd.z));
+        return texel;
     }
 
     // Texture reads of one pixel (count_texture_reads); null when not counting.
@@ -114,6 +123,18 @@ struct pixel_program {
     // altitude band ends (height_range_for_type: no density beyond it, so the band's steps
     // lose nothing and a 225 m stratus sheet gets all of them instead of 1 in 11).
     float light_optical_depth(vec3 p, float alt, vec3 toward, light_mode mode, long* counter = nullptr) const {
+        if (mode == light_mode::map) {
+            // Toward the sun: the map's optical depth at p's depth; away from it: the rest of
+            // the column. Off the map: the cone.
+            const vec3 uvd = cm::shadow_map_project(p, k.shadow_origin, k.shadow_right, k.shadow_up, k.sun_dir,
+                                                    k.shadow_half_extent);
+            if (on_map(uvd)) {
+                const vec3 texel = shadow_lookup(vec2(uvd), counter);
+                const float before = cm::beer_shadow_optical_depth(texel, uvd.z);
+                return glm::dot(toward, k.sun_dir) > 0.0f ? before : std::max(texel.z - before, 0.0f);
+            }
+            mode = light_mode::cone;
+        }
         if (mode == light_mode::cone) {
             const cm::cone_light_config<float> cone{v.cone_samples, k.cone_step, k.cone_spread, k.cone_far_distance,
                                                     k.cone_far_length};
@@ -136,7 +157,11 @@ struct pixel_program {
                                                         cm::diffusion_models::fitted, phase_fn)
                         : cm::multiple_scattering_with(tau_light, mu, k.ms_a, k.ms_b, k.ms_c, v.octaves, phase_fn);
         if (v.powder) sun *= glm::mix(2.0f * cm::powder(tau_light, 2.0f), 1.0f, 0.5f + 0.5f * mu);
-        return k.sun_radiance * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
+        if (!v.occluded_ambient) return k.sun_radiance * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
+        // Vertical optical depths above and below from the slanted light estimates.
+        const float up = std::max(k.sun_dir.y, 0.0f);
+        return k.sun_radiance * sun + glm::mix(k.ambient_bottom * cm::diffuse_transmittance(tau_behind * up, phase_g_mean),
+                                               k.ambient_top * cm::diffuse_transmittance(tau_light * up, phase_g_mean), h);
     }
 
     // The march's start offset in [0, 1) steps: the pixel's hash advanced by R1 each frame.
@@ -283,6 +308,7 @@ texture_read_stats count_texture_reads(const scene& s, const variant& v, const c
         return program.shade_linear(x, y, width, height, &counts[i]);
     });
     texture_read_stats st;
+    st.shadow_map = program.shadow_map_reads;
     std::vector<double> totals;
     double view = 0.0, light = 0.0;
     for (std::size_t i = 0; i < counts.size(); ++i) {
@@ -417,6 +443,7 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
             if (layer.y > layer.x) ++in_layer;
         }
     reads_ = texture_read_stats{};
+    reads_.shadow_map = program.shadow_map_reads;
     reads_.pixels_in_layer = in_layer;
     if (in_layer > 0) {
         reads_.mean = double(total) / double(in_layer);

@@ -26,9 +26,12 @@ image render_cpu(const scene& s, const variant& v, const cloud_textures& texture
 // per pixel whose view ray enters the cloud layer, the mean and 95th percentile of all its
 // texture() calls, and the share of them made by the light (toward the sun, and away from
 // it for the diffusion model).
+// shadow_map: the reads of the Beer shadow map's pass (once per frame, whatever the image
+// size; not in the per-pixel figures).
 struct texture_read_stats {
     int pixels_in_layer = 0;
     double mean = 0.0, p95 = 0.0, light_share = 0.0;
+    long shadow_map = 0;
 };
 texture_read_stats count_texture_reads(const scene& s, const variant& v, const cloud_textures& textures, int width,
                                        int height, unsigned threads = 0);

@@ -50,6 +50,7 @@ std::vector<shader_int> variant_values(const variant& v) {
             {"u_schedule", static_cast<int>(v.schedule)},
             {"u_skip", v.skip ? 1 : 0},
             {"u_shadows", v.shadows ? 1 : 0},
+            {"u_occluded_ambient", v.occluded_ambient ? 1 : 0},
             {"u_jitter", v.jitter ? 1 : 0},
             {"u_sun_disc", v.sun ? 1 : 0},
             {"u_haze", v.haze ? 1 : 0},
@@ -463,7 +464,7 @@ bool shadow_pass(gl_renderer::state& st, const variant& v, GLuint program, int r
     }
     gl.ActiveTexture(GL_TEXTURE3);
     gl.BindTexture(GL_TEXTURE_2D, 0);
-    if (v.shadows) {
+    if (needs_shadow_map(v)) {
         const GLenum one = GL_COLOR_ATTACHMENT0;
         gl.BindFramebuffer(GL_FRAMEBUFFER, st.shadow_fbo);
         gl.DrawBuffers(1, &one);

@@ -143,7 +143,7 @@ const char* name(phase_model p) {
     }
     return "?";
 }
-const char* name(light_mode l) { return l == light_mode::cone ? "cone" : "march"; }
+const char* name(light_mode l) { return l == light_mode::cone ? "cone" : l == light_mode::march ? "march" : "map"; }
 const char* name(step_schedule s) { return s == step_schedule::uniform ? "uniform" : "growing"; }
 const char* name(integration_mode i) { return i == integration_mode::analytic ? "analytic" : "naive"; }
 const char* name(lighting_model l) { return l == lighting_model::octaves ? "octaves" : "diffusion"; }
@@ -197,11 +197,13 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
         } else if (key == "light") {
             if (value == "cone") out.light = light_mode::cone;
             else if (value == "march") out.light = light_mode::march;
-            else return "light must be cone or march, not '" + value + "'";
+            else if (value == "map") out.light = light_mode::map;
+            else return "light must be cone, march or map, not '" + value + "'";
         } else if (key == "behind") {
             if (value == "cone") out.behind = light_mode::cone;
             else if (value == "march") out.behind = light_mode::march;
-            else return "behind must be cone or march, not '" + value + "'";
+            else if (value == "map") out.behind = light_mode::map;
+            else return "behind must be cone, march or map, not '" + value + "'";
         } else if (key == "cone-samples") {
             if (!parse_int(value, 2, 16, out.cone_samples))
                 return "cone-samples must be an integer from 2 to 16, not '" + value + "'";
@@ -229,11 +231,15 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             if (!parse_switch(value, out.dither)) return "dither must be on or off, not '" + value + "'";
         } else if (key == "skip") {
             if (!parse_switch(value, out.skip)) return "skip must be on or off, not '" + value + "'";
+        } else if (key == "ambient") {
+            if (value == "flat") out.occluded_ambient = false;
+            else if (value == "occluded") out.occluded_ambient = true;
+            else return "ambient must be flat or occluded, not '" + value + "'";
         } else if (key == "shadows") {
             if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
         } else {
             return "unknown variant key '" + key +
-                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, schedule, skip, shadows, sun, haze, dither, "
+                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, schedule, skip, ambient, shadows, sun, haze, dither, "
                    "jitter)";
         }
     }
@@ -245,7 +251,7 @@ std::string variant_spec(const variant& v) {
     std::ostringstream s;
     s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",octaves=" << v.octaves << ",powder=" << (v.powder ? "on" : "off")
       << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
-      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
+      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
     return s.str();
 }
 

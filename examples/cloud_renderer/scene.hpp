@@ -20,7 +20,10 @@
 namespace cloud_renderer {
 
 enum class phase_model { hg, dual_hg, cornette_shanks, mie };
-enum class light_mode { cone, march };
+// How a light estimate gets its optical depth: the cone, a march over the cloud type's band,
+// or the Beer shadow map (toward the sun: its optical depth at the sample's depth; away from
+// it: the column's total minus that; the cone outside the map).
+enum class light_mode { cone, march, map };
 enum class integration_mode { analytic, naive };
 // Where the view march puts its steps between where the ray enters the cloud type's altitude
 // band and max_distance further: equal steps, or steps that grow with distance
@@ -36,8 +39,9 @@ enum class lighting_model { octaves, diffusion };
 // the path-traced truth than the octaves on every preset (docs/lighting_truth.md), with the
 // optical depth toward the sun from a 6-step march over the cloud type's altitude band and
 // the one behind the sample from the cone: 12 density samples per view step, twice the
-// octaves' cone. `lighting=octaves,powder=on,light=cone` is the production octave choice
-// it replaced (cone with the far sample, 3 octaves, powder).
+// octaves' cone; sky light occluded by the optical depth above and below.
+// `lighting=octaves,powder=on,light=cone,ambient=flat` is the production octave choice it
+// replaced (cone with the far sample, 3 octaves, powder, unoccluded sky light).
 struct variant {
     phase_model phase = phase_model::dual_hg;
     lighting_model lighting = lighting_model::diffusion;
@@ -58,6 +62,11 @@ struct variant {
     // Cloud shadows on the ground from a Beer shadow map (shadow_map.hpp) of
     // shadow_map_size^2 texels, each a shadow_map_steps march along the sunlight.
     bool shadows = true;
+    // The sky light (ambient) inside clouds: flat (the layer's top and bottom colours mixed by
+    // height, unattenuated) or occluded: the top's light times diffuse_transmittance of the
+    // optical depth above the sample, the bottom's of the depth below, both estimated from
+    // the light estimates toward and away from the sun times the sun's elevation sine.
+    bool occluded_ambient = true;
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
     bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
     bool sun = true;                 // draw the sun disc (sun_disc_radiance) in the background
@@ -97,6 +106,12 @@ inline constexpr int skip_block = 4;
 inline constexpr int shadow_map_size = 128;
 inline constexpr int shadow_map_steps = 24;
 inline constexpr float ground_sky_share = 0.4f;
+
+// True when the variant draws the Beer shadow map: for the ground's shadows or a light
+// estimate (light_mode::map).
+inline bool needs_shadow_map(const variant& v) {
+    return v.shadows || v.light == light_mode::map || v.behind == light_mode::map;
+}
 
 // Every preset, in the order --list-presets prints them; the first is the default.
 const std::vector<scene>& presets();

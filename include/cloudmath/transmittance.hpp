@@ -75,6 +75,27 @@ template <glm::length_t L, class T, glm::qualifier Q>
     return detail::map(tau, [](T v) { return nubis_attenuation(v); });
 }
 
+// diffuse_transmittance(tau, g): the share of isotropic (sky) light that crosses a
+// conservatively scattering layer of optical depth tau and phase asymmetry g, direct and
+// scattered together: the two-stream (Eddington) result 1 / (1 + 3/4 (1 - g) tau), a function
+// of the transport optical depth (1 - g) tau only (similarity). Use it to occlude ambient
+// light inside a cloud: sky light times diffuse_transmittance(optical depth to the top, g).
+// Accuracy against the slab Monte Carlo (docs/data/diffuse_transmittance.csv, HG g = 0.6,
+// 0.8, 0.9, tau 0.25 to 64): never too low, at most 0.037 too high (4.9% relative) for
+// (1 - g) tau near 0.2-0.8, 1.3% at 6.4, 0.7% at 12.8; exact limits 1 at tau = 0 and 4 / (3 (1 - g) tau) for
+// thick layers (the diffusion asymptote (4/3) / ((1 - g) tau + 1.42) of van de Hulst 1980).
+// Albedo 1 (absorption would lower it); tau < 0 acts as 0; g is clamped to [-1, 1].
+template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
+[[nodiscard]] inline T diffuse_transmittance(T optical_depth, T g) noexcept {
+    const T tau = detail::max(optical_depth, T(0));
+    return T(1) / (T(1) + T(0.75) * (T(1) - detail::clamp(g, T(-1), T(1))) * tau);
+}
+
+template <glm::length_t L, class T, glm::qualifier Q>
+[[nodiscard]] inline glm::vec<L, T, Q> diffuse_transmittance(const glm::vec<L, T, Q>& tau, T g) noexcept {
+    return detail::map(tau, [g](T v) { return diffuse_transmittance(v, g); });
+}
+
 }  // namespace cloudmath
 
 #endif  // CLOUDMATH_TRANSMITTANCE_HPP

@@ -221,6 +221,9 @@ std::vector<parity_case> make_cases() {
         add({"cm_powder", "vec4(cm_powder(a.x, 2.0), cm_powder(a.yzw, 2.0))", [](vec4 a, vec4) { return vec4(cm::powder(a.x, 2.0f), cm::powder(vec3(a.y, a.z, a.w), 2.0f)); }, in, 4});
         add({"cm_beer_powder", "vec4(cm_beer_powder(a.x), cm_beer_powder(a.yzw))", [](vec4 a, vec4) { return vec4(cm::beer_powder(a.x), cm::beer_powder(vec3(a.y, a.z, a.w))); }, in, 4});
         add({"cm_nubis_attenuation", "vec4(cm_nubis_attenuation(a.x), cm_nubis_attenuation(a.yzw))", [](vec4 a, vec4) { return vec4(cm::nubis_attenuation(a.x), cm::nubis_attenuation(vec3(a.y, a.z, a.w))); }, in, 4});
+        for (float g : {0.0f, 0.8f, 0.99f, 1.0f, -1.0f})
+            add({"cm_diffuse_transmittance", "vec4(cm_diffuse_transmittance(a.x, " + std::to_string(g) + "), cm_diffuse_transmittance(a.yzw, " + std::to_string(g) + "))",
+                 [g](vec4 a, vec4) { return vec4(cm::diffuse_transmittance(a.x, g), cm::diffuse_transmittance(vec3(a.y, a.z, a.w), g)); }, in, 4});
     }
 
     // integration

@@ -67,8 +67,8 @@ const char* const usage_text =
     "           --presets: the evaluation split; --selection: the presets the variants were\n"
     "           chosen on (reported first and marked; the two lists must be disjoint).\n"
     "           --variant: repeatable, SPEC as the renderer's --variant (empty = default);\n"
-    "           without any: default=, octaves=lighting=octaves,powder=on,light=cone,\n"
-    "           single=lighting=octaves,octaves=1,light=cone, mie=phase=mie.\n"
+    "           without any: default=, octaves=lighting=octaves,powder=on,light=cone,ambient=flat,\n"
+    "           single=lighting=octaves,octaves=1,light=cone,ambient=flat, mie=phase=mie.\n"
     "           Reads DATA/truth_NAME.csv, writes DOCS/lighting_truth.md and\n"
     "           DOCS/images/truth_NAME.png (truth | first variant | difference) and\n"
     "           truth_NAME_VARIANT.png for the other variants.\n"
@@ -369,7 +369,7 @@ int run_report(int argc, char** argv) {
     std::vector<std::string> specs;
     for (auto [it, end] = f.values.equal_range("--variant"); it != end; ++it) specs.push_back(it->second);
     if (specs.empty())
-        specs = {"default=", "octaves=lighting=octaves,powder=on,light=cone", "single=lighting=octaves,octaves=1,light=cone",
+        specs = {"default=", "octaves=lighting=octaves,powder=on,light=cone,ambient=flat", "single=lighting=octaves,octaves=1,light=cone,ambient=flat",
                  "mie=phase=mie"};
     std::vector<std::pair<std::string, cr::variant>> variants;
     for (const std::string& spec : specs) {

@@ -147,6 +147,12 @@ function bakeTextures() {
   gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));  // waits for the bake
   gl.bindFramebuffer(gl.FRAMEBUFFER, null);
   gl.deleteFramebuffer(fbo);
+  // The Beer shadow map's stand-in: one float texel, never read with shadows off.
+  textures.noShadow = gl.createTexture();
+  gl.bindTexture(gl.TEXTURE_2D, textures.noShadow);
+  gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, 1, 1, 0, gl.RGBA, gl.FLOAT, new Float32Array(4));
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
   return textures;
 }
 
@@ -179,6 +185,7 @@ function render(state) {
   i1('u_light_mode', v.light); i1('u_behind_mode', v.behind); f1('u_phase_mean_cosine', phaseMeanCosine(f, v.phase));
   i1('u_cone_samples', v.coneSamples); i1('u_light_steps', v.lightSteps); i1('u_integration', v.integration);
   i1('u_view_steps', v.viewSteps); i1('u_schedule', v.schedule); i1('u_jitter', v.jitter); i1('u_sun_disc', v.sun); i1('u_haze', v.haze); i1('u_dither', v.dither);
+  i1('u_skip', v.skip); i1('u_occluded_ambient', v.ambient); i1('u_shadows', v.shadows); i1('u_pass', 0);
   gl.uniform2f(u('u_resolution'), canvas.width, canvas.height);
   v3('u_forward', f.forward); v3('u_right', f.right); v3('u_up', f.up); f1('u_tan_half_fov', f.tanHalfFov);
   f1('u_cam_altitude', s.cameraAltitude); f1('u_planet_radius', s.planetRadius); f1('u_layer_bottom', s.layerBottom); f1('u_layer_top', s.layerTop);
@@ -191,7 +198,10 @@ function render(state) {
   f1('u_ms_a', msA); f1('u_ms_b', msB); f1('u_ms_c', msC);
   f1('u_cone_step', f.coneStep); f1('u_cone_spread', f.coneSpread); f1('u_cone_far_distance', f.coneFarDistance); f1('u_cone_far_length', f.coneFarLength);
   f1('u_light_march_max', f.lightMarchMax); f1('u_min_transmittance', f.minTransmittance); f1('u_march_near_distance', f.marchNearDistance);
-  const units = [['u_base', gl.TEXTURE_3D, textures.base], ['u_detail', gl.TEXTURE_3D, textures.detail], ['u_weather', gl.TEXTURE_2D, textures.weather]];
+  // u_shadow_map gets its own unit (a 1 x 1 texture: shadows are off), so that no unit holds
+  // two texture types.
+  const units = [['u_base', gl.TEXTURE_3D, textures.base], ['u_detail', gl.TEXTURE_3D, textures.detail], ['u_weather', gl.TEXTURE_2D, textures.weather],
+                 ['u_shadow_map', gl.TEXTURE_2D, textures.noShadow]];
   units.forEach(([name, kind, tex], i) => { gl.activeTexture(gl.TEXTURE0 + i); gl.bindTexture(kind, tex); i1(name, i); });
 
   gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);

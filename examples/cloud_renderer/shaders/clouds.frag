@@ -16,8 +16,8 @@ CR_PARAM(int, u_phase_model)      // 0 HG, 1 dual-lobe HG, 2 Cornette-Shanks, 3 
 CR_PARAM(int, u_lighting)         // 0 Wrenninge octaves, 1 diffusion model (diffusion_lighting.glsl)
 CR_PARAM(int, u_octaves)          // Wrenninge octaves
 CR_PARAM(int, u_powder)           // 0 off, 1 on
-CR_PARAM(int, u_light_mode)       // toward the sun: 0 cone, 1 march over the cloud type's band
-CR_PARAM(int, u_behind_mode)      // behind the sample (diffusion model): 0 cone, 1 march
+CR_PARAM(int, u_light_mode)       // toward the sun: 0 cone, 1 march over the cloud type's band, 2 shadow map
+CR_PARAM(int, u_behind_mode)      // behind the sample (diffusion model): 0 cone, 1 march, 2 shadow map
 CR_PARAM(int, u_cone_samples)
 CR_PARAM(int, u_light_steps)
 CR_PARAM(int, u_integration)      // 0 energy-conserving (analytic), 1 naive Riemann sum
@@ -25,6 +25,7 @@ CR_PARAM(int, u_view_steps)
 CR_PARAM(int, u_schedule)         // view steps: 0 uniform, 1 growing with distance
 CR_PARAM(int, u_skip)             // empty-space skipping: 0 off, 1 probe CR_SKIP_BLOCK steps with the base shape
 CR_PARAM(int, u_shadows)          // 0 off, 1 cloud shadows on the ground from the Beer shadow map
+CR_PARAM(int, u_occluded_ambient) // sky light inside clouds: 0 flat, 1 through the optical depth above / below
 CR_PARAM(int, u_jitter)
 CR_PARAM(int, u_sun_disc)         // 0 no sun disc, 1 the disc at its physical radiance
 CR_PARAM(int, u_haze)             // 0 off, 1 aerial perspective (air between camera and cloud)
@@ -126,10 +127,35 @@ float cr_phase(float mu, float scale) {
     return cm_phase_mie_approx(mu, m);
 }
 
+// The Beer shadow map's texel at uv: bilinear (cm_texel_bilinear), taps clamped to the map.
+vec3 cr_shadow_lookup(vec2 uv) {
+    vec4 fp = cm_texel_bilinear(uv, vec2(float(CR_SHADOW_MAP_SIZE)));
+    vec3 texel = vec3(0.0);
+    for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) {
+            ivec2 t = clamp(ivec2(fp.xy) + ivec2(dx, dy), ivec2(0), ivec2(CR_SHADOW_MAP_SIZE - 1));
+            texel += texelFetch(u_shadow_map, t, 0).xyz * ((dx != 0 ? fp.z : 1.0 - fp.z) * (dy != 0 ? fp.w : 1.0 - fp.w));
+        }
+    return texel;
+}
+
+bool cr_on_map(vec3 uvd) { return uvd.x >= 0.0 && uvd.x <= 1.0 && uvd.y >= 0.0 && uvd.y <= 1.0; }
+
 // Optical depth from p along the unit vector `toward` (the sun, or away from it for the
-// diffusion model's tau_behind) by the cone (mode 0) or a march (mode 1) to where the cloud
-// type's altitude band ends (no density beyond it).
+// diffusion model's tau_behind) by the cone (mode 0), a march (mode 1) to where the cloud
+// type's altitude band ends (no density beyond it), or the shadow map (mode 2: toward the
+// sun its optical depth at p's depth, away from it the rest of the column; off the map the
+// cone).
 float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode) {
+    if (mode == 2) {
+        vec3 uvd = cm_shadow_map_project(p, u_shadow_origin, u_shadow_right, u_shadow_up, u_sun_dir, u_shadow_half_extent);
+        if (cr_on_map(uvd)) {
+            vec3 texel = cr_shadow_lookup(uvd.xy);
+            float before = cm_beer_shadow_optical_depth(texel, uvd.z);
+            return dot(toward, u_sun_dir) > 0.0 ? before : max(texel.z - before, 0.0);
+        }
+        mode = 0;
+    }
     if (mode == 0) {
         CmConeLightConfig cone = CmConeLightConfig(u_cone_samples, u_cone_step, u_cone_spread,
                                                    u_cone_far_distance, u_cone_far_length);
@@ -159,7 +185,11 @@ vec3 cr_in_scattering(float tau_light, float tau_behind, float tau_view, float m
         // from the sun and gone looking into it (where the dark edges are not seen).
         sun *= mix(2.0 * cm_powder(tau_light, 2.0), 1.0, 0.5 + 0.5 * mu);
     }
-    return u_sun_radiance * sun + mix(u_ambient_bottom, u_ambient_top, h);
+    if (u_occluded_ambient == 0) return u_sun_radiance * sun + mix(u_ambient_bottom, u_ambient_top, h);
+    // Vertical optical depths above and below from the slanted light estimates.
+    float up = max(u_sun_dir.y, 0.0);
+    return u_sun_radiance * sun + mix(u_ambient_bottom * cm_diffuse_transmittance(tau_behind * up, u_phase_mean_cosine),
+                                      u_ambient_top * cm_diffuse_transmittance(tau_light * up, u_phase_mean_cosine), h);
 }
 
 // Texel (i, j) of the Beer shadow map (pass 2): midpoint steps along the sunlight through the
@@ -182,18 +212,11 @@ vec3 cr_shadow_texel(vec2 ij) {
 }
 
 // What the shadow map leaves of the ground's light at ground point g: the sky's share plus
-// the sun's times the clouds' transmittance (1 outside the map). Bilinear texels, clamped.
+// the sun's times the clouds' transmittance (1 outside the map).
 float cr_ground_shadow(vec3 g) {
     vec3 uvd = cm_shadow_map_project(g, u_shadow_origin, u_shadow_right, u_shadow_up, u_sun_dir, u_shadow_half_extent);
-    if (!(uvd.x >= 0.0 && uvd.x <= 1.0 && uvd.y >= 0.0 && uvd.y <= 1.0)) return 1.0;
-    vec4 fp = cm_texel_bilinear(uvd.xy, vec2(float(CR_SHADOW_MAP_SIZE)));
-    vec3 texel = vec3(0.0);
-    for (int dy = 0; dy < 2; ++dy)
-        for (int dx = 0; dx < 2; ++dx) {
-            ivec2 t = clamp(ivec2(fp.xy) + ivec2(dx, dy), ivec2(0), ivec2(CR_SHADOW_MAP_SIZE - 1));
-            texel += texelFetch(u_shadow_map, t, 0).xyz * ((dx != 0 ? fp.z : 1.0 - fp.z) * (dy != 0 ? fp.w : 1.0 - fp.w));
-        }
-    return mix(CR_GROUND_SKY_SHARE, 1.0, cm_beer_shadow_transmittance(texel, uvd.z));
+    if (!cr_on_map(uvd)) return 1.0;
+    return mix(CR_GROUND_SKY_SHARE, 1.0, cm_beer_shadow_transmittance(cr_shadow_lookup(uvd.xy), uvd.z));
 }
 
 vec3 cr_background(vec3 dir) {

@@ -33,4 +33,12 @@ vec3 cm_nubis_attenuation(vec3 optical_depth) {
     return max(exp(-tau), 0.7 * exp(-0.25 * tau));
 }
 
+// 1 / (1 + 3/4 (1 - g) tau): isotropic light through a conservative layer (two-stream).
+float cm_diffuse_transmittance(float optical_depth, float g) {
+    return 1.0 / (1.0 + 0.75 * (1.0 - clamp(g, -1.0, 1.0)) * max(optical_depth, 0.0));
+}
+vec3 cm_diffuse_transmittance(vec3 optical_depth, float g) {
+    return 1.0 / (1.0 + 0.75 * (1.0 - clamp(g, -1.0, 1.0)) * max(optical_depth, vec3(0.0)));
+}
+
 #endif  // CM_TRANSMITTANCE_GLSL
