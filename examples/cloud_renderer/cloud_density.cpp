@@ -34,6 +34,36 @@ float linear_texture::texel(int x, int y, int z, int c) const {
     return float(data[i]) * (1.0f / 255.0f);
 }
 
+namespace {
+
+// Mip level k of t as a texture of its own (level 0: t itself).
+linear_texture level_of(const linear_texture& t, int k) {
+    if (k <= 0) return linear_texture{t.data, t.size, t.channels, {}};
+    return linear_texture{t.mips[static_cast<std::size_t>(k - 1)], t.size >> k, t.channels, {}};
+}
+
+// GL_LINEAR_MIPMAP_LINEAR's two levels and weight for lod (clamped to the last level).
+template <class Sample>
+vec4 trilinear(const linear_texture& t, float lod, Sample sample) {
+    if (!(lod > 0.0f) || t.mips.empty()) return sample(t);
+    const float last = float(t.mips.size());
+    const float l = lod < last ? lod : last;
+    const int k = int(l);
+    const float f = l - float(k);
+    const vec4 a = sample(level_of(t, k));
+    return f > 0.0f ? glm::mix(a, sample(level_of(t, k + 1)), f) : a;
+}
+
+}  // namespace
+
+vec4 linear_texture::sample3(vec3 uvw, float lod) const {
+    return trilinear(*this, lod, [&](const linear_texture& l) { return l.sample3(uvw); });
+}
+
+vec4 linear_texture::sample2(vec2 uv, float lod) const {
+    return trilinear(*this, lod, [&](const linear_texture& l) { return l.sample2(uv); });
+}
+
 vec4 linear_texture::sample3(vec3 uvw) const {
     const vec3 x = uvw * float(size) - 0.5f;
     const vec3 f0 = glm::floor(x);
@@ -64,33 +94,44 @@ vec4 linear_texture::sample2(vec2 uv) const {
     return out;
 }
 
+namespace {
+std::vector<const std::uint8_t*> pointers(const std::vector<std::vector<std::uint8_t>>& mips) {
+    std::vector<const std::uint8_t*> out;
+    for (const auto& m : mips) out.push_back(m.data());
+    return out;
+}
+}  // namespace
+
 cloud_density::cloud_density(const scene& s, const cloud_textures& t)
-    : s_(s), base_{t.base.data(), t.base_size, 4}, detail_{t.detail.data(), t.detail_size, 3},
-      weather_{t.weather.data(), t.weather_size, 3} {}
+    : s_(s), base_{t.base.data(), t.base_size, 4, pointers(t.base_mips)},
+      detail_{t.detail.data(), t.detail_size, 3, pointers(t.detail_mips)},
+      weather_{t.weather.data(), t.weather_size, 3, pointers(t.weather_mips)} {}
 
 float cloud_density::altitude(vec3 p) const {
     const float t = glm::length(p);
     return t > 0.0f ? cm::altitude_along_ray(s_.camera_altitude, p.y / t, s_.planet_radius, t) : s_.camera_altitude;
 }
 
-float cloud_density::base_density(vec3 p, float alt, long* texture_reads) const {
+float cloud_density::base_density(vec3 p, float alt, long* texture_reads, float footprint) const {
     const float h = cm::height_fraction(alt, s_.layer_bottom, s_.layer_top);
     if (h <= 0.0f || h >= 1.0f) return 0.0f;
     if (texture_reads) *texture_reads += 2;
     const vec3 q(p.x + s_.wind.x, alt, p.z + s_.wind.y);
-    const float coverage = cm::saturate(weather_.sample2(vec2(q.x, q.z) / s_.weather_tile).r - 0.5f + s_.coverage);
-    const vec4 b = base_.sample3(q / s_.base_tile);
+    const float weather_lod = cm::texture_lod(footprint, s_.weather_tile / float(weather_.size));
+    const float base_lod = cm::texture_lod(footprint, s_.base_tile / float(base_.size));
+    const float coverage = cm::saturate(weather_.sample2(vec2(q.x, q.z) / s_.weather_tile, weather_lod).r - 0.5f + s_.coverage);
+    const vec4 b = base_.sample3(q / s_.base_tile, base_lod);
     const float shaped = cm::nubis_base_cloud(b) * cm::height_gradient_for_type(h, s_.cloud_type);
     return cm::apply_coverage(shaped, coverage);
 }
 
-float cloud_density::density(vec3 p, float alt, long* texture_reads) const {
-    const float covered = base_density(p, alt, texture_reads);
+float cloud_density::density(vec3 p, float alt, long* texture_reads, float footprint) const {
+    const float covered = base_density(p, alt, texture_reads, footprint);
     if (covered <= 0.0f) return 0.0f;
     if (texture_reads) *texture_reads += 1;
     const float h = cm::height_fraction(alt, s_.layer_bottom, s_.layer_top);
     const vec3 q(p.x + s_.wind.x, alt, p.z + s_.wind.y);
-    const vec3 d = vec3(detail_.sample3(q / s_.detail_tile));
+    const vec3 d = vec3(detail_.sample3(q / s_.detail_tile, cm::texture_lod(footprint, s_.detail_tile / float(detail_.size))));
     return cm::erode(covered, cm::nubis_detail_erosion(d, h));
 }
 

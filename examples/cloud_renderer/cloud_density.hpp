@@ -16,6 +16,7 @@
 #include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <vector>
 
 namespace cloud_renderer {
 
@@ -25,11 +26,17 @@ namespace cloud_renderer {
 struct linear_texture {
     const std::uint8_t* data;
     int size, channels;
+    std::vector<const std::uint8_t*> mips;  // levels 1, 2, ... (level k: size >> k texels a side)
 
     // Texel (x, y, z) channel c in [0, 1]; indices must be in [0, size).
     float texel(int x, int y, int z, int c) const;
     glm::vec4 sample3(glm::vec3 uvw) const;
     glm::vec4 sample2(glm::vec2 uv) const;
+    // textureLod() with GL_LINEAR_MIPMAP_LINEAR: levels floor(lod) and floor(lod) + 1 mixed by
+    // the fraction, lod clamped to [0, last level]; lod <= 0 is sample3 / sample2 (GL_LINEAR
+    // magnification). Without mips, level 0.
+    glm::vec4 sample3(glm::vec3 uvw, float lod) const;
+    glm::vec4 sample2(glm::vec2 uv, float lod) const;
 };
 
 // The density field of shaders/clouds.frag (cr_altitude, cr_density). Keeps references to
@@ -47,11 +54,13 @@ public:
     // The same, adding to *texture_reads the texture() calls the shader makes for it: none
     // outside the layer, the weather map and the base volume inside it, and the detail
     // volume where the base cloud survives coverage (cr_density's early exits).
-    float density(glm::vec3 p, float alt, long* texture_reads) const;
+    // footprint: the width a pixel covers there (pixel_footprint): each texture is read at the
+    // mip level that matches it (texture_lod); 0 reads level 0 (the volume tracer's field).
+    float density(glm::vec3 p, float alt, long* texture_reads, float footprint = 0.0f) const;
     // The base shape alone (cr_base_density): the density before the detail erodes it, an
     // upper bound of density() from the weather map and the base volume only (2 reads inside
     // the layer, none outside).
-    float base_density(glm::vec3 p, float alt, long* texture_reads = nullptr) const;
+    float base_density(glm::vec3 p, float alt, long* texture_reads = nullptr, float footprint = 0.0f) const;
 
     const scene& scene_data() const { return s_; }
     const linear_texture& base() const { return base_; }

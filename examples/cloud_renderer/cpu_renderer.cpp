@@ -33,12 +33,14 @@ struct pixel_program {
     vec2 band;           // altitudes of the cloud type's band (height_range_for_type): no density outside
     std::vector<vec3> shadow_map;  // the Beer shadow map (needs_shadow_map), row j = 0 first
     long shadow_map_reads = 0;     // texture reads of building it (once per frame)
+    float map_footprint = 0.0f;    // its texels' width with LOD, else 0
 
     pixel_program(const scene& sc, const variant& va, const cloud_textures& t)
         : s(sc), v(va), k(make_frame_constants(sc)), field(sc, t), mie(cm::mie_approx_params(k.droplet_diameter)),
           phase_g_mean(phase_mean_cosine(k, va.phase)),
           band(cm::height_range_for_type(sc.cloud_type) * (sc.layer_top - sc.layer_bottom) + sc.layer_bottom) {
         if (needs_shadow_map(v)) {
+            if (v.lod) map_footprint = 2.0f * k.shadow_half_extent / float(shadow_map_size);
             shadow_map.resize(static_cast<std::size_t>(shadow_map_size) * static_cast<std::size_t>(shadow_map_size));
             for (int j = 0; j < shadow_map_size; ++j)
                 for (int i = 0; i < shadow_map_size; ++i)
@@ -59,7 +61,7 @@ struct pixel_program {
             for (int m = 0; m < shadow_map_steps; ++m) {
                 const float t = seg.x + float(m) * ds;
                 const vec3 q = p0 - k.sun_dir * (t + 0.5f * ds);
-                acc.add_step(t, ds, s.extinction * density(q, altitude(q), counter));
+                acc.add_step(t, ds, s.extinction * density(q, altitude(q), counter, map_footprint));
             }
         }
         return acc.texel();
@@ -101,9 +103,14 @@ struct pixel_program {
     };
 
     float altitude(vec3 p) const { return field.altitude(p); }
-    float density(vec3 p, float alt, long* counter = nullptr) const { return field.density(p, alt, counter); }
+    // footprint: the pixel's width at the sample (variant::lod; 0: level 0 everywhere).
+    float density(vec3 p, float alt, long* counter = nullptr, float footprint = 0.0f) const {
+        return field.density(p, alt, counter, footprint);
+    }
 
-    float cone_extinction(vec3 p, long* counter = nullptr) const { return s.extinction * density(p, altitude(p), counter); }
+    float cone_extinction(vec3 p, long* counter = nullptr, float footprint = 0.0f) const {
+        return s.extinction * density(p, altitude(p), counter, footprint);
+    }
 
     float phase(float mu, float scale) const {
         switch (v.phase) {
@@ -122,7 +129,8 @@ struct pixel_program {
     // diffusion model's tau_behind) by the cone or by a march to where the cloud type's
     // altitude band ends (height_range_for_type: no density beyond it, so the band's steps
     // lose nothing and a 225 m stratus sheet gets all of them instead of 1 in 11).
-    float light_optical_depth(vec3 p, float alt, vec3 toward, light_mode mode, long* counter = nullptr) const {
+    float light_optical_depth(vec3 p, float alt, vec3 toward, light_mode mode, long* counter = nullptr,
+                              float footprint = 0.0f) const {
         if (mode == light_mode::map) {
             // Toward the sun: the map's optical depth at p's depth; away from it: the rest of
             // the column. Off the map: the cone.
@@ -138,14 +146,16 @@ struct pixel_program {
         if (mode == light_mode::cone) {
             const cm::cone_light_config<float> cone{v.cone_samples, k.cone_step, k.cone_spread, k.cone_far_distance,
                                                     k.cone_far_length};
-            return cm::cone_optical_depth(p, toward, cone, [this, counter](const vec3& q) { return cone_extinction(q, counter); });
+            return cm::cone_optical_depth(p, toward, cone,
+                                          [this, counter, footprint](const vec3& q) { return cone_extinction(q, counter, footprint); });
         }
         const vec3 up = glm::normalize(vec3(p.x, p.y + (s.planet_radius + s.camera_altitude), p.z));
         const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up), s.planet_radius, band.x, band.y);
         const float length_to_exit = seg.y > seg.x ? std::min(seg.y, k.light_march_max) : 0.0f;
         const float ds = length_to_exit / float(v.light_steps);
         float tau = 0.0f;
-        for (int i = 0; i < v.light_steps; ++i) tau += cone_extinction(p + toward * ((float(i) + 0.5f) * ds), counter) * ds;
+        for (int i = 0; i < v.light_steps; ++i)
+            tau += cone_extinction(p + toward * ((float(i) + 0.5f) * ds), counter, footprint) * ds;
         return tau;
     }
 
@@ -162,6 +172,11 @@ struct pixel_program {
         const float up = std::max(k.sun_dir.y, 0.0f);
         return k.sun_radiance * sun + glm::mix(k.ambient_bottom * cm::diffuse_transmittance(tau_behind * up, phase_g_mean),
                                                k.ambient_top * cm::diffuse_transmittance(tau_light * up, phase_g_mean), h);
+    }
+
+    // The pixel's footprint at distance t (variant::lod), 0 without LOD (level 0).
+    float footprint_at(float t, int height) const {
+        return v.lod ? cm::pixel_footprint(t, k.tan_half_fov, float(height)) : 0.0f;
     }
 
     // The march's start offset in [0, 1) steps: the pixel's hash advanced by R1 each frame.
@@ -206,7 +221,7 @@ struct pixel_program {
                     const int j = std::min(i + skip_block, v.view_steps);
                     const float tp = at((float(i) + offset * float(j - i)) / n);
                     const float altp = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, tp);
-                    if (field.base_density(dir * tp, altp, view_reads) <= 0.0f) {
+                    if (field.base_density(dir * tp, altp, view_reads, footprint_at(tp, height)) <= 0.0f) {
                         step_begin = at(float(j) / n);
                         i = j - 1;
                         continue;
@@ -218,16 +233,17 @@ struct pixel_program {
                 const float ds = step_end - step_begin;
                 step_begin = step_end;
                 const float alt = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, t);
-                const float d = density(dir * t, alt, view_reads);
+                const float footprint = footprint_at(t, height);
+                const float d = density(dir * t, alt, view_reads, footprint);
                 if (d <= 0.0f) {
                     ++empty_steps;
                     continue;
                 }
                 empty_steps = 0;
                 const float sigma_t = s.extinction * d;
-                const float tau_light = light_optical_depth(dir * t, alt, k.sun_dir, v.light, light_reads);
+                const float tau_light = light_optical_depth(dir * t, alt, k.sun_dir, v.light, light_reads, footprint);
                 const float tau_behind = v.lighting == lighting_model::diffusion
-                                             ? light_optical_depth(dir * t, alt, -k.sun_dir, v.behind, light_reads)
+                                             ? light_optical_depth(dir * t, alt, -k.sun_dir, v.behind, light_reads, footprint)
                                              : 0.0f;
                 const float h = cm::height_fraction(alt, s.layer_bottom, s.layer_top);
                 const vec3 S = (s.albedo * sigma_t) * in_scattering(tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu, h);

@@ -51,6 +51,7 @@ std::vector<shader_int> variant_values(const variant& v) {
             {"u_skip", v.skip ? 1 : 0},
             {"u_shadows", v.shadows ? 1 : 0},
             {"u_occluded_ambient", v.occluded_ambient ? 1 : 0},
+            {"u_lod", v.lod ? 1 : 0},
             {"u_jitter", v.jitter ? 1 : 0},
             {"u_sun_disc", v.sun ? 1 : 0},
             {"u_haze", v.haze ? 1 : 0},
@@ -335,23 +336,36 @@ std::string gl_renderer::device() const {
 bool gl_renderer::upload_textures(const cloud_textures& t, std::string& why) {
     const gl_api& gl = s_->gl;
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    const auto setup = [&gl](GLenum target) {
-        gl.TexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    // Trilinear filtering over the mip levels of build_mipmaps (uploaded, not generated: the
+    // CPU twin samples the same bytes); without them, level 0 only.
+    const auto setup = [&gl](GLenum target, std::size_t levels) {
+        gl.TexParameteri(target, GL_TEXTURE_MIN_FILTER, levels > 0 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
         gl.TexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        gl.TexParameteri(target, GL_TEXTURE_MAX_LEVEL, static_cast<GLint>(levels));
         gl.TexParameteri(target, GL_TEXTURE_WRAP_S, GL_REPEAT);
         gl.TexParameteri(target, GL_TEXTURE_WRAP_T, GL_REPEAT);
         gl.TexParameteri(target, GL_TEXTURE_WRAP_R, GL_REPEAT);
     };
-    gl.BindTexture(GL_TEXTURE_3D, s_->textures[0]);
-    gl.TexImage3D(GL_TEXTURE_3D, 0, GL_RGBA8, t.base_size, t.base_size, t.base_size, 0, GL_RGBA, GL_UNSIGNED_BYTE, t.base.data());
-    setup(GL_TEXTURE_3D);
-    gl.BindTexture(GL_TEXTURE_3D, s_->textures[1]);
-    gl.TexImage3D(GL_TEXTURE_3D, 0, GL_RGB8, t.detail_size, t.detail_size, t.detail_size, 0, GL_RGB, GL_UNSIGNED_BYTE,
-                  t.detail.data());
-    setup(GL_TEXTURE_3D);
+    const auto volume = [&gl](GLuint tex, GLint internal, GLenum format, int size, const std::vector<std::uint8_t>& level0,
+                              const std::vector<std::vector<std::uint8_t>>& mips) {
+        gl.BindTexture(GL_TEXTURE_3D, tex);
+        gl.TexImage3D(GL_TEXTURE_3D, 0, internal, size, size, size, 0, format, GL_UNSIGNED_BYTE, level0.data());
+        for (std::size_t k = 0; k < mips.size(); ++k) {
+            const int s = size >> (k + 1);
+            gl.TexImage3D(GL_TEXTURE_3D, static_cast<GLint>(k + 1), internal, s, s, s, 0, format, GL_UNSIGNED_BYTE, mips[k].data());
+        }
+    };
+    volume(s_->textures[0], GL_RGBA8, GL_RGBA, t.base_size, t.base, t.base_mips);
+    setup(GL_TEXTURE_3D, t.base_mips.size());
+    volume(s_->textures[1], GL_RGB8, GL_RGB, t.detail_size, t.detail, t.detail_mips);
+    setup(GL_TEXTURE_3D, t.detail_mips.size());
     gl.BindTexture(GL_TEXTURE_2D, s_->textures[2]);
     gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, t.weather_size, t.weather_size, 0, GL_RGB, GL_UNSIGNED_BYTE, t.weather.data());
-    setup(GL_TEXTURE_2D);
+    for (std::size_t k = 0; k < t.weather_mips.size(); ++k) {
+        const int s = t.weather_size >> (k + 1);
+        gl.TexImage2D(GL_TEXTURE_2D, static_cast<GLint>(k + 1), GL_RGB8, s, s, 0, GL_RGB, GL_UNSIGNED_BYTE, t.weather_mips[k].data());
+    }
+    setup(GL_TEXTURE_2D, t.weather_mips.size());
     why = s_->gl_errors("texture upload");
     return why.empty();
 }

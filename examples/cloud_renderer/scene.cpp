@@ -235,11 +235,13 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             if (value == "flat") out.occluded_ambient = false;
             else if (value == "occluded") out.occluded_ambient = true;
             else return "ambient must be flat or occluded, not '" + value + "'";
+        } else if (key == "lod") {
+            if (!parse_switch(value, out.lod)) return "lod must be on or off, not '" + value + "'";
         } else if (key == "shadows") {
             if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
         } else {
             return "unknown variant key '" + key +
-                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, schedule, skip, ambient, shadows, sun, haze, dither, "
+                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, schedule, skip, ambient, lod, shadows, sun, haze, dither, "
                    "jitter)";
         }
     }
@@ -251,7 +253,7 @@ std::string variant_spec(const variant& v) {
     std::ostringstream s;
     s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",octaves=" << v.octaves << ",powder=" << (v.powder ? "on" : "off")
       << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
-      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
+      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
     return s.str();
 }
 

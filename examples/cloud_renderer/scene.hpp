@@ -67,6 +67,10 @@ struct variant {
     // optical depth above the sample, the bottom's of the depth below, both estimated from
     // the light estimates toward and away from the sun times the sun's elevation sine.
     bool occluded_ambient = true;
+    // Explicit texture LOD: every density sample reads the mip level whose texels match the
+    // pixel's footprint at the view sample (texture_lod; the light's samples inherit it; the
+    // shadow map uses its texel width); off: level 0 everywhere.
+    bool lod = false;
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
     bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
     bool sun = true;                 // draw the sun disc (sun_disc_radiance) in the background

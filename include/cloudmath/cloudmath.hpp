@@ -16,5 +16,6 @@
 #include "sun.hpp"
 #include "reprojection.hpp"
 #include "shadow_map.hpp"
+#include "texture_lod.hpp"
 
 #endif  // CLOUDMATH_CLOUDMATH_HPP

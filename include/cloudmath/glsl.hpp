@@ -9,8 +9,8 @@
 //           .glsl files on disk, for engines that ship or hot-reload shader files.
 // Modules:  "core", "phase", "transmittance", "integration", "multiple_scattering",
 //           "diffusion_lighting" (with its generated "diffusion_lighting_models"),
-//           "cone_sampling", "geometry", "density", "noise", "sun", "reprojection", "shadow_map", and
-//           "cloudmath" (all of them).
+//           "cone_sampling", "geometry", "density", "noise", "sun", "reprojection", "shadow_map",
+//           "texture_lod", and "cloudmath" (all of them).
 // Includes: a line `#include "name.glsl"` is replaced by that file's resolved text the first
 //           time it is met and dropped afterwards (what the include guards would do).
 //           The result has no #version line: the caller chooses the target.

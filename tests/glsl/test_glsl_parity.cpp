@@ -562,6 +562,19 @@ std::vector<parity_case> make_cases() {
         add({"cm_temporal_blend_weight", "vec4(cm_temporal_blend_weight(a.x, a.y))",
              [](vec4 a, vec4) { return vec4(cm::temporal_blend_weight(a.x, a.y)); }, counts, 1, 1.0f, 1e-6});
     }
+    // texture_lod: footprints near and far, levels across magnification and minification.
+    {
+        std::vector<std::pair<vec4, vec4>> in;
+        for (float d : {-10.0f, 0.0f, 1.0f, 500.0f, 35000.0f, 2e5f})
+            for (float texel : {10.0f, 46.875f, 234.375f})
+                in.push_back({vec4(d, 0.57735f, 270.0f, texel), vec4(0)});
+        add({"cm_pixel_footprint",
+             "vec4(cm_pixel_footprint(a.x, a.y, a.z), cm_texture_lod(cm_pixel_footprint(a.x, a.y, a.z), a.w), cm_texture_lod(a.x, a.w), 0.0)",
+             [](vec4 a, vec4) {
+                 const float w = cm::pixel_footprint(a.x, a.y, a.z);
+                 return vec4(w, cm::texture_lod(w, a.w), cm::texture_lod(a.x, a.w), 0.0f); },
+             in, 3, 1.0f, 1e-5});
+    }
     // shadow_map: a texel built by a march over clouds with gaps (the accumulator and its
     // steps), looked up at depths in front of, inside and behind the column; projections.
     {

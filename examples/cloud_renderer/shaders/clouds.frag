@@ -26,6 +26,7 @@ CR_PARAM(int, u_schedule)         // view steps: 0 uniform, 1 growing with dista
 CR_PARAM(int, u_skip)             // empty-space skipping: 0 off, 1 probe CR_SKIP_BLOCK steps with the base shape
 CR_PARAM(int, u_shadows)          // 0 off, 1 cloud shadows on the ground from the Beer shadow map
 CR_PARAM(int, u_occluded_ambient) // sky light inside clouds: 0 flat, 1 through the optical depth above / below
+CR_PARAM(int, u_lod)              // 0 level 0 everywhere, 1 the mip level of the pixel's footprint (cm_texture_lod)
 CR_PARAM(int, u_jitter)
 CR_PARAM(int, u_sun_disc)         // 0 no sun disc, 1 the disc at its physical radiance
 CR_PARAM(int, u_haze)             // 0 off, 1 aerial perspective (air between camera and cloud)
@@ -83,6 +84,7 @@ const int CR_SHADOW_MAP_STEPS = 24;      // ... shadow_map_steps
 const float CR_GROUND_SKY_SHARE = 0.4;   // ... ground_sky_share
 
 CmMieApproxParams cr_mie;  // set once per pixel in main()
+float cr_footprint = 0.0;  // the pixel's width at the current view sample (u_lod), read by cr_density
 vec2 cr_band;              // altitudes of the cloud type's band (no density outside), set in main()
 
 // Altitude of a camera-relative point, without |p - centre| - R's cancellation.
@@ -97,8 +99,10 @@ float cr_base_density(vec3 p, float altitude) {
     float h = cm_height_fraction(altitude, u_layer_bottom, u_layer_top);
     if (h <= 0.0 || h >= 1.0) return 0.0;
     vec3 q = vec3(p.x + u_wind.x, altitude, p.z + u_wind.y);
-    float coverage = cm_saturate(texture(u_weather, q.xz / u_weather_tile).r - 0.5 + u_coverage);
-    vec4 base = texture(u_base, q / u_base_tile);
+    float weather_lod = cm_texture_lod(cr_footprint, u_weather_tile / float(textureSize(u_weather, 0).x));
+    float base_lod = cm_texture_lod(cr_footprint, u_base_tile / float(textureSize(u_base, 0).x));
+    float coverage = cm_saturate(textureLod(u_weather, q.xz / u_weather_tile, weather_lod).r - 0.5 + u_coverage);
+    vec4 base = textureLod(u_base, q / u_base_tile, base_lod);
     float shaped = cm_nubis_base_cloud(base) * cm_height_gradient_for_type(h, u_cloud_type);
     return cm_apply_coverage(shaped, coverage);
 }
@@ -110,7 +114,7 @@ float cr_density(vec3 p, float altitude) {
     if (covered <= 0.0) return 0.0;
     float h = cm_height_fraction(altitude, u_layer_bottom, u_layer_top);
     vec3 q = vec3(p.x + u_wind.x, altitude, p.z + u_wind.y);
-    vec3 detail = texture(u_detail, q / u_detail_tile).rgb;
+    vec3 detail = textureLod(u_detail, q / u_detail_tile, cm_texture_lod(cr_footprint, u_detail_tile / float(textureSize(u_detail, 0).x))).rgb;
     return cm_erode(covered, cm_nubis_detail_erosion(detail, h));
 }
 
@@ -253,6 +257,7 @@ void main() {
     cr_mie = cm_mie_approx_params(u_droplet_diameter);
     cr_band = cm_height_range_for_type(u_cloud_type) * (u_layer_top - u_layer_bottom) + u_layer_bottom;
     if (u_pass == 2) {
+        cr_footprint = u_lod != 0 ? 2.0 * u_shadow_half_extent / float(CR_SHADOW_MAP_SIZE) : 0.0;
         out_color = vec4(cr_shadow_texel(floor(gl_FragCoord.xy)), 0.0);
         out_depth = 0.0;
         return;
@@ -281,6 +286,7 @@ void main() {
                 int j = min(i + CR_SKIP_BLOCK, u_view_steps);
                 float tp = cr_march_distance((float(i) + offset * float(j - i)) / n, seg.x, t1);
                 float altp = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, tp);
+                cr_footprint = u_lod != 0 ? cm_pixel_footprint(tp, u_tan_half_fov, u_resolution.y) : 0.0;
                 if (cr_base_density(dir * tp, altp) <= 0.0) {
                     step_begin = cr_march_distance(float(j) / n, seg.x, t1);
                     i = j - 1;
@@ -293,6 +299,7 @@ void main() {
             float ds = step_end - step_begin;
             step_begin = step_end;
             float altitude = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, t);
+            cr_footprint = u_lod != 0 ? cm_pixel_footprint(t, u_tan_half_fov, u_resolution.y) : 0.0;
             float density = cr_density(dir * t, altitude);
             if (density <= 0.0) {
                 ++empty_steps;

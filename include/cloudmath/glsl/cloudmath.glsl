@@ -16,5 +16,6 @@
 #include "sun.glsl"
 #include "reprojection.glsl"
 #include "shadow_map.glsl"
+#include "texture_lod.glsl"
 
 #endif  // CM_CLOUDMATH_GLSL

@@ -1,0 +1,20 @@
+// cloudmath/glsl/texture_lod.glsl: GLSL twin of cloudmath/texture_lod.hpp: a pixel's
+// footprint at a distance and the mip level that matches it, for textureLod in a march loop.
+// Use: float lod = cm_texture_lod(cm_pixel_footprint(t, tan_half_fov, u_resolution.y), tile / size);
+#ifndef CM_TEXTURE_LOD_GLSL
+#define CM_TEXTURE_LOD_GLSL
+
+#include "core.glsl"
+
+// distance * 2 tan_half_fov / image_height.
+float cm_pixel_footprint(float distance, float tan_half_fov, float image_height) {
+    return distance * (2.0 * tan_half_fov / image_height);
+}
+
+// log2(footprint / texel_size), 0 for magnification, non-positive or NaN footprints.
+float cm_texture_lod(float footprint, float texel_size) {
+    float ratio = footprint / texel_size;
+    return ratio > 1.0 ? log2(ratio) : 0.0;
+}
+
+#endif  // CM_TEXTURE_LOD_GLSL
