@@ -1,6 +1,7 @@
 #include "cloud_density.hpp"
 
 #include <cloudmath/cloudmath.hpp>
+#include <cloudmath/noise_bake.hpp>
 
 #include <glm/common.hpp>
 #include <glm/exponential.hpp>
@@ -105,7 +106,9 @@ std::vector<const std::uint8_t*> pointers(const std::vector<std::vector<std::uin
 cloud_density::cloud_density(const scene& s, const cloud_textures& t)
     : s_(s), base_{t.base.data(), t.base_size, 4, pointers(t.base_mips)},
       detail_{t.detail.data(), t.detail_size, 3, pointers(t.detail_mips)},
-      weather_{t.weather.data(), t.weather_size, 3, pointers(t.weather_mips)} {}
+      weather_{t.weather.data(), t.weather_size, 3, pointers(t.weather_mips)},
+      weather_wide_{t.weather_wide.data(), t.weather_wide_size, 3, pointers(t.weather_wide_mips)},
+      curl_{t.curl.data(), t.curl_size, 3, {}} {}
 
 float cloud_density::altitude(vec3 p) const {
     const float t = glm::length(p);
@@ -117,6 +120,12 @@ float cloud_density::base_density(vec3 p, float alt, long* texture_reads, float 
     if (h <= 0.0f || h >= 1.0f) return 0.0f;
     if (texture_reads) *texture_reads += 2;
     const vec3 q(p.x + s_.wind.x, alt, p.z + s_.wind.y);
+    if (s_.shape == cloud_shape::detailed) {
+        const vec3 w = vec3(weather_wide_.sample2(vec2(q.x, q.z) / s_.weather_wide_tile,
+                                                  cm::texture_lod(footprint, s_.weather_wide_tile / float(weather_wide_.size))));
+        const vec4 b = base_.sample3(q / s_.base_tile, cm::texture_lod(footprint, s_.base_tile / float(base_.size)));
+        return cm::cloud_shape_density(b, w, h, s_.coverage, s_.cloud_type, s_.type_spread, s_.top_rounding);
+    }
     const float weather_lod = cm::texture_lod(footprint, s_.weather_tile / float(weather_.size));
     const float base_lod = cm::texture_lod(footprint, s_.base_tile / float(base_.size));
     const float coverage = cm::saturate(weather_.sample2(vec2(q.x, q.z) / s_.weather_tile, weather_lod).r - 0.5f + s_.coverage);
@@ -130,7 +139,16 @@ float cloud_density::density(vec3 p, float alt, long* texture_reads, float footp
     if (covered <= 0.0f) return 0.0f;
     if (texture_reads) *texture_reads += 1;
     const float h = cm::height_fraction(alt, s_.layer_bottom, s_.layer_top);
-    const vec3 q(p.x + s_.wind.x, alt, p.z + s_.wind.y);
+    vec3 q(p.x + s_.wind.x, alt, p.z + s_.wind.y);
+    if (s_.shape == cloud_shape::detailed) {
+        // Curl noise displaces the detail, most at the cloud's base (wispy bases, billowy tops).
+        if (texture_reads) *texture_reads += 1;
+        const vec3 c = vec3(curl_.sample2(vec2(q.x, q.z) / s_.curl_tile));
+        const vec3 curl(cm::curl_bake_decode(c.x), cm::curl_bake_decode(c.y), cm::curl_bake_decode(c.z));
+        q += curl * (s_.curl_strength * (1.0f - h));
+        const vec3 d = vec3(detail_.sample3(q / s_.detail_tile, cm::texture_lod(footprint, s_.detail_tile / float(detail_.size))));
+        return cm::saturate(cm::erode(covered, cm::nubis_detail_erosion(d, h)) * s_.density_scale);
+    }
     const vec3 d = vec3(detail_.sample3(q / s_.detail_tile, cm::texture_lod(footprint, s_.detail_tile / float(detail_.size))));
     return cm::erode(covered, cm::nubis_detail_erosion(d, h));
 }

@@ -66,10 +66,11 @@ public:
     const linear_texture& base() const { return base_; }
     const linear_texture& detail() const { return detail_; }
     const linear_texture& weather() const { return weather_; }
+    const linear_texture& weather_wide() const { return weather_wide_; }
 
 private:
     const scene& s_;
-    linear_texture base_, detail_, weather_;
+    linear_texture base_, detail_, weather_, weather_wide_, curl_;
 };
 
 // The sky seen in direction dir (unit, camera frame): the zenith-horizon gradient by dir.y,

@@ -38,7 +38,7 @@ struct pixel_program {
     pixel_program(const scene& sc, const variant& va, const cloud_textures& t)
         : s(sc), v(va), k(make_frame_constants(sc)), field(sc, t), mie(cm::mie_approx_params(k.droplet_diameter)),
           phase_g_mean(phase_mean_cosine(k, va.phase)),
-          band(cm::height_range_for_type(sc.cloud_type) * (sc.layer_top - sc.layer_bottom) + sc.layer_bottom) {
+          band(k.band) {
         if (needs_shadow_map(v)) {
             if (v.lod) map_footprint = 2.0f * k.shadow_half_extent / float(shadow_map_size);
             shadow_map.resize(static_cast<std::size_t>(shadow_map_size) * static_cast<std::size_t>(shadow_map_size));

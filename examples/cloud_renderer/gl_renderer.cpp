@@ -160,7 +160,7 @@ struct gl_renderer::state {
 
     gl_api gl;
     GLuint vao = 0, queries[2] = {0, 0};  // GL_TIMESTAMP before and after the draw
-    GLuint textures[3] = {0, 0, 0};  // base, detail, weather
+    GLuint textures[5] = {0, 0, 0, 0, 0};  // base, detail, weather, weather_wide, curl
     GLuint fbo = 0, target = 0;      // offscreen float target for render()
     GLuint shadow_fbo = 0, shadow_map = 0;  // the Beer shadow map (clouds.frag's pass 2)
     int target_w = 0, target_h = 0;
@@ -250,7 +250,7 @@ struct gl_renderer::state {
         if (gl.DeleteProgram == nullptr) return;  // loading failed: nothing was created
         for (auto& [key, p] : programs) gl.DeleteProgram(p);
         programs.clear();
-        gl.DeleteTextures(3, textures);
+        gl.DeleteTextures(5, textures);
         if (target) gl.DeleteTextures(1, &target);
         if (shadow_map) gl.DeleteTextures(1, &shadow_map);
         if (shadow_fbo) gl.DeleteFramebuffers(1, &shadow_fbo);
@@ -296,7 +296,7 @@ bool init_gl(gl_renderer::state& s, gl_renderer::proc_loader load, std::string& 
     }
     s.gl.GenVertexArrays(1, &s.vao);
     s.gl.GenQueries(2, s.queries);
-    s.gl.GenTextures(3, s.textures);
+    s.gl.GenTextures(5, s.textures);
     why = s.gl_errors("context setup");
     return why.empty();
 }
@@ -366,6 +366,18 @@ bool gl_renderer::upload_textures(const cloud_textures& t, std::string& why) {
         gl.TexImage2D(GL_TEXTURE_2D, static_cast<GLint>(k + 1), GL_RGB8, s, s, 0, GL_RGB, GL_UNSIGNED_BYTE, t.weather_mips[k].data());
     }
     setup(GL_TEXTURE_2D, t.weather_mips.size());
+    gl.BindTexture(GL_TEXTURE_2D, s_->textures[3]);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, t.weather_wide_size, t.weather_wide_size, 0, GL_RGB, GL_UNSIGNED_BYTE,
+                  t.weather_wide.data());
+    for (std::size_t k = 0; k < t.weather_wide_mips.size(); ++k) {
+        const int s = t.weather_wide_size >> (k + 1);
+        gl.TexImage2D(GL_TEXTURE_2D, static_cast<GLint>(k + 1), GL_RGB8, s, s, 0, GL_RGB, GL_UNSIGNED_BYTE,
+                      t.weather_wide_mips[k].data());
+    }
+    setup(GL_TEXTURE_2D, t.weather_wide_mips.size());
+    gl.BindTexture(GL_TEXTURE_2D, s_->textures[4]);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, t.curl_size, t.curl_size, 0, GL_RGB, GL_UNSIGNED_BYTE, t.curl.data());
+    setup(GL_TEXTURE_2D, 0);
     why = s_->gl_errors("texture upload");
     return why.empty();
 }
@@ -456,6 +468,21 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
         set1i(samplers[i], i);
     }
     set1i("u_shadow_map", 3);
+    // The detailed shape's textures on units 4 and 5 (3 is the shadow map's).
+    const char* more[2] = {"u_weather_wide", "u_curl"};
+    for (int i = 0; i < 2; ++i) {
+        gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE4 + i));
+        gl.BindTexture(GL_TEXTURE_2D, st.textures[3 + i]);
+        set1i(more[i], 4 + i);
+    }
+    set1i("u_shape", static_cast<int>(sc.shape));
+    set1f("u_weather_wide_tile", sc.weather_wide_tile);
+    set1f("u_curl_tile", sc.curl_tile);
+    set1f("u_curl_strength", sc.curl_strength);
+    set1f("u_type_spread", sc.type_spread);
+    set1f("u_top_rounding", sc.top_rounding);
+    set1f("u_density_scale", sc.density_scale);
+    gl.Uniform2f(loc("u_band"), k.band.x, k.band.y);
     return program;
 }
 

@@ -64,6 +64,9 @@ const char* usage_text() {
            "  --altitude M, --yaw DEG, --pitch DEG, --fov DEG          camera\n"
            "  --sun-elevation DEG, --sun-azimuth DEG                   sun\n"
            "  --coverage X, --cloud-type X (0 stratus .. 1 cumulus), --exposure X\n"
+           "  --shape S           the density field: detailed (default: per-cloud type and top from the\n"
+           "                      weather map, rounded tops, curl-distorted detail, crisp edges, a\n"
+           "                      240 km weather period) or classic (one profile, 60 km period)\n"
            "  --quiet             no progress lines\n"
            "  --help              this text\n";
 }
@@ -141,7 +144,13 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
         else if (a == "--coverage") err = number(0, 1, [&](double x) { o.sc.coverage = float(x); });
         else if (a == "--cloud-type") err = number(0, 1, [&](double x) { o.sc.cloud_type = float(x); });
         else if (a == "--exposure") err = number(0.01, 100, [&](double x) { o.sc.exposure = float(x); });
-        else if (a == "--out" || a == "--bench-out" || a == "--cache") {
+        else if (a == "--shape") {
+            std::string v;
+            if (!value(v)) return "--shape needs classic or detailed";
+            if (v == "classic") o.sc.shape = cloud_shape::classic;
+            else if (v == "detailed") o.sc.shape = cloud_shape::detailed;
+            else return "--shape must be classic or detailed, not '" + v + "'";
+        } else if (a == "--out" || a == "--bench-out" || a == "--cache") {
             std::string v;
             if (!value(v) || v.empty()) return a + " needs a path";
             (a == "--out" ? o.out : a == "--bench-out" ? o.bench_out : o.cache_dir) = v;

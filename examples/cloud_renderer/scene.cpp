@@ -1,5 +1,6 @@
 #include "scene.hpp"
 
+#include <cloudmath/density.hpp>
 #include <cloudmath/phase.hpp>
 #include <cloudmath/sun.hpp>
 
@@ -63,6 +64,10 @@ const std::vector<scene>& presets() {
         v.push_back(make("above", "above the clouds looking down, low sun", 7000, 200, -18, 10, 230, 0.33f, 0.75f));
         v.push_back(make("stratus", "overcast stratus from the ground", 2, 40, 22, 35, 100, 0.6f, 0.0f));
         v.push_back(make("cumulus", "scattered cumulus, sun high", 2, 300, 18, 60, 180, 0.27f, 1.0f));
+        scene towering = make("towering", "towering cumulus in a 1.5 to 8 km layer, sun to the side", 2, 130, 14, 40, 215, 0.3f, 1.0f);
+        towering.layer_top = 8000.0f;
+        towering.max_distance = 60000.0f;
+        v.push_back(towering);
         return v;
     }();
     return all;
@@ -112,6 +117,7 @@ frame_constants make_frame_constants(const scene& s) {
     f.cone_far_length = 900.0f;
     f.light_march_max = 6000.0f;
     f.march_near_distance = 1000.0f;
+    f.band = cloud_band(s);
     f.min_transmittance = 0.01f;
 
     // The shadow map's frame. The sun's elevation is clamped to 3 degrees for the plane's
@@ -143,6 +149,24 @@ const char* name(phase_model p) {
     }
     return "?";
 }
+glm::vec2 cloud_band(const scene& s) {
+    glm::vec2 range = cloudmath::height_range_for_type(s.cloud_type);
+    if (s.shape == cloud_shape::detailed) {
+        // The range's ends are piecewise linear in the type with a kink at 0.5: its extremes
+        // over an interval are at the interval's ends or at 0.5.
+        const float lo = glm::clamp(s.cloud_type - 0.5f * s.type_spread, 0.0f, 1.0f);
+        const float hi = glm::clamp(s.cloud_type + 0.5f * s.type_spread, 0.0f, 1.0f);
+        for (float t : {lo, hi, glm::clamp(0.5f, lo, hi)}) {
+            const glm::vec2 r = cloudmath::height_range_for_type(t);
+            range = glm::vec2(std::fmin(range.x, r.x), std::fmax(range.y, r.y));
+        }
+        range.x *= cloudmath::cloud_top_fraction(0.0f);  // a lower top compresses the profile down
+    }
+    return range * (s.layer_top - s.layer_bottom) + s.layer_bottom;
+}
+
+const char* name(cloud_shape c) { return c == cloud_shape::classic ? "classic" : "detailed"; }
+
 const char* name(light_mode l) { return l == light_mode::cone ? "cone" : l == light_mode::march ? "march" : "map"; }
 const char* name(step_schedule s) { return s == step_schedule::uniform ? "uniform" : "growing"; }
 const char* name(integration_mode i) { return i == integration_mode::analytic ? "analytic" : "naive"; }

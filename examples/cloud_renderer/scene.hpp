@@ -77,6 +77,13 @@ struct variant {
     bool dither = true;              // triangular dither of the display colour before 8-bit output
 };
 
+// The density field. classic: the weather map's coverage (R) with the scene's one cloud type
+// and height profile everywhere, a 60 km weather period. detailed: per-cloud type (G, within
+// type_spread of the scene's) and top height (B: top at 60 to 100% of the type's profile),
+// tops rounded by coverage that narrows with height, curl-noise distortion of the detail, a
+// density scale for crisp edges, and the wide weather map (240 km period).
+enum class cloud_shape { classic, detailed };
+
 // The picture: camera, sun, sky, clouds. Angles in degrees, lengths in metres.
 struct scene {
     std::string name = "custom";
@@ -97,7 +104,14 @@ struct scene {
     float max_distance = 35000.0f;   // the view march stops this far from where it enters
     float base_tile = 12000.0f;      // metres covered by one repeat of the base volume
     float detail_tile = 1500.0f;     // ... of the detail volume
-    float weather_tile = 60000.0f;   // ... of the weather map
+    float weather_tile = 60000.0f;   // ... of the weather map (classic shape)
+    cloud_shape shape = cloud_shape::detailed;
+    float weather_wide_tile = 240000.0f;  // ... of the wide weather map (detailed shape)
+    float curl_tile = 9000.0f;       // ... of the curl texture (detailed shape)
+    float curl_strength = 180.0f;    // metres the curl displaces the detail at the cloud's base
+    float type_spread = 0.5f;        // per-cloud type: cloud_type + (G - 0.5) type_spread
+    float top_rounding = 0.6f;       // coverage at the cloud's top, as a share lost (0: flat tops)
+    float density_scale = 4.0f;      // detailed density = saturate(eroded density * this)
     glm::vec2 wind{1200.0f, -800.0f};  // offset of the textures (animate it for wind)
     std::uint32_t frame = 0;         // frame number: advances each pixel's march jitter (frame_jitter)
     float exposure = 1.0f;
@@ -139,6 +153,7 @@ struct frame_constants {
     float cone_step, cone_spread, cone_far_distance, cone_far_length;
     float light_march_max;           // the light march covers at most this far
     float march_near_distance;       // growing view steps: nearly uniform closer than this
+    glm::vec2 band;                  // altitudes outside which the field has no density (cloud_band)
     float min_transmittance;         // early exit of the view march
     // The Beer shadow map: a sun-aligned square of 2 shadow_half_extent around the ground
     // 12 km ahead of the camera, its plane (through shadow_origin, normal sun_dir) above the
@@ -148,6 +163,13 @@ struct frame_constants {
 };
 
 frame_constants make_frame_constants(const scene& s);
+
+// The altitudes (bottom, top) outside which the scene's field has no density: the cloud
+// type's height_range_for_type, or with the detailed shape the union over the types the
+// weather map can give (cloud_type +- type_spread / 2).
+glm::vec2 cloud_band(const scene& s);
+// "classic" or "detailed".
+const char* name(cloud_shape c);
 
 // The unit view direction through the centre of pixel (x, y) of a width x height image (y = 0
 // the bottom row): the shader's ray (clouds.frag main), shared by the CPU renderer, the

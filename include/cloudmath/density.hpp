@@ -213,6 +213,35 @@ template <class T, glm::qualifier Q>
     return erode(apply_coverage(shaped, coverage), nubis_detail_erosion(detail, h));
 }
 
+// cloud_top_fraction(weather_b) = 0.6 + 0.4 saturate(weather_b): a cloud's top as a share of
+// its type's profile, from a weather-map channel (the shortest clouds reach 60% as high).
+template <class T>
+[[nodiscard]] constexpr T cloud_top_fraction(T weather_b) noexcept {
+    return T(0.6) + T(0.4) * saturate(weather_b);
+}
+
+// cloud_shape_density(base, weather, h, coverage, cloud_type, type_spread, top_rounding):
+// the base shape (before detail erosion) of a field whose weather map carries each cloud's
+// coverage (R), type (G) and top (B), so that neighbouring clouds differ instead of being one
+// profile extruded from a 2D shape:
+//   type  t  = saturate(cloud_type + (G - 0.5) type_spread)
+//   top   hc = h / cloud_top_fraction(B)      (the profile compressed under a lower top)
+//   cover c  = saturate(R - 0.5 + coverage) (1 - top_rounding hc^2)
+//   apply_coverage(nubis_base_cloud(base) * height_gradient_for_type(hc, t), c)
+// The coverage that falls with height narrows each cloud toward its top: rounded tops
+// instead of flat ones (top_rounding 0 keeps them flat; 0.6 leaves 40% of the coverage at
+// the top). 0 at and above the cloud's top (hc >= 1). Densities where h is outside the
+// union of height_range_for_type over the spread of types, scaled by 0.6 below, are 0.
+template <class T, glm::qualifier Q>
+[[nodiscard]] constexpr T cloud_shape_density(const glm::vec<4, T, Q>& base, const glm::vec<3, T, Q>& weather, T h,
+                                              T coverage, T cloud_type, T type_spread, T top_rounding) noexcept {
+    const T hc = h / cloud_top_fraction(weather.z);
+    if (!(hc < T(1))) return T(0);
+    const T t = saturate(cloud_type + (weather.y - T(0.5)) * type_spread);
+    const T c = saturate(weather.x - T(0.5) + coverage) * (T(1) - top_rounding * hc * hc);
+    return apply_coverage(nubis_base_cloud(base) * height_gradient_for_type(hc, t), c);
+}
+
 }  // namespace cloudmath
 
 #endif  // CLOUDMATH_DENSITY_HPP

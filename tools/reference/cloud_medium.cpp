@@ -61,11 +61,15 @@ cloud_medium::cloud_medium(const cr::scene& s, const cr::cloud_textures& t, doub
     if (!(scene_.layer_top > scene_.layer_bottom))
         throw std::invalid_argument("cloud_medium: the layer top must be above its bottom");
     // One period of the texture fields: the weather tile, when the base tile divides it;
-    // otherwise a single cell over everything (still a bound, only slow).
-    const double period = scene_.weather_tile, base = scene_.base_tile;
+    // otherwise a single cell over everything (still a bound, only slow). The detailed shape
+    // (cr::cloud_shape) reads the wide weather map, whose period is 4 times longer: its
+    // cells are at least 1/480 of it (500 m for 240 km), to keep the grid's memory bounded.
+    const bool detailed = scene_.shape == cr::cloud_shape::detailed;
+    const double period = detailed ? scene_.weather_wide_tile : scene_.weather_tile, base = scene_.base_tile;
     const double ratio = period / base;
     const bool periodic = std::abs(ratio - std::round(ratio)) < 1e-6 && ratio >= 1.0;
     period_ = period;
+    if (detailed) cell_size = std::max(cell_size, period / 480.0);
     cells_ = periodic ? std::max(1, static_cast<int>(std::lround(period / cell_size))) : 1;
     cell_ = period_ / cells_;
     layers_ = layers;
@@ -90,9 +94,16 @@ cloud_medium::cloud_medium(const cr::scene& s, const cr::cloud_textures& t, doub
             g = std::max(g, double(gradient(static_cast<float>(h), type)));
         }
         gradient_max[static_cast<std::size_t>(k)] = static_cast<float>(std::min(1.0, g + lipschitz * 0.5 / (samples * layers_)));
+        if (detailed) {
+            // Per-cloud types and tops: the gradient's bound is 1 wherever the field's band
+            // (cloud_band: every type and top the weather map can give) reaches, 0 elsewhere.
+            const glm::vec2 band = cr::cloud_band(scene_);
+            const double a0 = scene_.layer_bottom + k * layer_height_, a1 = a0 + layer_height_;
+            gradient_max[static_cast<std::size_t>(k)] = a1 >= band.x && a0 <= band.y ? 1.0f : 0.0f;
+        }
     }
 
-    const cr::linear_texture& wt = field_.weather();
+    const cr::linear_texture& wt = detailed ? field_.weather_wide() : field_.weather();
     const cr::linear_texture& bt = field_.base();
     const double full = periodic ? cell_ : 1e12;  // non-periodic: the cell spans every texel
     const auto ucells = static_cast<std::size_t>(cells_);
@@ -101,7 +112,7 @@ cloud_medium::cloud_medium(const cr::scene& s, const cr::cloud_textures& t, doub
     for (std::size_t i = 0; i < ucells; ++i) {
         const double x0 = static_cast<double>(i) * cell_;
         base_x[i] = clip(texel_range(x0, x0 + full, base, bt.size), bt.size);
-        weather_x[i] = clip(texel_range(x0, x0 + full, scene_.weather_tile, wt.size), wt.size);
+        weather_x[i] = clip(texel_range(x0, x0 + full, detailed ? scene_.weather_wide_tile : scene_.weather_tile, wt.size), wt.size);
     }
     for (int k = 0; k < layers_; ++k) {
         const double a0 = scene_.layer_bottom + k * layer_height_;
@@ -148,7 +159,10 @@ cloud_medium::cloud_medium(const cr::scene& s, const cr::cloud_textures& t, doub
                 // of G, B, A (positive weights): its bound takes max R and min G, B, A.
                 const float base_cloud = std::min(1.0f, cm::nubis_base_cloud(glm::vec4(e.r, e.g, e.b, e.a)));
                 const float shaped = base_cloud * gradient_max[static_cast<std::size_t>(k)];
-                const float covered = cm::apply_coverage(shaped * (1.0f + 1e-5f) + 1e-6f, coverage);
+                // The detailed shape's coverage only shrinks with height (top rounding) and
+                // its density is the eroded one times density_scale, saturated.
+                const float covered = cm::apply_coverage(shaped * (1.0f + 1e-5f) + 1e-6f, coverage) *
+                                      (detailed ? scene_.density_scale : 1.0f);
                 bound_[(static_cast<std::size_t>(k) * ucells + j) * ucells + i] =
                     covered > 0.0f ? std::min(1.0f, covered) * (1.0f + 1e-4f) : 0.0f;
             }

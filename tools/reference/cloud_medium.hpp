@@ -36,6 +36,11 @@
 // width whose bound is the largest of the cells their x, z and altitude ranges overlap
 // (altitude along a straight ray is convex: its range is from the ends and the closest
 // approach). Empty stretches are skipped.
+// The detailed shape (cloud_renderer::cloud_shape::detailed): the same bound with the wide
+// weather map (period weather_wide_tile, cells of at least 1/480 of it), a height gradient
+// bounded by 1 wherever cloud_band reaches (any type and top the weather map can give), the
+// coverage's fall with height dropped (it only lowers density) and density_scale applied
+// before the saturation; the curl only moves the detail, which only erodes.
 #ifndef CLOUDMATH_TOOLS_CLOUD_MEDIUM_HPP
 #define CLOUDMATH_TOOLS_CLOUD_MEDIUM_HPP
 

@@ -186,6 +186,7 @@ function render(state) {
   i1('u_cone_samples', v.coneSamples); i1('u_light_steps', v.lightSteps); i1('u_integration', v.integration);
   i1('u_view_steps', v.viewSteps); i1('u_schedule', v.schedule); i1('u_jitter', v.jitter); i1('u_sun_disc', v.sun); i1('u_haze', v.haze); i1('u_dither', v.dither);
   i1('u_skip', v.skip); i1('u_occluded_ambient', v.ambient); i1('u_shadows', v.shadows); i1('u_pass', 0);
+  i1('u_shape', 0);  // the classic density field: the demo bakes no wide weather map or curl texture
   gl.uniform2f(u('u_resolution'), canvas.width, canvas.height);
   v3('u_forward', f.forward); v3('u_right', f.right); v3('u_up', f.up); f1('u_tan_half_fov', f.tanHalfFov);
   f1('u_cam_altitude', s.cameraAltitude); f1('u_planet_radius', s.planetRadius); f1('u_layer_bottom', s.layerBottom); f1('u_layer_top', s.layerTop);
@@ -198,10 +199,11 @@ function render(state) {
   f1('u_ms_a', msA); f1('u_ms_b', msB); f1('u_ms_c', msC);
   f1('u_cone_step', f.coneStep); f1('u_cone_spread', f.coneSpread); f1('u_cone_far_distance', f.coneFarDistance); f1('u_cone_far_length', f.coneFarLength);
   f1('u_light_march_max', f.lightMarchMax); f1('u_min_transmittance', f.minTransmittance); f1('u_march_near_distance', f.marchNearDistance);
-  // u_shadow_map gets its own unit (a 1 x 1 texture: shadows are off), so that no unit holds
-  // two texture types.
+  // u_shadow_map, u_weather_wide and u_curl get units of their own (a 1 x 1 texture: shadows
+  // are off and the shape is classic), so that no unit holds two texture types.
   const units = [['u_base', gl.TEXTURE_3D, textures.base], ['u_detail', gl.TEXTURE_3D, textures.detail], ['u_weather', gl.TEXTURE_2D, textures.weather],
-                 ['u_shadow_map', gl.TEXTURE_2D, textures.noShadow]];
+                 ['u_shadow_map', gl.TEXTURE_2D, textures.noShadow], ['u_weather_wide', gl.TEXTURE_2D, textures.noShadow],
+                 ['u_curl', gl.TEXTURE_2D, textures.noShadow]];
   units.forEach(([name, kind, tex], i) => { gl.activeTexture(gl.TEXTURE0 + i); gl.bindTexture(kind, tex); i1(name, i); });
 
   gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);

@@ -42,6 +42,9 @@ uniform vec3 u_sky_zenith, u_sky_horizon, u_ground;
 uniform float u_sun_angular_radius;
 uniform float u_coverage, u_cloud_type, u_extinction, u_albedo, u_max_distance;
 uniform float u_base_tile, u_detail_tile, u_weather_tile;
+uniform int u_shape;  // scene.hpp's cloud_shape: 0 classic, 1 detailed
+uniform float u_weather_wide_tile, u_curl_tile, u_curl_strength, u_type_spread, u_top_rounding, u_density_scale;
+uniform vec2 u_band;  // altitudes outside which the field has no density (scene.cpp's cloud_band)
 uniform vec2 u_wind;
 uniform uint u_frame;
 uniform float u_exposure;
@@ -56,7 +59,9 @@ uniform float u_shadow_half_extent;
 
 uniform sampler3D u_base;      // 128^3 RGBA8: Perlin-Worley + Worley fBm (noise_bake.hpp)
 uniform sampler3D u_detail;    // 32^3 RGB8: Worley fBm
-uniform sampler2D u_weather;   // 256^2 RGB8: R coverage (G type and B rain unused here)
+uniform sampler2D u_weather;   // 256^2 RGB8: R coverage (the classic shape reads only R)
+uniform sampler2D u_weather_wide;  // 1024^2 RGB8: R coverage, G type, B top (the detailed shape)
+uniform sampler2D u_curl;      // 128^2 RGB8: curl noise, curl_bake_encode
 uniform sampler2D u_shadow_map;  // CR_SHADOW_MAP_SIZE^2 RGBA32F: (front, mean extinction, optical depth) of pass 2
 
 // The pass: 0 a full frame. 1 the shading pass of the temporal scheme
@@ -99,6 +104,12 @@ float cr_base_density(vec3 p, float altitude) {
     float h = cm_height_fraction(altitude, u_layer_bottom, u_layer_top);
     if (h <= 0.0 || h >= 1.0) return 0.0;
     vec3 q = vec3(p.x + u_wind.x, altitude, p.z + u_wind.y);
+    if (u_shape == 1) {
+        vec3 w = textureLod(u_weather_wide, q.xz / u_weather_wide_tile,
+                            cm_texture_lod(cr_footprint, u_weather_wide_tile / float(textureSize(u_weather_wide, 0).x))).rgb;
+        vec4 b = textureLod(u_base, q / u_base_tile, cm_texture_lod(cr_footprint, u_base_tile / float(textureSize(u_base, 0).x)));
+        return cm_cloud_shape_density(b, w, h, u_coverage, u_cloud_type, u_type_spread, u_top_rounding);
+    }
     float weather_lod = cm_texture_lod(cr_footprint, u_weather_tile / float(textureSize(u_weather, 0).x));
     float base_lod = cm_texture_lod(cr_footprint, u_base_tile / float(textureSize(u_base, 0).x));
     float coverage = cm_saturate(textureLod(u_weather, q.xz / u_weather_tile, weather_lod).r - 0.5 + u_coverage);
@@ -114,7 +125,15 @@ float cr_density(vec3 p, float altitude) {
     if (covered <= 0.0) return 0.0;
     float h = cm_height_fraction(altitude, u_layer_bottom, u_layer_top);
     vec3 q = vec3(p.x + u_wind.x, altitude, p.z + u_wind.y);
-    vec3 detail = textureLod(u_detail, q / u_detail_tile, cm_texture_lod(cr_footprint, u_detail_tile / float(textureSize(u_detail, 0).x))).rgb;
+    float detail_lod = cm_texture_lod(cr_footprint, u_detail_tile / float(textureSize(u_detail, 0).x));
+    if (u_shape == 1) {
+        // Curl noise displaces the detail, most at the cloud's base (wispy bases, billowy tops).
+        vec3 curl = (2.0 * textureLod(u_curl, q.xz / u_curl_tile, 0.0).rgb - 1.0) * 4.0;  // curl_bake_decode
+        q += curl * (u_curl_strength * (1.0 - h));
+        vec3 d = textureLod(u_detail, q / u_detail_tile, detail_lod).rgb;
+        return cm_saturate(cm_erode(covered, cm_nubis_detail_erosion(d, h)) * u_density_scale);
+    }
+    vec3 detail = textureLod(u_detail, q / u_detail_tile, detail_lod).rgb;
     return cm_erode(covered, cm_nubis_detail_erosion(detail, h));
 }
 
@@ -255,7 +274,9 @@ void main() {
     float aspect = u_resolution.x / u_resolution.y;
     vec3 dir = normalize(u_forward + u_right * (ndc.x * aspect * u_tan_half_fov) + u_up * (ndc.y * u_tan_half_fov));
     cr_mie = cm_mie_approx_params(u_droplet_diameter);
-    cr_band = cm_height_range_for_type(u_cloud_type) * (u_layer_top - u_layer_bottom) + u_layer_bottom;
+    // The classic shape's band is the cloud type's range (what scene.cpp's cloud_band gives
+    // for it, computed here so that hosts without u_band, the web demo, need not).
+    cr_band = u_shape == 1 ? u_band : cm_height_range_for_type(u_cloud_type) * (u_layer_top - u_layer_bottom) + u_layer_bottom;
     if (u_pass == 2) {
         cr_footprint = u_lod != 0 ? 2.0 * u_shadow_half_extent / float(CR_SHADOW_MAP_SIZE) : 0.0;
         out_color = vec4(cr_shadow_texel(floor(gl_FragCoord.xy)), 0.0);

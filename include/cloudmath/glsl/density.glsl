@@ -82,6 +82,19 @@ float cm_nubis_detail_erosion(vec3 detail, float h) {
     float t = cm_saturate(h * 10.0);
     return (hf + t * ((1.0 - hf) - hf)) * 0.2;
 }
+// 0.6 + 0.4 saturate(weather_b): a cloud's top as a share of its type's profile.
+float cm_cloud_top_fraction(float weather_b) { return 0.6 + 0.4 * cm_saturate(weather_b); }
+
+// Base shape with per-cloud type (G), top (B) and coverage narrowing with height (rounded tops).
+float cm_cloud_shape_density(vec4 base, vec3 weather, float h, float coverage, float cloud_type, float type_spread,
+                             float top_rounding) {
+    float hc = h / cm_cloud_top_fraction(weather.z);
+    if (!(hc < 1.0)) return 0.0;
+    float t = cm_saturate(cloud_type + (weather.y - 0.5) * type_spread);
+    float c = cm_saturate(weather.x - 0.5 + coverage) * (1.0 - top_rounding * hc * hc);
+    return cm_apply_coverage(cm_nubis_base_cloud(base) * cm_height_gradient_for_type(hc, t), c);
+}
+
 float cm_nubis_density(vec4 base, vec3 detail, float coverage, float cloud_type, float h) {
     float shaped = cm_nubis_base_cloud(base) * cm_height_gradient_for_type(h, cloud_type);
     return cm_erode(cm_apply_coverage(shaped, coverage), cm_nubis_detail_erosion(detail, h));
