@@ -285,3 +285,56 @@ TEST_CASE_TEMPLATE("aerial_perspective: L e^-tau + L_air (1 - e^-tau), exact at 
         CHECK(cm_test::nan_bits(aerial_perspective(cm_test::make_nan<T>(), T(0.7), T(1))));
     }
 }
+
+TEST_CASE_TEMPLATE("cloud_top_fraction and cloud_shape_density: per-cloud type, top and rounded tops", T, float, double) {
+    CHECK(cloud_top_fraction(T(0)) == T(0.6));
+    CHECK(double(cloud_top_fraction(T(1))) == doctest::Approx(1.0));
+    CHECK(double(cloud_top_fraction(T(0.5))) == doctest::Approx(0.8));
+    CHECK(cloud_top_fraction(T(-3)) == T(0.6));  // the channel is clamped
+    CHECK(double(cloud_top_fraction(T(7))) == doctest::Approx(1.0));
+
+    // A base texel whose base cloud is 1 (R = 1, G = B = A = 0: remap(1, -1, 1, 0, 1) = 1).
+    const glm::vec<4, T> full(T(1), T(0), T(0), T(0));
+    // Neutral weather (G = 0.5, B = 1, R = 0.5) and no rounding: exactly the classic shape,
+    // apply_coverage(height_gradient_for_type(h, type), coverage), at every height.
+    for (T h : {T(0.05), T(0.2), T(0.5), T(0.77), T(0.95)})
+        for (T type : {T(0), T(0.5), T(0.8), T(1)}) {
+            CAPTURE(h);
+            CAPTURE(type);
+            const T want = apply_coverage(height_gradient_for_type(h, type), T(0.4));
+            CHECK(double(cloud_shape_density(full, glm::vec<3, T>(T(0.5), T(0.5), T(1)), h, T(0.4), type, T(0.5), T(0))) ==
+                  doctest::Approx(double(want)).epsilon(1e-6));
+        }
+    // G shifts the type by (G - 0.5) type_spread: G = 1 with spread 0.5 on type 0.5 is type 0.75.
+    for (T h : {T(0.3), T(0.7), T(0.9)})
+        CHECK(double(cloud_shape_density(full, glm::vec<3, T>(T(0.5), T(1), T(1)), h, T(0.4), T(0.5), T(0.5), T(0))) ==
+              doctest::Approx(double(apply_coverage(height_gradient_for_type(h, T(0.75)), T(0.4)))).epsilon(1e-6));
+    // B lowers the top: B = 0 compresses the profile under 60% of the height; at and above
+    // h = 0.6 the density is exactly 0, below it is the profile at h / 0.6.
+    const glm::vec<3, T> low(T(0.5), T(0.5), T(0));
+    CHECK(cloud_shape_density(full, low, T(0.6), T(0.4), T(1), T(0.5), T(0)) == T(0));
+    CHECK(cloud_shape_density(full, low, T(0.9), T(0.4), T(1), T(0.5), T(0)) == T(0));
+    CHECK(double(cloud_shape_density(full, low, T(0.3), T(0.4), T(1), T(0.5), T(0))) ==
+          doctest::Approx(double(apply_coverage(height_gradient_for_type(T(0.5), T(1)), T(0.4)))).epsilon(1e-6));
+    // Rounding: the coverage falls as 1 - r hc^2, so the density never grows with it and the
+    // effect grows toward the top (the cloud narrows into a dome).
+    const glm::vec<3, T> w(T(0.6), T(0.5), T(1));
+    const glm::vec<4, T> half(T(0.8), T(0.4), T(0.4), T(0.4));
+    T previous_loss = T(-1);
+    for (T h : {T(0.2), T(0.4), T(0.6), T(0.75)}) {
+        const T flat = cloud_shape_density(half, w, h, T(0.6), T(1), T(0.5), T(0));
+        const T round = cloud_shape_density(half, w, h, T(0.6), T(1), T(0.5), T(0.6));
+        CHECK(round <= flat);
+        const T loss = flat - round;
+        CHECK(loss >= previous_loss - T(1e-6));
+        previous_loss = loss;
+        // Against the closed form.
+        const T c = saturate(T(0.6) - T(0.5) + T(0.6)) * (T(1) - T(0.6) * h * h);
+        CHECK(double(round) == doctest::Approx(double(apply_coverage(nubis_base_cloud(half) * height_gradient_for_type(h, T(1)), c))).epsilon(1e-6));
+    }
+    // Range: [0, 1] for any inputs in range, and 0 for a NaN height (no cloud where the
+    // height is unknown).
+    CHECK(cloud_shape_density(full, glm::vec<3, T>(T(1)), T(0.5), T(1), T(1), T(2), T(1)) <= T(1));
+    if constexpr (cm_test::ieee_build)
+        CHECK(cloud_shape_density(full, w, cm_test::make_nan<T>(), T(0.5), T(1), T(0.5), T(0.6)) == T(0));
+}

@@ -442,6 +442,14 @@ std::vector<parity_case> make_cases() {
         add({"cm_nubis_density", "vec4(cm_nubis_density(a, b.xyz, b.z, a.w, b.w), cm_nubis_density(a, b.xyz, 1.0, 1.0, b.w), cm_nubis_density(a, b.xyz, 0.6, 0.0, b.w * 0.2), 0.0)",
              [](vec4 a, vec4 b) { return vec4(cm::nubis_density(a, vec3(b), b.z, a.w, b.w), cm::nubis_density(a, vec3(b), 1.0f, 1.0f, b.w),
                                               cm::nubis_density(a, vec3(b), 0.6f, 0.0f, b.w * 0.2f), 0.0f); }, in, 3, 1.0f});
+        add({"cm_cloud_shape_density",
+             "vec4(cm_cloud_shape_density(a, b.xyz, b.w, 0.4, a.w, 0.5, 0.6), cm_cloud_shape_density(a, b.zyx, b.w * 0.5, 0.7, 1.0, 0.8, 0.0), "
+             "cm_cloud_top_fraction(b.z), cm_cloud_top_fraction(a.x * 2.0 - 0.5))",
+             [](vec4 a, vec4 b) {
+                 return vec4(cm::cloud_shape_density(a, vec3(b), b.w, 0.4f, a.w, 0.5f, 0.6f),
+                             cm::cloud_shape_density(a, vec3(b.z, b.y, b.x), b.w * 0.5f, 0.7f, 1.0f, 0.8f, 0.0f),
+                             cm::cloud_top_fraction(b.z), cm::cloud_top_fraction(a.x * 2.0f - 0.5f)); },
+             in, 4, 1.0f});
     }
     // noise: the hashes must agree bit for bit (compared as two exact 16-bit halves);
     // the noise values within 1e-5 of their range (floor 1).
