@@ -134,6 +134,11 @@ float cloud_density::base_density(vec3 p, float alt, long* texture_reads, float 
     return cm::apply_coverage(shaped, coverage);
 }
 
+float cloud_density::coarse_density(vec3 p, float alt, long* texture_reads, float footprint) const {
+    const float covered = base_density(p, alt, texture_reads, footprint);
+    return s_.shape == cloud_shape::detailed ? cm::saturate(covered * s_.density_scale) : covered;
+}
+
 float cloud_density::density(vec3 p, float alt, long* texture_reads, float footprint) const {
     const float covered = base_density(p, alt, texture_reads, footprint);
     if (covered <= 0.0f) return 0.0f;

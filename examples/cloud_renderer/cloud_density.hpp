@@ -61,6 +61,10 @@ public:
     // upper bound of density() from the weather map and the base volume only (2 reads inside
     // the layer, none outside).
     float base_density(glm::vec3 p, float alt, long* texture_reads = nullptr, float footprint = 0.0f) const;
+    // A cheap stand-in for density() from the base shape alone (cr_coarse_density): the base
+    // density, with the detailed shape scaled by density_scale and saturated like density()
+    // (2 reads; an upper bound of density()).
+    float coarse_density(glm::vec3 p, float alt, long* texture_reads = nullptr, float footprint = 0.0f) const;
 
     const scene& scene_data() const { return s_; }
     const linear_texture& base() const { return base_; }

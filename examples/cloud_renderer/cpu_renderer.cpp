@@ -112,6 +112,13 @@ struct pixel_program {
         return s.extinction * density(p, altitude(p), counter, footprint);
     }
 
+    // A light sample's extinction (cr_light_extinction): a far one (`far`) on the base shape
+    // alone with variant::far_base.
+    float light_extinction(vec3 p, bool far, long* counter, float footprint) const {
+        if (far && v.far_base) return s.extinction * field.coarse_density(p, altitude(p), counter, footprint);
+        return cone_extinction(p, counter, footprint);
+    }
+
     float phase(float mu, float scale) const {
         switch (v.phase) {
         case phase_model::hg: return cm::phase_hg(mu, scale * k.phase_g);
@@ -146,16 +153,18 @@ struct pixel_program {
         if (mode == light_mode::cone) {
             const cm::cone_light_config<float> cone{v.cone_samples, k.cone_step, k.cone_spread, k.cone_far_distance,
                                                     k.cone_far_length};
-            return cm::cone_optical_depth(p, toward, cone,
-                                          [this, counter, footprint](const vec3& q) { return cone_extinction(q, counter, footprint); });
+            return cm::cone_optical_depth(p, toward, cone, [this, counter, footprint](const vec3& q, int i) {
+                return light_extinction(q, i >= v.cone_samples - 1, counter, footprint);
+            });
         }
         const vec3 up = glm::normalize(vec3(p.x, p.y + (s.planet_radius + s.camera_altitude), p.z));
         const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up), s.planet_radius, band.x, band.y);
-        const float length_to_exit = seg.y > seg.x ? std::min(seg.y, k.light_march_max) : 0.0f;
+        const float reach = v.long_reach ? light_long_reach : k.light_march_max;
+        const float length_to_exit = seg.y > seg.x ? std::min(seg.y, reach) : 0.0f;
         const float ds = length_to_exit / float(v.light_steps);
         float tau = 0.0f;
         for (int i = 0; i < v.light_steps; ++i)
-            tau += cone_extinction(p + toward * ((float(i) + 0.5f) * ds), counter, footprint) * ds;
+            tau += light_extinction(p + toward * ((float(i) + 0.5f) * ds), i >= light_far_step, counter, footprint) * ds;
         return tau;
     }
 

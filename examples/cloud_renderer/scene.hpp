@@ -71,6 +71,12 @@ struct variant {
     // pixel's footprint at the view sample (texture_lod; the light's samples inherit it; the
     // shadow map uses its texel width); off: level 0 everywhere.
     bool lod = false;
+    // The light estimates' far samples on the base shape only (coarse_density: no detail, no
+    // curl): the cone's far sample and the march's steps from the fourth on.
+    bool far_base = false;
+    // How far the march toward the sun reaches: capped at 6 km (light_march_max), or to where
+    // the band ends, up to 30 km (a low sun's path to the layer top).
+    bool long_reach = false;
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
     bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
     bool sun = true;                 // draw the sun disc (sun_disc_radiance) in the background
@@ -116,6 +122,11 @@ struct scene {
     std::uint32_t frame = 0;         // frame number: advances each pixel's march jitter (frame_jitter)
     float exposure = 1.0f;
 };
+
+// The first light-march step that variant::far_base reads on the base shape only.
+inline constexpr int light_far_step = 3;
+// variant::long_reach's cap on the light march (metres).
+inline constexpr float light_long_reach = 30000.0f;
 
 // Steps per empty-space probe (variant::skip).
 inline constexpr int skip_block = 4;

@@ -88,7 +88,7 @@ TEST_CASE("the variants agree with the CPU too, and compile-time equals run-time
     for (const char* spec : {"phase=mie,light=march,light-steps=8,steps=32", "phase=cs,octaves=1,powder=off,integration=naive,jitter=off",
                              "lighting=octaves,powder=on,light=cone", "lighting=diffusion,phase=mie,behind=march,light-steps=8,steps=32",
                              "schedule=growing", "schedule=uniform,steps=16", "haze=off,dither=off", "skip=on",
-                             "skip=on,schedule=growing,steps=24"}) {
+                             "skip=on,schedule=growing,steps=24", "far=base,reach=band", "far=base,light=cone,lod=on"}) {
         CAPTURE(std::string(spec));
         variant v;
         REQUIRE(apply_variant_spec(spec, v).empty());
@@ -96,6 +96,30 @@ TEST_CASE("the variants agree with the CPU too, and compile-time equals run-time
         CHECK(compare(g, render_cpu(s, v, shared().textures, 160, 90)).psnr_db >= 35.0);
         CHECK(compare(g, render_gpu(s, v, true)).psnr_db >= 60.0);  // same math, constants folded
     }
+}
+
+TEST_CASE("both density fields: GPU and CPU agree, and the detailed field differs from the classic one") {
+    for (const char* name : {"cumulus", "above", "towering"}) {
+        CAPTURE(std::string(name));
+        scene detailed = *find_preset(name), classic = detailed;
+        classic.shape = cloud_shape::classic;
+        REQUIRE(detailed.shape == cloud_shape::detailed);  // the presets' default
+        const variant v;
+        for (const scene* s : {&detailed, &classic}) {
+            const image g = render_gpu(*s, v);
+            const double psnr = compare(g, render_cpu(*s, v, shared().textures, 160, 90)).psnr_db;
+            MESSAGE(std::string(name) << " " << std::string(cloud_renderer::name(s->shape)) << ": GPU against CPU " << psnr << " dB");
+            CHECK(psnr >= 35.0);
+            CHECK(statistics(g).nan_pixels == 0);
+            CHECK(statistics(g).cloud_fraction > 0.1);
+        }
+        CHECK(compare(render_cpu(detailed, v, shared().textures, 160, 90), render_cpu(classic, v, shared().textures, 160, 90)).psnr_db < 30.0);
+    }
+    // The field's band holds every density sample: none outside cloud_band.
+    const scene s = *find_preset("towering");
+    const glm::vec2 band = cloud_band(s);
+    CHECK(band.x >= s.layer_bottom);
+    CHECK(band.y <= s.layer_top);
 }
 
 TEST_CASE("texture reads: bounded by the march, the same view reads for both lighting models") {

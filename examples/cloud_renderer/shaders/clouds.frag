@@ -27,6 +27,8 @@ CR_PARAM(int, u_skip)             // empty-space skipping: 0 off, 1 probe CR_SKI
 CR_PARAM(int, u_shadows)          // 0 off, 1 cloud shadows on the ground from the Beer shadow map
 CR_PARAM(int, u_occluded_ambient) // sky light inside clouds: 0 flat, 1 through the optical depth above / below
 CR_PARAM(int, u_lod)              // 0 level 0 everywhere, 1 the mip level of the pixel's footprint (cm_texture_lod)
+CR_PARAM(int, u_far_base)         // 1: the light's far samples on the base shape only (cr_coarse_density)
+CR_PARAM(int, u_long_reach)       // the march toward the sun: 0 capped at u_light_march_max, 1 to the band's end (30 km)
 CR_PARAM(int, u_jitter)
 CR_PARAM(int, u_sun_disc)         // 0 no sun disc, 1 the disc at its physical radiance
 CR_PARAM(int, u_haze)             // 0 off, 1 aerial perspective (air between camera and cloud)
@@ -84,6 +86,8 @@ float cr_phase(float mu, float scale);
 #include "cloudmath.glsl"
 
 const int CR_SKIP_BLOCK = 4;  // steps per empty-space probe (scene.hpp's skip_block)
+const int CR_LIGHT_FAR_STEP = 3;          // scene.hpp's light_far_step
+const float CR_LIGHT_LONG_REACH = 30000.0;  // ... light_long_reach
 const int CR_SHADOW_MAP_SIZE = 128;      // scene.hpp's shadow_map_size
 const int CR_SHADOW_MAP_STEPS = 24;      // ... shadow_map_steps
 const float CR_GROUND_SKY_SHARE = 0.4;   // ... ground_sky_share
@@ -137,7 +141,20 @@ float cr_density(vec3 p, float altitude) {
     return cm_erode(covered, cm_nubis_detail_erosion(detail, h));
 }
 
-float cr_cone_extinction(vec3 p, int i) { return u_extinction * cr_density(p, cr_altitude(p)); }
+// The base shape alone, scaled and saturated like cr_density: a cheap upper bound of it.
+float cr_coarse_density(vec3 p, float altitude) {
+    float covered = cr_base_density(p, altitude);
+    return u_shape == 1 ? cm_saturate(covered * u_density_scale) : covered;
+}
+
+// The first light sample index read on the base shape alone (u_far_base): the cone's far
+// sample or the march's fourth step, set by cr_light_optical_depth.
+int cr_far_index = 1 << 30;
+
+float cr_cone_extinction(vec3 p, int i) {
+    if (u_far_base != 0 && i >= cr_far_index) return u_extinction * cr_coarse_density(p, cr_altitude(p));
+    return u_extinction * cr_density(p, cr_altitude(p));
+}
 
 // The phase model with eccentricities scaled by `scale` (c^i of octave i).
 float cr_phase(float mu, float scale) {
@@ -182,12 +199,15 @@ float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode) {
     if (mode == 0) {
         CmConeLightConfig cone = CmConeLightConfig(u_cone_samples, u_cone_step, u_cone_spread,
                                                    u_cone_far_distance, u_cone_far_length);
+        cr_far_index = u_cone_samples - 1;
         return cm_cone_optical_depth(p, toward, cone);
     }
     // March: midpoint steps up to where the ray leaves the cloud type's band.
+    cr_far_index = CR_LIGHT_FAR_STEP;
     vec3 up = normalize(vec3(p.x, p.y + (u_planet_radius + u_cam_altitude), p.z));
     vec2 seg = cm_cloud_layer_segment(altitude, dot(toward, up), u_planet_radius, cr_band.x, cr_band.y);
-    float length_to_exit = seg.y > seg.x ? min(seg.y, u_light_march_max) : 0.0;
+    float reach = u_long_reach != 0 ? CR_LIGHT_LONG_REACH : u_light_march_max;
+    float length_to_exit = seg.y > seg.x ? min(seg.y, reach) : 0.0;
     float ds = length_to_exit / float(u_light_steps);
     float tau = 0.0;
     for (int i = 0; i < u_light_steps; ++i)
