@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Renders the cloud renderer's documentation: every scene preset and a set of lighting
-# variants as PNGs in docs/images/, the --bench table (ms per frame of every variant and its
-# PSNR against the reference variant) and the --convergence table (every preset against a
-# converged render of the same lighting model) into docs/renderer.md, with the device, date
-# and command. Headless (EGL): on Mesa's llvmpipe where there is no GPU.
-# Usage: bash scripts/render-docs.sh [WIDTH HEIGHT]     (default 480 270; about 15 minutes on 2 cores)
+# Renders the cloud renderer's documentation: every scene preset before (the renderer as it
+# was: classic field, octaves, one frame) and after (the default, the temporal scheme
+# converged over 128 frames), a set of lighting variants and a temporal frame sequence as
+# PNGs in docs/images/, the --bench table (ms per frame of every variant and its PSNR against
+# the reference variant) and the --convergence table (every preset against a converged
+# render of the same lighting model) into docs/renderer.md, with the device, date and
+# command. Headless (EGL): on Mesa's llvmpipe where there is no GPU.
+# Usage: bash scripts/render-docs.sh [WIDTH HEIGHT]     (default 480 270; about 25 minutes on 2 cores)
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 width=${1:-480}
@@ -19,9 +21,25 @@ common=(--width "$width" --height "$height" --cache build/main/texture-cache --q
 mkdir -p docs/images
 
 presets=$("$renderer" --list-presets | awk '{ print $1 }')
+# Before: what the renderer drew when the work on its images began (the classic field, the
+# octaves with the cone, flat sky light, no haze, no shadows, no dither, one frame).
+before=(--shape classic --variant lighting=octaves,powder=on,light=cone,ambient=flat,haze=off,shadows=off,dither=off)
 for p in $presets; do
-  "$renderer" --headless --preset "$p" "${common[@]}" --out "docs/images/clouds_$p.png" >/dev/null
+  "$renderer" --headless --preset "$p" "${common[@]}" --temporal 128 --out "docs/images/clouds_$p.png" >/dev/null
+  "$renderer" --headless --preset "$p" "${common[@]}" "${before[@]}" --out "docs/images/before_$p.png" >/dev/null
 done
+# The temporal scheme in motion: the ground preset panning 0.5 degrees a frame with 30 m of
+# wind, every 8th of 48 frames; and what it costs against full frames of the same motion.
+rm -f docs/images/sequence_f*.png
+"$renderer" --headless --preset ground "${common[@]}" --temporal 48 --pan 0.5 --drift 30 --save-every 8 \
+  --out docs/images/sequence.png >/dev/null
+rm -f docs/images/sequence.png
+motion=$("$renderer" --cpu --preset ground --width 320 --height 180 --cache build/main/texture-cache --quiet \
+  --temporal 48 --pan 0.5 --drift 30 --out build/main/sequence_cpu.png | grep '^temporal:')
+still=$("$renderer" --cpu --preset ground --width 320 --height 180 --cache build/main/texture-cache --quiet \
+  --temporal 128 --out build/main/still_cpu.png | grep '^temporal:')
+temporal_compare=$("$renderer" --compare --preset ground "${common[@]}" --temporal 48 --pan 0.5 --drift 30 \
+  --out build/main/compare_temporal.png | grep 'GPU vs CPU')
 # name|variant spec|caption, all on the "horizon" preset (low sun ahead: phase and powder show)
 variants=(
   "default||default: diffusion model, dual-lobe HG, 6-step march toward the sun, cone behind, 64 steps"
@@ -32,6 +50,11 @@ variants=(
   "octaves1|lighting=octaves,octaves=1,light=cone|1 octave (single scattering), cone"
   "powder_off|lighting=octaves,light=cone|octaves without powder"
   "march|light-steps=32,behind=march|light: 32-step march both ways"
+  "far_base|far=base|light: far samples on the base shape only"
+  "reach|reach=band|light: the march toward the sun to the band's end (30 km)"
+  "lod|lod=on|texture LOD from the pixel footprint"
+  "skip|skip=on|empty-space skipping"
+  "no_shadows|shadows=off|no cloud shadows"
   "naive16|integration=naive,steps=16|naive Riemann integration, 16 steps"
   "analytic16|steps=16|energy-conserving integration, 16 steps"
 )
@@ -56,13 +79,43 @@ convergence=$("$renderer" --convergence --width 160 --height 90 --cache build/ma
   echo "[shaders/clouds.frag](../examples/cloud_renderer/shaders/clouds.frag)). Images are $width x $height,"
   echo "rendered headlessly through EGL."
   echo
-  echo "## Presets"
+  echo "## Presets, before and after"
   echo
-  echo "| Preset | Image |"
-  echo "|---|---|"
+  echo "Before: the renderer as it was when the work on its images began (\`${before[*]}\`, one"
+  echo "frame). After: the default, the temporal scheme's frame 127 of a still camera (\`--temporal 128\`)."
+  echo
+  echo "| Preset | Before | After |"
+  echo "|---|---|---|"
   "$renderer" --list-presets | while read -r name rest; do
-    echo "| \`$name\`: $rest | ![$name](images/clouds_$name.png) |"
+    echo "| \`$name\`: $rest | ![$name before](images/before_$name.png) | ![$name](images/clouds_$name.png) |"
   done
+  echo
+  echo "## The temporal scheme"
+  echo
+  echo "Each frame shades one pixel of every 4 x 4 block (Bayer order, \`temporal_update_offset\`) and"
+  echo "resolves the rest from the full-resolution history, reprojected by the camera's rotation, its"
+  echo "altitude and the wind at the block's cloud depth (\`camera_project\`, \`texel_bilinear\`); shaded"
+  echo "pixels join a running mean of at most 8 samples (\`temporal_blend_weight\`). Frames 7, 15, ..., 47 of"
+  echo "\`--preset ground --temporal 48 --pan 0.5 --drift 30\` (0.5 degrees of pan and 30 m of wind a frame):"
+  echo
+  echo "| frame 7 | frame 15 | frame 23 |"
+  echo "|---|---|---|"
+  echo "| ![](images/sequence_f007.png) | ![](images/sequence_f015.png) | ![](images/sequence_f023.png) |"
+  echo "| **frame 31** | **frame 39** | **frame 47** |"
+  echo "| ![](images/sequence_f031.png) | ![](images/sequence_f039.png) | ![](images/sequence_f047.png) |"
+  echo
+  echo "In motion (CPU, 320 x 180, the same sequence): $motion."
+  echo "A still camera (CPU, 320 x 180, 128 frames): $still."
+  echo "GPU against CPU over the moving sequence at $width x $height: $temporal_compare."
+  echo
+  echo "Ghosting: the history is reprojected at the depth of the block's newest sample, so where a"
+  echo "block mixes a near cloud edge and sky (or a far cloud), the pixels whose depth differs from"
+  echo "the sample's move by the wrong parallax: under camera rotation alone depth does not matter"
+  echo "(every depth reprojects to the same direction), under wind and altitude changes it does."
+  echo "Points that were off the previous screen (the edge the camera pans toward) take the bilinear"
+  echo "interpolation of the new samples until their own turn, so a band as wide as 16 frames of"
+  echo "pan is softer than the rest; every reprojection resamples the history bilinearly, which"
+  echo "softens a moving image over time (the 8-sample cap bounds how long a stale value lives)."
   echo
   echo "## Lighting variants (preset \`horizon\`)"
   echo

@@ -397,6 +397,18 @@ void make_target(const gl_api& gl, GLuint tex, GLenum internal_format, GLenum fo
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
+// Sets uniforms of one program by name (the location lookups of both passes).
+struct uniform_setter {
+    const gl_api& gl;
+    GLuint program;
+    GLint loc(const char* n) const { return gl.GetUniformLocation(program, n); }
+    void i1(const char* n, int x) const { gl.Uniform1i(loc(n), x); }
+    void f1(const char* n, float x) const { gl.Uniform1f(loc(n), x); }
+    void v2(const char* n, glm::vec2 x) const { gl.Uniform2f(loc(n), x.x, x.y); }
+    void v3(const char* n, const glm::vec3& x) const { gl.Uniform3f(loc(n), x.x, x.y, x.z); }
+    void u2(const char* n, glm::uvec2 x) const { gl.Uniform2ui(loc(n), x.x, x.y); }
+};
+
 // Makes the clouds program of the variant current with every uniform of the scene set and
 // the cloud textures bound; 0 on failure. temporal_pass 1: the shading pass of the temporal
 // scheme (clouds.frag's u_temporal_pass), shading pixel 4 (i, j) + offset.
@@ -406,12 +418,13 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
     const GLuint program = st.program_for(v, compile_time, why);
     if (program == 0) return 0;
     gl.UseProgram(program);
-    const auto loc = [&](const char* n) { return gl.GetUniformLocation(program, n); };
-    const auto set1i = [&](const char* n, int x) { gl.Uniform1i(loc(n), x); };
-    const auto set1f = [&](const char* n, float x) { gl.Uniform1f(loc(n), x); };
-    const auto set3f = [&](const char* n, const glm::vec3& x) { gl.Uniform3f(loc(n), x.x, x.y, x.z); };
+    const uniform_setter u{gl, program};
+    const auto loc = [&](const char* n) { return u.loc(n); };
+    const auto set1i = [&](const char* n, int x) { u.i1(n, x); };
+    const auto set1f = [&](const char* n, float x) { u.f1(n, x); };
+    const auto set3f = [&](const char* n, const glm::vec3& x) { u.v3(n, x); };
     if (!compile_time)
-        for (const shader_int& u : variant_values(v)) set1i(u.name, u.value);
+        for (const shader_int& value : variant_values(v)) set1i(value.name, value.value);
     const frame_constants k = make_frame_constants(sc);
     gl.Uniform2f(loc("u_resolution"), float(width), float(height));
     set3f("u_forward", k.forward);
@@ -637,27 +650,26 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
     // The resolve pass's uniforms (temporal_resolve.frag).
     const GLuint r = t.resolve_program;
     gl.UseProgram(r);
-    const auto loc = [&](const char* n) { return gl.GetUniformLocation(r, n); };
-    const auto set3f = [&](const char* n, const glm::vec3& x) { gl.Uniform3f(loc(n), x.x, x.y, x.z); };
+    const uniform_setter u{gl, r};
     const frame_constants k = make_frame_constants(sc);
     const scene& prev = t.has_history ? t.previous : sc;
     const frame_constants pk = make_frame_constants(prev);
-    gl.Uniform2f(loc("u_resolution"), float(width), float(height));
-    set3f("u_forward", k.forward);
-    set3f("u_right", k.right);
-    set3f("u_up", k.up);
-    set3f("u_prev_forward", pk.forward);
-    set3f("u_prev_right", pk.right);
-    set3f("u_prev_up", pk.up);
-    gl.Uniform1f(loc("u_tan_half_fov"), k.tan_half_fov);
-    gl.Uniform1f(loc("u_prev_tan_half_fov"), pk.tan_half_fov);
-    set3f("u_motion", glm::vec3(sc.wind.x - prev.wind.x, sc.camera_altitude - prev.camera_altitude, sc.wind.y - prev.wind.y));
-    gl.Uniform2ui(loc("u_update_offset"), offset.x, offset.y);
-    gl.Uniform1i(loc("u_has_history"), t.has_history ? 1 : 0);
-    gl.Uniform1f(loc("u_max_samples"), float(temporal_max_samples));
-    gl.Uniform1f(loc("u_exposure"), sc.exposure);
-    gl.Uniform1ui(loc("u_frame"), sc.frame);
-    gl.Uniform1i(loc("u_dither"), v.dither ? 1 : 0);
+    u.v2("u_resolution", glm::vec2(float(width), float(height)));
+    u.v3("u_forward", k.forward);
+    u.v3("u_right", k.right);
+    u.v3("u_up", k.up);
+    u.v3("u_prev_forward", pk.forward);
+    u.v3("u_prev_right", pk.right);
+    u.v3("u_prev_up", pk.up);
+    u.f1("u_tan_half_fov", k.tan_half_fov);
+    u.f1("u_prev_tan_half_fov", pk.tan_half_fov);
+    u.v3("u_motion", glm::vec3(sc.wind.x - prev.wind.x, sc.camera_altitude - prev.camera_altitude, sc.wind.y - prev.wind.y));
+    u.u2("u_update_offset", offset);
+    u.i1("u_has_history", t.has_history ? 1 : 0);
+    u.f1("u_max_samples", float(temporal_max_samples));
+    u.f1("u_exposure", sc.exposure);
+    gl.Uniform1ui(u.loc("u_frame"), sc.frame);
+    u.i1("u_dither", v.dither ? 1 : 0);
     const char* samplers[4] = {"u_fresh", "u_fresh_depth", "u_history", "u_history_aux"};
     const GLuint inputs[4] = {t.fresh[0], t.fresh[1], t.history[t.current][0], t.history[t.current][1]};
     const int out = 1 - t.current;
@@ -674,7 +686,7 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
         for (int i = 0; i < 4; ++i) {
             gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + i));
             gl.BindTexture(GL_TEXTURE_2D, inputs[i]);
-            gl.Uniform1i(loc(samplers[i]), i);
+            u.i1(samplers[i], i);
         }
         gl.BindFramebuffer(GL_FRAMEBUFFER, t.history_fbo[out]);
         gl.DrawBuffers(3, three);
