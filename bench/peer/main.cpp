@@ -14,10 +14,13 @@
 #include "textures.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -108,66 +111,52 @@ double median(std::vector<double> v) {
     return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
-// A timed row: median and range of the measured frames, the image of the last one.
-struct row_result {
+// One timed row: how to draw one frame of it (returning its host time), how many frames
+// to draw before timing (shader compile and JIT; the temporal history), the measured times.
+struct timed_row {
+    std::function<bool(double& ms, std::string& why)> frame;
+    int warm_up = 1;
+    std::vector<double> ms;
     double median_ms = 0, min_ms = 0, max_ms = 0;
-    image img;
 };
 
-void summarise(const std::vector<double>& ms, row_result& r) {
-    r.median_ms = median(ms);
-    r.min_ms = *std::min_element(ms.begin(), ms.end());
-    r.max_ms = *std::max_element(ms.begin(), ms.end());
-}
-
-// Our full frame: one warm-up frame (shader compile and JIT), then `frames` timed ones.
-bool time_ours_full(gl_renderer& gpu, const scene& s, const variant& v, const options& o, row_result& r, std::string& why) {
-    std::vector<double> ms;
-    for (int f = 0; f < 1 + o.frames; ++f) {
-        frame_timing t;
-        if (!gpu.render(s, v, false, o.width, o.height, r.img, &t, why)) return false;
-        if (f >= 1) ms.push_back(t.wall_ms);
+// Warms every row up, then times them in rounds (one frame of each row per round), so that
+// a change in the machine's load (other processes on a shared machine) hits all rows alike
+// rather than whichever row happened to run then.
+bool time_rows(std::vector<timed_row*> rows, int frames, std::string& why) {
+    for (timed_row* r : rows)
+        for (int f = 0; f < r->warm_up; ++f) {
+            double ignored = 0;
+            if (!r->frame(ignored, why)) return false;
+        }
+    for (int f = 0; f < frames; ++f)
+        for (timed_row* r : rows) {
+            double ms = 0;
+            if (!r->frame(ms, why)) return false;
+            r->ms.push_back(ms);
+        }
+    for (timed_row* r : rows) {
+        r->median_ms = median(r->ms);
+        r->min_ms = *std::min_element(r->ms.begin(), r->ms.end());
+        r->max_ms = *std::max_element(r->ms.begin(), r->ms.end());
     }
-    summarise(ms, r);
     return true;
 }
 
-// Our temporal scheme: frames count up from 0; the first 16 fill the history (and warm up),
-// frames 16 onward are timed (both passes: 1-in-16 shading and the resolve).
-bool time_ours_temporal(gl_renderer& gpu, const scene& base, const variant& v, const options& o, row_result& r, std::string& why) {
-    constexpr int history_frames = 16;
-    gpu.reset_temporal();
-    std::vector<double> ms;
-    for (int f = 0; f < history_frames + o.frames; ++f) {
-        scene s = base;
-        s.frame = static_cast<std::uint32_t>(f);
-        frame_timing t;
-        if (!gpu.render_temporal(s, v, false, o.width, o.height, r.img, &t, why)) return false;
-        if (f >= history_frames) ms.push_back(t.wall_ms);
+// The 1-minute load average (/proc/loadavg), negative where there is none: the machine may
+// be shared, and llvmpipe's times scale with the cores it gets.
+double load_average() {
+    double load = -1.0;
+    if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
+        if (std::fscanf(f, "%lf", &load) != 1) load = -1.0;
+        std::fclose(f);
     }
-    summarise(ms, r);
-    return true;
-}
-
-// The peer: one warm-up dispatch (the compute shader's JIT), then `frames` timed ones.
-bool time_peer(peer_bench::peer_clouds& peer, const options& o, row_result& r, std::string& why) {
-    std::vector<double> ms;
-    for (int f = 0; f < 1 + o.frames; ++f) {
-        double wall = 0;
-        if (!peer.dispatch(wall, why)) return false;
-        if (f >= 1) ms.push_back(wall);
-    }
-    summarise(ms, r);
-    return peer.read_image(r.img, why);
+    return load;
 }
 
 int fail(const std::string& why) {
     std::fprintf(stderr, "error: %s\n", why.c_str());
     return 1;
-}
-
-void progress(const options& o, const char* what, const row_result& r) {
-    if (!o.quiet) std::fprintf(stderr, "peer-bench: %s: %.1f ms\n", what, r.median_ms);
 }
 
 int run(const options& o) {
@@ -195,20 +184,11 @@ int run(const options& o) {
     if (!load_or_bake_textures(cache, o.quiet, textures, why) || !ours->upload_textures(textures, why)) return fail(why);
     if (!o.quiet) std::fprintf(stderr, "peer-bench: OpenGL: %s\n", ours->device().c_str());
 
-    // Ours first, then the peer: its setup leaves image units, buffers and a different
-    // program bound, and our renderer binds all it uses anyway.
     const variant defaults;
     variant octaves;
     const char* octaves_spec = "lighting=octaves,powder=on,light=cone,ambient=flat";
     why = apply_variant_spec(octaves_spec, octaves);
     if (!why.empty()) return fail(why);
-    row_result ours_default, ours_temporal, ours_octaves, peer_row;
-    if (!time_ours_full(*ours, sc, defaults, o, ours_default, why)) return fail(why);
-    progress(o, "ours, default", ours_default);
-    if (!time_ours_temporal(*ours, sc, defaults, o, ours_temporal, why)) return fail(why);
-    progress(o, "ours, temporal", ours_temporal);
-    if (!time_ours_full(*ours, sc, octaves, o, ours_octaves, why)) return fail(why);
-    progress(o, "ours, previous default", ours_octaves);
 
     const frame_constants k = make_frame_constants(sc);
     peer_bench::peer_view view;
@@ -218,15 +198,51 @@ int run(const options& o) {
     view.sun_dir = k.sun_dir;
     auto peer = peer_bench::peer_clouds::create(o.peer_dir, &cloudmath_egl::gl_proc, o.quiet, why);
     if (!peer || !peer->prepare(o.width, o.height, view, why)) return fail(why);
-    if (!time_peer(*peer, o, peer_row, why)) return fail(why);
-    progress(o, "peer", peer_row);
+
+    // The rows. Both renderers share the context: the peer leaves image units, a storage
+    // buffer and its program bound, and ours binds everything it draws with on each frame.
+    image ours_default_img, ours_temporal_img, ours_octaves_img, peer_img;
+    const auto full_frame = [&](const variant& v, image& img) {
+        return [&ours, &sc, &o, vp = &v, ip = &img](double& ms, std::string& w) {
+            frame_timing t;
+            const bool ok = ours->render(sc, *vp, false, o.width, o.height, *ip, &t, w);
+            ms = t.wall_ms;
+            return ok;
+        };
+    };
+    timed_row peer_row, ours_default, ours_temporal, ours_octaves;
+    peer_row.frame = [&peer](double& ms, std::string& w) { return peer->dispatch(ms, w); };
+    ours_default.frame = full_frame(defaults, ours_default_img);
+    ours_octaves.frame = full_frame(octaves, ours_octaves_img);
+    // Temporal: frames count up from 0; the first 16 fill the history, 16 onward are timed
+    // (both passes: the 1-in-16 shading pass and the resolve).
+    std::uint32_t temporal_frame = 0;
+    ours->reset_temporal();
+    ours_temporal.warm_up = 16;
+    ours_temporal.frame = [&](double& ms, std::string& w) {
+        scene s = sc;
+        s.frame = temporal_frame++;
+        frame_timing t;
+        const bool ok = ours->render_temporal(s, defaults, false, o.width, o.height, ours_temporal_img, &t, w);
+        ms = t.wall_ms;
+        return ok;
+    };
+    const double load_before = load_average();
+    if (!o.quiet) std::fprintf(stderr, "peer-bench: timing 4 rows, %d rounds\n", o.frames);
+    if (!time_rows({&peer_row, &ours_default, &ours_temporal, &ours_octaves}, o.frames, why)) return fail(why);
+    const double load_after = load_average();
+    if (!peer->read_image(peer_img, why)) return fail(why);
+    if (!o.quiet)
+        std::fprintf(stderr, "peer-bench: peer %.1f ms, ours default %.1f ms, temporal %.1f ms, previous default %.1f ms\n",
+                     peer_row.median_ms, ours_default.median_ms, ours_temporal.median_ms, ours_octaves.median_ms);
+
     peer_bench::peer_reads reads;
     if (!peer->count_reads(reads, why)) return fail(why);
     // The counters must not change what the peer draws: the instrumented run's image against
     // the timed one's (same inputs, so same branches, same pixels).
     image counted_img;
     if (!peer->read_image(counted_img, why)) return fail(why);
-    const double instrumented_diff = compare(peer_row.img, counted_img).max_abs;
+    const double instrumented_diff = compare(peer_img, counted_img).max_abs;
 
     // Our reads for reference, from the CPU twin of the same shader at 160 x 90 (as the
     // --bench table of docs/renderer.md counts them).
@@ -234,26 +250,30 @@ int run(const options& o) {
     const texture_read_stats octaves_reads = count_texture_reads(sc, octaves, textures, 160, 90);
 
     if (!o.images_dir.empty()) {
-        const std::pair<const image*, const char*> out[] = {{&peer_row.img, "peer_clouds.png"},
-                                                            {&ours_default.img, "peer_ours_default.png"},
-                                                            {&ours_temporal.img, "peer_ours_temporal.png"},
-                                                            {&ours_octaves.img, "peer_ours_octaves.png"}};
+        const std::pair<const image*, const char*> out[] = {{&peer_img, "peer_clouds.png"},
+                                                            {&ours_default_img, "peer_ours_default.png"},
+                                                            {&ours_temporal_img, "peer_ours_temporal.png"},
+                                                            {&ours_octaves_img, "peer_ours_octaves.png"}};
         for (const auto& [img, name] : out) {
             const std::string path = o.images_dir + "/" + name;
             if (!write_png(path, *img)) return fail("cannot write " + path);
         }
     }
-    const image_stats peer_stats = statistics(peer_row.img);
+    const image_stats peer_stats = statistics(peer_img);
 
     std::printf("Device: `%s`. Image %d x %d. Times: host clock from before the draw or dispatch to the end of "
-                "glFinish(), median (min-max) of %d frames after warm-up.\n\n",
+                "glFinish(), median (min-max) of %d frames after warm-up, timed in rounds of one frame per row.",
                 ours->device().c_str(), o.width, o.height, o.frames);
+    if (load_before >= 0)
+        std::printf(" Load average (1 min) before / after timing: %.1f / %.1f on %u cores.", load_before, load_after,
+                    std::thread::hardware_concurrency());
+    std::printf("\n\n");
     std::printf("View: our preset `%s` (heading %.0f deg, pitch %.0f deg, vertical FOV %.0f deg, sun %.0f deg high at "
                 "heading %.0f deg), imposed on both; the peer keeps its own clouds, sky and camera height (800 m).\n\n",
                 sc.name.c_str(), double(sc.yaw), double(sc.pitch), double(sc.fov_y), double(sc.sun_elevation),
                 double(sc.sun_azimuth));
     std::printf("| Renderer | One frame | ms per frame |\n|---|---|---:|\n");
-    const auto row = [](const char* who, const char* what, const row_result& r) {
+    const auto row = [](const char* who, const char* what, const timed_row& r) {
         std::printf("| %s | %s | %.1f (%.1f-%.1f) |\n", who, what, r.median_ms, r.min_ms, r.max_ms);
     };
     row("peer: TerrainEngine-OpenGL `volumetric_clouds.comp`",
