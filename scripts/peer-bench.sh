@@ -81,6 +81,13 @@ report=$(build/peer/bench/peer/cloudmath_peer_bench --peer "$peer" "${args[@]}" 
   echo
   echo "$report"
   echo
+  echo "Reading the numbers: on llvmpipe every row runs on the CPU cores, so the times scale with the cores"
+  echo "free (see the load average above; the rows are timed in interleaved rounds so that a change in load"
+  echo "hits all of them alike). Per frame the peer marches 64 steps through its layer with a 6-sample cone"
+  echo "toward the sun at each step in cloud and stops at transmittance 0.1; it relies on a later blur pass"
+  echo "(not timed) to hide its 4 x 4 Bayer start offsets, visible in its raw image below. Our reads are counted"
+  echo "on the CPU twin of our shader, the peer's on the GPU; each over the pixels that its own renderer marches."
+  echo
   echo "Images: the peer's \`fragColor\` image clamped to [0, 1] and written as 8-bit values unchanged (it is"
   echo "already a display colour; the engine's post pass adds only a blur, a vignette and the terrain), ours"
   echo "from the same frames as the timings."
