@@ -57,13 +57,14 @@ const char* const usage_text =
     "commands:\n"
     "  render   path-trace one preset; CSV of linear rgb radiance and standard error per pixel\n"
     "           flags: --preset NAME --out F.csv [--width 160] [--height 90] [--spp 64]\n"
-    "                  [--seed 1] [--phase SPEC] [--threads 0] [--cache DIR] [--quiet]\n"
+    "                  [--seed 1] [--phase SPEC] [--threads 0] [--cache DIR] [--shape classic]\n"
+    "                  [--quiet]\n"
     "           --phase: a montecarlo phase spec (hg:G, dual_hg:G0,G1,W, cs:G, mie_approx:D,\n"
     "           table:PATH, ...); default the renderer's dual_hg:0.8,-0.25,0.2.\n"
     "  report   the renderer (render_cpu_linear) for each variant against the truth files\n"
     "           flags: [--presets ground,horizon,inside,above] [--selection PRESETS]\n"
     "                  [--variant NAME=SPEC ...] [--data docs/data] [--docs docs]\n"
-    "                  [--threads 0] [--cache DIR] [--quiet]\n"
+    "                  [--threads 0] [--cache DIR] [--shape classic] [--quiet]\n"
     "           --presets: the evaluation split; --selection: the presets the variants were\n"
     "           chosen on (reported first and marked; the two lists must be disjoint).\n"
     "           --variant: repeatable, SPEC as the renderer's --variant (empty = default);\n"
@@ -72,6 +73,8 @@ const char* const usage_text =
     "           Reads DATA/truth_NAME.csv, writes DOCS/lighting_truth.md and\n"
     "           DOCS/images/truth_NAME.png (truth | first variant | difference) and\n"
     "           truth_NAME_VARIANT.png for the other variants.\n"
+    "  --shape: the renderer's density field, classic (default: the stored truth's) or\n"
+    "           detailed; report refuses truth files traced over the other field.\n"
     "  --cache: the renderer's texture cache (default $XDG_CACHE_HOME/cloudmath or\n"
     "           ~/.cache/cloudmath; 'none' bakes without a cache). --threads 0: all cores.\n";
 
@@ -121,14 +124,24 @@ cr::cloud_textures load_textures(const flags& f, bool quiet) {
     return t;
 }
 
-const cr::scene& preset(const std::string& name) {
+// The preset with the density field `shape` (--shape: classic unless asked, the field the
+// stored docs/data/truth_*.csv were traced over).
+cr::scene preset(const std::string& name, cr::cloud_shape shape = cr::cloud_shape::classic) {
     const cr::scene* s = cr::find_preset(name);
     if (s == nullptr) {
         std::string known;
         for (const cr::scene& p : cr::presets()) known += (known.empty() ? "" : ", ") + p.name;
         throw usage_error("unknown preset '" + name + "' (" + known + ")");
     }
-    return *s;
+    cr::scene out = *s;
+    out.shape = shape;
+    return out;
+}
+
+cr::cloud_shape shape_flag(const std::string& value) {
+    if (value == "classic") return cr::cloud_shape::classic;
+    if (value == "detailed") return cr::cloud_shape::detailed;
+    throw usage_error("--shape must be classic or detailed, not '" + value + "'");
 }
 
 // ---------------------------------------------------------------------------------------
@@ -205,11 +218,12 @@ truth_image read_truth(const std::string& path) {
 
 // ---------------------------------------------------------------------------------------
 int run_render(int argc, char** argv) {
-    const flags f(argc, argv, {"--preset", "--out", "--width", "--height", "--spp", "--seed", "--phase", "--threads", "--cache"},
+    const flags f(argc, argv,
+                  {"--preset", "--out", "--width", "--height", "--spp", "--seed", "--phase", "--threads", "--cache", "--shape"},
                   {"--quiet"});
     if (!f.has("--preset")) throw usage_error("render needs --preset NAME");
     if (!f.has("--out")) throw usage_error("render needs --out FILE.csv");
-    const cr::scene& s = preset(f.get("--preset", ""));
+    const cr::scene s = preset(f.get("--preset", ""), shape_flag(f.get("--shape", "classic")));
     const int width = static_cast<int>(f.integer("--width", 160, 1, 4096));
     const int height = static_cast<int>(f.integer("--height", 90, 1, 4096));
     const auto spp = static_cast<std::uint64_t>(f.integer("--spp", 64, 1, 1 << 24));
@@ -249,6 +263,7 @@ int run_render(int argc, char** argv) {
     std::snprintf(secs, sizeof secs, "%.1f", seconds);
     t.meta = {{"preset", s.name},
               {"description", s.description},
+              {"shape", cr::name(s.shape)},
               {"width", std::to_string(width)},
               {"height", std::to_string(height)},
               {"spp", std::to_string(spp)},
@@ -258,8 +273,8 @@ int run_render(int argc, char** argv) {
               {"threads", std::to_string(threads)},
               {"seconds", secs}};
     cloudmath::reference::write_text_file_atomically(
-        f.get("--out", ""), format_csv(t, {"preset", "description", "width", "height", "spp", "seed", "phase", "albedo",
-                                           "threads", "seconds"}));
+        f.get("--out", ""), format_csv(t, {"preset", "description", "shape", "width", "height", "spp", "seed", "phase",
+                                           "albedo", "threads", "seconds"}));
     std::cout << "render " << s.name << ": " << width << "x" << height << ", " << spp << " spp, " << secs << " s on "
               << threads << " threads -> " << f.get("--out", "") << '\n';
     return 0;
@@ -354,8 +369,9 @@ std::string percent(double v) { return fixed(100.0 * v, 1) + "%"; }
 std::string signed_percent(double v) { return (v >= 0 ? "+" : "") + fixed(100.0 * v, 1) + "%"; }
 
 int run_report(int argc, char** argv) {
-    const flags f(argc, argv, {"--presets", "--selection", "--variant", "--data", "--docs", "--threads", "--cache"},
+    const flags f(argc, argv, {"--presets", "--selection", "--variant", "--data", "--docs", "--threads", "--cache", "--shape"},
                   {"--quiet"});
+    const cr::cloud_shape shape = shape_flag(f.get("--shape", "classic"));
     const std::vector<std::string> evaluation = split_list(f.get("--presets", "ground,horizon,inside,above"));
     const std::vector<std::string> selection = split_list(f.get("--selection", ""));
     if (evaluation.empty()) throw usage_error("--presets lists no preset");
@@ -388,11 +404,20 @@ int run_report(int argc, char** argv) {
     const bool quiet = f.has("--quiet");
 
     std::vector<truth_image> truths;
-    for (const std::string& n : names) truths.push_back(read_truth(data + "/truth_" + n + ".csv"));
+    for (const std::string& n : names) {
+        truths.push_back(read_truth(data + "/truth_" + n + ".csv"));
+        // Files from before the shape existed were traced over the classic field.
+        const auto it = truths.back().meta.find("shape");
+        const std::string traced = it == truths.back().meta.end() ? "classic" : it->second;
+        if (traced != cr::name(shape))
+            throw usage_error(data + "/truth_" + n + ".csv was traced over the " + traced + " field, not --shape " +
+                              cr::name(shape));
+    }
     const cr::cloud_textures textures = load_textures(f, quiet);
 
     std::ostringstream md;
     md << "# Lighting models against the path-traced truth of whole cloud images\n\n"
+       << "Density field: `" << cr::name(shape) << "` (the renderer's `--shape`).\n\n"
           "Generated by `bash scripts/truth.sh` (tools/reference/volume_truth_main.cpp; the truth\n"
           "images by `cloudmath_volume_truth render`, this report by `cloudmath_volume_truth report`).\n"
           "The same scene twice: the example renderer's CPU reference (`render_cpu_linear`, the\n"
@@ -434,7 +459,7 @@ int run_report(int argc, char** argv) {
             const auto it = t.meta.find(key);
             return it == t.meta.end() ? std::string("?") : it->second;
         };
-        const cr::scene& s = preset(names[p]);
+        const cr::scene s = preset(names[p], shape);
         sections << "## " << names[p] << " (" << s.description << ")"
                  << (p < selection.size() ? ", selection split" : "") << "\n\n";
         sections << "Truth: " << t.width << " x " << t.height << " pixels, " << meta("spp") << " paths per pixel, phase `"
