@@ -10,8 +10,12 @@
 #   docs/lighting_truth.md         the renderer's CPU reference (render_cpu_linear) for each
 #   docs/images/truth_PRESET.png   variant against them, with truth | model | difference
 #                                  images (cloudmath_volume_truth report; seconds)
-# Usage: bash scripts/truth.sh [--reports-only] [--build DIR] [--variant NAME=SPEC ...]
-#        bash scripts/truth.sh --check TOOL [--cache DIR]
+#   --shape detailed               the same for the renderer's default density field (per-cloud
+#                                  types and tops, crisp edges; 6 times slower to trace): data
+#                                  in docs/data/detailed/, report docs/detailed/lighting_truth.md,
+#                                  every preset at 384 paths per pixel (about 45 minutes)
+# Usage: bash scripts/truth.sh [--reports-only] [--build DIR] [--shape S] [--variant NAME=SPEC ...]
+#        bash scripts/truth.sh --check TOOL [--shape S] [--cache DIR]
 #   --reports-only  keeps docs/data/truth_*.csv, reruns the report
 #   --check TOOL    reruns the report with the built cloudmath_volume_truth TOOL from the
 #                   stored truth into a temporary directory and fails unless its summary
@@ -34,7 +38,7 @@ variants=(default= octaves=lighting=octaves,powder=on,light=cone,ambient=flat
           single=lighting=octaves,octaves=1,light=cone,ambient=flat mie=phase=mie
           diffusion_cone=light=cone diffusion_march=behind=march flat_ambient=ambient=flat)
 width=160 height=90 spp=1536 selection_spp=384
-reports_only=0 build="" check="" cache=()
+reports_only=0 build="" check="" cache=() shape=classic
 while [[ $# -gt 0 ]]; do
     case "$1" in
         --reports-only) reports_only=1 ;;
@@ -42,14 +46,20 @@ while [[ $# -gt 0 ]]; do
         --cache) cache=(--cache "${2:?--cache needs a directory}"); shift ;;
         --build) build="${2:?--build needs a directory}"; shift ;;
         --variant) variants+=("${2:?--variant needs NAME=SPEC}"); shift ;;
+        --shape) shape="${2:?--shape needs classic or detailed}"; shift ;;
         *) echo "usage: bash scripts/truth.sh [--reports-only] [--build DIR] [--variant NAME=SPEC ...]" >&2; exit 2 ;;
     esac
     shift
 done
+case "$shape" in
+    classic) data=docs/data docs=docs ;;
+    detailed) data=docs/data/detailed docs=docs/detailed spp=384 ;;
+    *) echo "truth.sh: --shape must be classic or detailed, not '$shape'" >&2; exit 2 ;;
+esac
 variant_args=()
 for v in "${variants[@]}"; do variant_args+=(--variant "$v"); done
 report_args=(--presets "$(IFS=,; echo "${presets[*]}")" --selection "$(IFS=,; echo "${selection[*]}")"
-             "${variant_args[@]}" "${cache[@]}" --quiet)
+             "${variant_args[@]}" "${cache[@]}" --shape "$shape" --quiet)
 
 # The summary table's rows of a report: "variant rms rms ..." with the % signs dropped.
 summary_rows() { awk '/^## Summary/ { on = 1; next } on && /^## / { exit } on && /^\| [^v-]/ {
@@ -59,15 +69,15 @@ if [[ -n $check ]]; then
     tmp=$(mktemp -d)
     trap 'rm -rf "$tmp"' EXIT
     mkdir -p "$tmp/images"
-    "$check" report "${report_args[@]}" --data docs/data --docs "$tmp" >/dev/null
-    paste -d '\n' <(summary_rows docs/lighting_truth.md) <(summary_rows "$tmp/lighting_truth.md") | awk '
+    "$check" report "${report_args[@]}" --data "$data" --docs "$tmp" >/dev/null
+    paste -d '\n' <(summary_rows "$docs/lighting_truth.md") <(summary_rows "$tmp/lighting_truth.md") | awk '
         NR % 2 == 1 { split($0, want, " "); wanted = $0; next }
         { n = split($0, got, " "); rows++
           if (got[1] != want[1] || n != length(want)) { print "truth.sh --check: row \"" $0 "\" against \"" wanted "\""; bad = 1; next }
           for (i = 2; i <= n; ++i) if (got[i] - want[i] > 0.15 || want[i] - got[i] > 0.15) {
               print "truth.sh --check: " got[1] ", column " i - 1 ": " got[i] "% measured, " want[i] "% documented"; bad = 1 } }
         END { if (rows == 0) { print "truth.sh --check: no summary rows"; exit 1 }
-              if (!bad) print "truth.sh --check: " rows " variants reproduce docs/lighting_truth.md"; exit bad }'
+              if (!bad) print "truth.sh --check: " rows " variants reproduce the documented report"; exit bad }'
     exit
 fi
 
@@ -79,16 +89,16 @@ if [[ -z $build ]]; then
 fi
 cmake --build "$build" --target cloudmath_volume_truth >/dev/null
 tool="$build/tools/reference/cloudmath_volume_truth"
-mkdir -p docs/data docs/images
+mkdir -p "$data" "$docs/images"
 
 if [[ $reports_only == 0 ]]; then
     for p in "${presets[@]}"; do
-        "$tool" render --preset "$p" --width "$width" --height "$height" --spp "$spp" \
-            --out "docs/data/truth_$p.csv"
+        "$tool" render --preset "$p" --shape "$shape" --width "$width" --height "$height" --spp "$spp" \
+            --out "$data/truth_$p.csv"
     done
     for p in "${selection[@]}"; do
-        "$tool" render --preset "$p" --width "$width" --height "$height" --spp "$selection_spp" \
-            --out "docs/data/truth_$p.csv"
+        "$tool" render --preset "$p" --shape "$shape" --width "$width" --height "$height" --spp "$selection_spp" \
+            --out "$data/truth_$p.csv"
     done
 fi
-"$tool" report "${report_args[@]}"
+"$tool" report "${report_args[@]}" --data "$data" --docs "$docs"

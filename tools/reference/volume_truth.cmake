@@ -64,4 +64,8 @@ if(CLOUDMATH_BUILD_TESTS)
   add_test(NAME reference.volume_truth_report
     COMMAND bash "${PROJECT_SOURCE_DIR}/scripts/truth.sh" --check $<TARGET_FILE:cloudmath_volume_truth>
             --cache "${CMAKE_CURRENT_BINARY_DIR}/truth_texture_cache")
+  # The same for the detailed field's truth (docs/data/detailed, docs/detailed).
+  add_test(NAME reference.volume_truth_report_detailed
+    COMMAND bash "${PROJECT_SOURCE_DIR}/scripts/truth.sh" --check $<TARGET_FILE:cloudmath_volume_truth>
+            --shape detailed --cache "${CMAKE_CURRENT_BINARY_DIR}/truth_texture_cache")
 endif()

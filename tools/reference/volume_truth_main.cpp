@@ -495,10 +495,14 @@ int run_report(int argc, char** argv) {
     }
     // The rms of every variant on every preset, the selection split first.
     md << "## Summary: rms over the image mean\n\n";
-    if (!selection.empty())
+    if (!selection.empty() && shape == cr::cloud_shape::classic)
         md << "The renderer's default variant was chosen on the selection presets (" << selection.size()
            << " presets, fewer paths per pixel), then measured on the evaluation presets (what had been\n"
            "measured on them before the choice is in [lighting_research.md](lighting_research.md)).\n\n";
+    else if (!selection.empty())
+        md << "The renderer's default variant was chosen on the classic field's selection presets\n"
+              "([../lighting_truth.md](../lighting_truth.md)); on this field no choice was made: every preset,\n"
+              "the selection split's included, is out of sample for it ([../lighting_research.md](../lighting_research.md)).\n\n";
     md << "| variant |";
     for (std::size_t p = 0; p < names.size(); ++p) md << ' ' << names[p] << (p < selection.size() ? " (selection)" : "") << " |";
     md << "\n|---|";
