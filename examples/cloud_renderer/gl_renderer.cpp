@@ -348,38 +348,26 @@ bool gl_renderer::upload_textures(const cloud_textures& t, std::string& why) {
         gl.TexParameteri(target, GL_TEXTURE_WRAP_T, GL_REPEAT);
         gl.TexParameteri(target, GL_TEXTURE_WRAP_R, GL_REPEAT);
     };
-    const auto volume = [&gl](GLuint tex, GLint internal, GLenum format, int size, const std::vector<std::uint8_t>& level0,
-                              const std::vector<std::vector<std::uint8_t>>& mips) {
-        gl.BindTexture(GL_TEXTURE_3D, tex);
-        gl.TexImage3D(GL_TEXTURE_3D, 0, internal, size, size, size, 0, format, GL_UNSIGNED_BYTE, level0.data());
-        for (std::size_t k = 0; k < mips.size(); ++k) {
-            const int s = size >> (k + 1);
-            gl.TexImage3D(GL_TEXTURE_3D, static_cast<GLint>(k + 1), internal, s, s, s, 0, format, GL_UNSIGNED_BYTE, mips[k].data());
+    // One texture with its mip levels (level k is size >> k a side), then its parameters.
+    const auto upload = [&](GLenum target, GLuint tex, GLint internal, GLenum format, int size,
+                            const std::vector<std::uint8_t>& level0, const std::vector<std::vector<std::uint8_t>>& mips) {
+        gl.BindTexture(target, tex);
+        for (std::size_t k = 0; k <= mips.size(); ++k) {
+            const int n = size >> k;
+            const void* texels = k == 0 ? level0.data() : mips[k - 1].data();
+            if (target == GL_TEXTURE_3D)
+                gl.TexImage3D(target, static_cast<GLint>(k), internal, n, n, n, 0, format, GL_UNSIGNED_BYTE, texels);
+            else
+                gl.TexImage2D(target, static_cast<GLint>(k), internal, n, n, 0, format, GL_UNSIGNED_BYTE, texels);
         }
+        setup(target, mips.size());
     };
-    volume(s_->textures[0], GL_RGBA8, GL_RGBA, t.base_size, t.base, t.base_mips);
-    setup(GL_TEXTURE_3D, t.base_mips.size());
-    volume(s_->textures[1], GL_RGB8, GL_RGB, t.detail_size, t.detail, t.detail_mips);
-    setup(GL_TEXTURE_3D, t.detail_mips.size());
-    gl.BindTexture(GL_TEXTURE_2D, s_->textures[2]);
-    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, t.weather_size, t.weather_size, 0, GL_RGB, GL_UNSIGNED_BYTE, t.weather.data());
-    for (std::size_t k = 0; k < t.weather_mips.size(); ++k) {
-        const int s = t.weather_size >> (k + 1);
-        gl.TexImage2D(GL_TEXTURE_2D, static_cast<GLint>(k + 1), GL_RGB8, s, s, 0, GL_RGB, GL_UNSIGNED_BYTE, t.weather_mips[k].data());
-    }
-    setup(GL_TEXTURE_2D, t.weather_mips.size());
-    gl.BindTexture(GL_TEXTURE_2D, s_->textures[3]);
-    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, t.weather_wide_size, t.weather_wide_size, 0, GL_RGB, GL_UNSIGNED_BYTE,
-                  t.weather_wide.data());
-    for (std::size_t k = 0; k < t.weather_wide_mips.size(); ++k) {
-        const int s = t.weather_wide_size >> (k + 1);
-        gl.TexImage2D(GL_TEXTURE_2D, static_cast<GLint>(k + 1), GL_RGB8, s, s, 0, GL_RGB, GL_UNSIGNED_BYTE,
-                      t.weather_wide_mips[k].data());
-    }
-    setup(GL_TEXTURE_2D, t.weather_wide_mips.size());
-    gl.BindTexture(GL_TEXTURE_2D, s_->textures[4]);
-    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, t.curl_size, t.curl_size, 0, GL_RGB, GL_UNSIGNED_BYTE, t.curl.data());
-    setup(GL_TEXTURE_2D, 0);
+    const std::vector<std::vector<std::uint8_t>> no_mips;
+    upload(GL_TEXTURE_3D, s_->textures[0], GL_RGBA8, GL_RGBA, t.base_size, t.base, t.base_mips);
+    upload(GL_TEXTURE_3D, s_->textures[1], GL_RGB8, GL_RGB, t.detail_size, t.detail, t.detail_mips);
+    upload(GL_TEXTURE_2D, s_->textures[2], GL_RGB8, GL_RGB, t.weather_size, t.weather, t.weather_mips);
+    upload(GL_TEXTURE_2D, s_->textures[3], GL_RGB8, GL_RGB, t.weather_wide_size, t.weather_wide, t.weather_wide_mips);
+    upload(GL_TEXTURE_2D, s_->textures[4], GL_RGB8, GL_RGB, t.curl_size, t.curl, no_mips);
     why = s_->gl_errors("texture upload");
     return why.empty();
 }
@@ -411,7 +399,7 @@ struct uniform_setter {
 
 // Makes the clouds program of the variant current with every uniform of the scene set and
 // the cloud textures bound; 0 on failure. temporal_pass 1: the shading pass of the temporal
-// scheme (clouds.frag's u_temporal_pass), shading pixel 4 (i, j) + offset.
+// scheme (clouds.frag's u_pass), shading pixel 4 (i, j) + offset.
 GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bool compile_time, int width, int height,
                    int temporal_pass, glm::uvec2 offset, std::string& why) {
     const gl_api& gl = st.gl;
@@ -419,90 +407,88 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
     if (program == 0) return 0;
     gl.UseProgram(program);
     const uniform_setter u{gl, program};
-    const auto loc = [&](const char* n) { return u.loc(n); };
-    const auto set1i = [&](const char* n, int x) { u.i1(n, x); };
-    const auto set1f = [&](const char* n, float x) { u.f1(n, x); };
-    const auto set3f = [&](const char* n, const glm::vec3& x) { u.v3(n, x); };
     if (!compile_time)
-        for (const shader_int& value : variant_values(v)) set1i(value.name, value.value);
+        for (const shader_int& value : variant_values(v)) u.i1(value.name, value.value);
     const frame_constants k = make_frame_constants(sc);
-    gl.Uniform2f(loc("u_resolution"), float(width), float(height));
-    set3f("u_forward", k.forward);
-    set3f("u_right", k.right);
-    set3f("u_up", k.up);
-    set1f("u_tan_half_fov", k.tan_half_fov);
-    set1f("u_cam_altitude", sc.camera_altitude);
-    set1f("u_planet_radius", sc.planet_radius);
-    set1f("u_layer_bottom", sc.layer_bottom);
-    set1f("u_layer_top", sc.layer_top);
-    set1f("u_march_near_distance", k.march_near_distance);
-    set3f("u_sun_dir", k.sun_dir);
-    set3f("u_sun_radiance", k.sun_radiance);
-    set3f("u_ambient_top", k.ambient_top);
-    set3f("u_ambient_bottom", k.ambient_bottom);
-    set3f("u_sky_zenith", k.sky_zenith);
-    set3f("u_sky_horizon", k.sky_horizon);
-    set3f("u_ground", k.ground);
-    set1f("u_sun_angular_radius", k.sun_angular_radius);
-    set1f("u_coverage", sc.coverage);
-    set1f("u_cloud_type", sc.cloud_type);
-    set1f("u_extinction", sc.extinction);
-    set1f("u_albedo", sc.albedo);
-    set1f("u_max_distance", sc.max_distance);
-    set1f("u_base_tile", sc.base_tile);
-    set1f("u_detail_tile", sc.detail_tile);
-    set1f("u_weather_tile", sc.weather_tile);
-    gl.Uniform2f(loc("u_wind"), sc.wind.x, sc.wind.y);
-    gl.Uniform1ui(loc("u_frame"), sc.frame);
-    set1f("u_exposure", sc.exposure);
-    set1f("u_phase_g", k.phase_g);
-    set1f("u_phase_g_back", k.phase_g_back);
-    set1f("u_phase_w", k.phase_w);
-    set1f("u_droplet_diameter", k.droplet_diameter);
-    set1f("u_ms_a", k.ms_a);
-    set1f("u_phase_mean_cosine", phase_mean_cosine(k, v.phase));
-    set1f("u_ms_b", k.ms_b);
-    set1f("u_ms_c", k.ms_c);
-    set1f("u_cone_step", k.cone_step);
-    set1f("u_cone_spread", k.cone_spread);
-    set1f("u_cone_far_distance", k.cone_far_distance);
-    set1f("u_cone_far_length", k.cone_far_length);
-    set1f("u_light_march_max", k.light_march_max);
-    set1f("u_min_transmittance", k.min_transmittance);
-    set1i("u_pass", temporal_pass);
-    gl.Uniform2ui(loc("u_update_offset"), offset.x, offset.y);
-    set3f("u_shadow_origin", k.shadow_origin);
-    set3f("u_shadow_right", k.shadow_right);
-    set3f("u_shadow_up", k.shadow_up);
-    set1f("u_shadow_half_extent", k.shadow_half_extent);
+    u.v2("u_resolution", glm::vec2(float(width), float(height)));
+    u.v3("u_forward", k.forward);
+    u.v3("u_right", k.right);
+    u.v3("u_up", k.up);
+    u.f1("u_tan_half_fov", k.tan_half_fov);
+    u.f1("u_cam_altitude", sc.camera_altitude);
+    u.f1("u_planet_radius", sc.planet_radius);
+    u.f1("u_layer_bottom", sc.layer_bottom);
+    u.f1("u_layer_top", sc.layer_top);
+    u.f1("u_march_near_distance", k.march_near_distance);
+    u.v3("u_sun_dir", k.sun_dir);
+    u.v3("u_sun_radiance", k.sun_radiance);
+    u.v3("u_ambient_top", k.ambient_top);
+    u.v3("u_ambient_bottom", k.ambient_bottom);
+    u.v3("u_sky_zenith", k.sky_zenith);
+    u.v3("u_sky_horizon", k.sky_horizon);
+    u.v3("u_ground", k.ground);
+    u.f1("u_sun_angular_radius", k.sun_angular_radius);
+    u.f1("u_coverage", sc.coverage);
+    u.f1("u_cloud_type", sc.cloud_type);
+    u.f1("u_extinction", sc.extinction);
+    u.f1("u_albedo", sc.albedo);
+    u.f1("u_max_distance", sc.max_distance);
+    u.f1("u_base_tile", sc.base_tile);
+    u.f1("u_detail_tile", sc.detail_tile);
+    u.f1("u_weather_tile", sc.weather_tile);
+    u.v2("u_wind", sc.wind);
+    gl.Uniform1ui(u.loc("u_frame"), sc.frame);
+    u.f1("u_exposure", sc.exposure);
+    u.f1("u_phase_g", k.phase_g);
+    u.f1("u_phase_g_back", k.phase_g_back);
+    u.f1("u_phase_w", k.phase_w);
+    u.f1("u_droplet_diameter", k.droplet_diameter);
+    u.f1("u_ms_a", k.ms_a);
+    u.f1("u_phase_mean_cosine", phase_mean_cosine(k, v.phase));
+    u.f1("u_ms_b", k.ms_b);
+    u.f1("u_ms_c", k.ms_c);
+    u.f1("u_cone_step", k.cone_step);
+    u.f1("u_cone_spread", k.cone_spread);
+    u.f1("u_cone_far_distance", k.cone_far_distance);
+    u.f1("u_cone_far_length", k.cone_far_length);
+    u.f1("u_light_march_max", k.light_march_max);
+    u.f1("u_min_transmittance", k.min_transmittance);
+    u.i1("u_pass", temporal_pass);
+    u.u2("u_update_offset", offset);
+    u.v3("u_shadow_origin", k.shadow_origin);
+    u.v3("u_shadow_right", k.shadow_right);
+    u.v3("u_shadow_up", k.shadow_up);
+    u.f1("u_shadow_half_extent", k.shadow_half_extent);
     // The mip levels are sampled only with the LOD variant: a mipmapped minification filter
     // costs llvmpipe 1.8 times the frame even where every read is at level 0.
     const GLint min_filter = v.lod ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR;
-    const char* samplers[3] = {"u_base", "u_detail", "u_weather"};
-    const GLenum kinds[3] = {GL_TEXTURE_3D, GL_TEXTURE_3D, GL_TEXTURE_2D};
-    for (int i = 0; i < 3; ++i) {
-        gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + i));
-        gl.BindTexture(kinds[i], st.textures[i]);
-        gl.TexParameteri(kinds[i], GL_TEXTURE_MIN_FILTER, min_filter);
-        set1i(samplers[i], i);
+    // Units 0-2 and 4-5 (3 is the shadow map's, bound by shadow_pass); the curl has no mips.
+    struct unit {
+        const char* sampler;
+        GLenum kind;
+        int texture, index;
+        bool mips;
+    };
+    const unit units[5] = {{"u_base", GL_TEXTURE_3D, 0, 0, true},
+                           {"u_detail", GL_TEXTURE_3D, 1, 1, true},
+                           {"u_weather", GL_TEXTURE_2D, 2, 2, true},
+                           {"u_weather_wide", GL_TEXTURE_2D, 3, 4, true},
+                           {"u_curl", GL_TEXTURE_2D, 4, 5, false}};
+    for (const unit& t : units) {
+        gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + t.index));
+        gl.BindTexture(t.kind, st.textures[t.texture]);
+        if (t.mips) gl.TexParameteri(t.kind, GL_TEXTURE_MIN_FILTER, min_filter);
+        u.i1(t.sampler, t.index);
     }
-    set1i("u_shadow_map", 3);
-    // The detailed shape's textures on units 4 and 5 (3 is the shadow map's).
-    const char* more[2] = {"u_weather_wide", "u_curl"};
-    for (int i = 0; i < 2; ++i) {
-        gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE4 + i));
-        gl.BindTexture(GL_TEXTURE_2D, st.textures[3 + i]);
-        if (i == 0) gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, min_filter);  // the curl has no mips
-        set1i(more[i], 4 + i);
-    }
-    set1i("u_shape", static_cast<int>(sc.shape));
-    set1f("u_weather_wide_tile", sc.weather_wide_tile);
-    set1f("u_curl_tile", sc.curl_tile);
-    set1f("u_curl_strength", sc.curl_strength);
-    set1f("u_type_spread", sc.type_spread);
-    set1f("u_top_rounding", sc.top_rounding);
-    set1f("u_density_scale", sc.density_scale);
-    gl.Uniform2f(loc("u_band"), k.band.x, k.band.y);
+    u.i1("u_shadow_map", 3);
+    u.i1("u_shape", static_cast<int>(sc.shape));
+    u.f1("u_weather_wide_tile", sc.weather_wide_tile);
+    u.f1("u_curl_tile", sc.curl_tile);
+    u.f1("u_curl_strength", sc.curl_strength);
+    u.f1("u_type_spread", sc.type_spread);
+    u.f1("u_top_rounding", sc.top_rounding);
+    u.f1("u_density_scale", sc.density_scale);
+    u.v2("u_band", k.band);
     return program;
 }
 
@@ -530,9 +516,10 @@ bool shadow_pass(gl_renderer::state& st, const variant& v, GLuint program, int r
         gl.BindFramebuffer(GL_FRAMEBUFFER, st.shadow_fbo);
         gl.DrawBuffers(1, &one);
         gl.Viewport(0, 0, shadow_map_size, shadow_map_size);
-        gl.Uniform1i(gl.GetUniformLocation(program, "u_pass"), 2);
+        const uniform_setter u{gl, program};
+        u.i1("u_pass", 2);
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
-        gl.Uniform1i(gl.GetUniformLocation(program, "u_pass"), restore_pass);
+        u.i1("u_pass", restore_pass);
     }
     gl.ActiveTexture(GL_TEXTURE3);
     gl.BindTexture(GL_TEXTURE_2D, st.shadow_map);
