@@ -22,6 +22,18 @@ using glm::vec2;
 using glm::vec3;
 using glm::vec4;
 
+// GL_LINEAR's four taps on a width x height grid for footprint fp = (x0, y0, fx, fy)
+// (texel_bilinear), clamped to the grid: tap(index, weight) for each, in the shaders' order.
+template <class Tap>
+void bilinear_taps(vec4 fp, int width, int height, Tap tap) {
+    for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) {
+            const int tx = std::clamp(int(fp.x) + dx, 0, width - 1), ty = std::clamp(int(fp.y) + dy, 0, height - 1);
+            tap(static_cast<std::size_t>(ty) * static_cast<std::size_t>(width) + static_cast<std::size_t>(tx),
+                (dx ? fp.z : 1.0f - fp.z) * (dy ? fp.w : 1.0f - fp.w));
+        }
+}
+
 // The shader's functions (cr_*), with the uniforms as members.
 struct pixel_program {
     const scene& s;
@@ -84,15 +96,9 @@ struct pixel_program {
     // The map's texel at uv: bilinear (texel_bilinear), taps clamped to the map (4 reads).
     vec3 shadow_lookup(vec2 uv, long* counter = nullptr) const {
         if (counter) *counter += 4;
-        const vec4 fp = cm::texel_bilinear(uv, vec2(float(shadow_map_size)));
         vec3 texel(0.0f);
-        for (int dy = 0; dy < 2; ++dy)
-            for (int dx = 0; dx < 2; ++dx) {
-                const int tx = std::clamp(int(fp.x) + dx, 0, shadow_map_size - 1);
-                const int ty = std::clamp(int(fp.y) + dy, 0, shadow_map_size - 1);
-                texel += shadow_map[static_cast<std::size_t>(ty * shadow_map_size + tx)] *
-                         ((dx ? fp.z : 1.0f - fp.z) * (dy ? fp.w : 1.0f - fp.w));
-            }
+        bilinear_taps(cm::texel_bilinear(uv, vec2(float(shadow_map_size))), shadow_map_size, shadow_map_size,
+                      [&](std::size_t i, float weight) { texel += shadow_map[i] * weight; });
         return texel;
     }
 
@@ -405,16 +411,10 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
         vec2 ha(0.0f);
         if (valid) {
             // Bilinear taps clamped to the image (a point on screen always has its texels).
-            const vec4 fp = cm::texel_bilinear(vec2(uvz), vec2(float(w), float(h)));
-            const int x0 = int(fp.x), y0 = int(fp.y);
-            for (int dy = 0; dy < 2; ++dy)
-                for (int dx = 0; dx < 2; ++dx) {
-                    const int tx = std::clamp(x0 + dx, 0, w - 1), ty = std::clamp(y0 + dy, 0, h - 1);
-                    const float weight = (dx ? fp.z : 1.0f - fp.z) * (dy ? fp.w : 1.0f - fp.w);
-                    const std::size_t ti = static_cast<std::size_t>(ty) * static_cast<std::size_t>(w) + static_cast<std::size_t>(tx);
-                    hc += color_[ti] * weight;
-                    ha += aux_[ti] * weight;
-                }
+            bilinear_taps(cm::texel_bilinear(vec2(uvz), vec2(float(w), float(h))), w, h, [&](std::size_t ti, float weight) {
+                hc += color_[ti] * weight;
+                ha += aux_[ti] * weight;
+            });
         }
         vec4 c;
         vec2 a;
@@ -431,14 +431,8 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
             // pixel's turn; 0 samples, so its own sample replaces this one.
             const vec2 q = (vec2(float(x), float(y)) - vec2(offset)) * 0.25f;
             const vec2 q0(std::floor(q.x), std::floor(q.y));
-            const vec2 f = q - q0;
             c = vec4(0.0f);
-            for (int dy = 0; dy < 2; ++dy)
-                for (int dx = 0; dx < 2; ++dx) {
-                    const int i = std::clamp(int(q0.x) + dx, 0, lw - 1), j = std::clamp(int(q0.y) + dy, 0, lh - 1);
-                    c += fresh[static_cast<std::size_t>(j) * static_cast<std::size_t>(lw) + static_cast<std::size_t>(i)] *
-                         ((dx ? f.x : 1.0f - f.x) * (dy ? f.y : 1.0f - f.y));
-                }
+            bilinear_taps(vec4(q0, q - q0), lw, lh, [&](std::size_t j, float weight) { c += fresh[j] * weight; });
             a = vec2(fresh_depth[b], 0.0f);
         }
         const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
@@ -453,29 +447,37 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
     previous_ = s;
     has_history_ = true;
 
-    // Reads per in-layer pixel of the whole image: the shaded pixels' reads, over the count of
-    // pixels whose ray enters the layer (a segment test, no texture read).
-    long total = 0, light = 0;
+    // The shaded pixels' reads (last_reads divides them by the in-layer pixels on demand).
+    reads_view_ = reads_light_ = 0;
     for (const pixel_program::reads& r : counts) {
-        total += r.view + r.light;
-        light += r.light;
+        reads_view_ += r.view;
+        reads_light_ += r.light;
     }
-    int in_layer = 0;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const vec3 dir = pixel_direction(k, x, y, w, h);
-            const vec2 layer = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, s.layer_bottom, s.layer_top);
-            if (layer.y > layer.x) ++in_layer;
-        }
-    reads_ = texture_read_stats{};
-    reads_.shadow_map = program.shadow_map_reads;
-    reads_.pixels_in_layer = in_layer;
-    if (in_layer > 0) {
-        reads_.mean = double(total) / double(in_layer);
-        reads_.light_share = total > 0 ? double(light) / double(total) : 0.0;
-        reads_.p95 = 0.0;  // per-pixel percentiles do not apply: 15 of 16 pixels read nothing
-    }
+    reads_shadow_map_ = program.shadow_map_reads;
     return display;
+}
+
+texture_read_stats cpu_temporal_renderer::last_reads() const {
+    // Over the pixels of the last frame whose ray enters the layer (a segment test, no
+    // texture read), counted here rather than in every frame.
+    texture_read_stats st;
+    st.shadow_map = reads_shadow_map_;
+    if (!has_history_) return st;
+    const frame_constants k = make_frame_constants(previous_);
+    for (int y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x) {
+            const vec3 dir = pixel_direction(k, x, y, width_, height_);
+            const vec2 layer = cm::cloud_layer_segment(previous_.camera_altitude, dir.y, previous_.planet_radius,
+                                                       previous_.layer_bottom, previous_.layer_top);
+            if (layer.y > layer.x) ++st.pixels_in_layer;
+        }
+    const long total = reads_view_ + reads_light_;
+    if (st.pixels_in_layer > 0) {
+        st.mean = double(total) / double(st.pixels_in_layer);
+        st.light_share = total > 0 ? double(reads_light_) / double(total) : 0.0;
+        st.p95 = 0.0;  // per-pixel percentiles do not apply: 15 of 16 pixels read nothing
+    }
+    return st;
 }
 
 }  // namespace cloud_renderer

@@ -52,7 +52,8 @@ std::uint32_t dither_hash(int x, int y, std::uint32_t frame);
 // mean of at most max_samples (temporal_blend_weight); its march jitter advances once per
 // 16 frames (frame_jitter with frame / 16), so each pixel's samples follow R1. A pixel whose
 // point was off the previous screen (disocclusion at the screen edge, or the first frame)
-// takes its block's new sample until its own turn. temporal_resolve.frag is the GPU twin.
+// takes the bilinear interpolation of the new samples until its own turn.
+// temporal_resolve.frag is the GPU twin.
 class cpu_temporal_renderer {
 public:
     cpu_temporal_renderer(int width, int height, int max_samples = 8);
@@ -62,7 +63,7 @@ public:
     void reset() { has_history_ = false; }
     // Texture reads of the last frame per pixel whose ray enters the cloud layer: the shaded
     // pixels' reads over all in-layer pixels of the image.
-    const texture_read_stats& last_reads() const { return reads_; }
+    texture_read_stats last_reads() const;
 
 private:
     int width_, height_, max_samples_;
@@ -70,7 +71,7 @@ private:
     scene previous_;
     std::vector<glm::vec4> color_;
     std::vector<glm::vec2> aux_;
-    texture_read_stats reads_;
+    long reads_view_ = 0, reads_light_ = 0, reads_shadow_map_ = 0;  // the last frame's
 };
 
 }  // namespace cloud_renderer
