@@ -31,6 +31,17 @@ layout(location = 2) out vec4 out_display;
 
 #include "cloudmath.glsl"
 
+// GL_LINEAR's four taps of texture t for footprint fp = (x0, y0, fx, fy) (cm_texel_bilinear),
+// clamped to texels [0, last] (cpu_renderer.cpp's bilinear_taps).
+vec4 cr_bilinear(sampler2D t, vec4 fp, ivec2 last) {
+    vec4 sum = vec4(0.0);
+    for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx)
+            sum += texelFetch(t, clamp(ivec2(fp.xy) + ivec2(dx, dy), ivec2(0), last), 0) *
+                   ((dx != 0 ? fp.z : 1.0 - fp.z) * (dy != 0 ? fp.w : 1.0 - fp.w));
+    return sum;
+}
+
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     ivec2 size = ivec2(u_resolution);
@@ -51,14 +62,8 @@ void main() {
     if (valid) {
         // Bilinear taps clamped to the image (a point on screen always has its texels).
         vec4 fp = cm_texel_bilinear(uvz.xy, u_resolution);
-        ivec2 base = ivec2(fp.xy);
-        for (int dy = 0; dy < 2; ++dy)
-            for (int dx = 0; dx < 2; ++dx) {
-                ivec2 t = clamp(base + ivec2(dx, dy), ivec2(0), size - 1);
-                float weight = (dx != 0 ? fp.z : 1.0 - fp.z) * (dy != 0 ? fp.w : 1.0 - fp.w);
-                hc += texelFetch(u_history, t, 0) * weight;
-                ha += texelFetch(u_history_aux, t, 0).xy * weight;
-            }
+        hc = cr_bilinear(u_history, fp, size - 1);
+        ha = cr_bilinear(u_history_aux, fp, size - 1).xy;
     }
     vec4 c;
     vec2 a;
@@ -75,14 +80,7 @@ void main() {
         // pixel's turn; 0 samples, so its own sample replaces this one.
         vec2 q = (vec2(p) - vec2(u_update_offset)) * 0.25;
         vec2 q0 = floor(q);
-        vec2 f = q - q0;
-        ivec2 last = (size + 3) / 4 - 1;
-        c = vec4(0.0);
-        for (int dy = 0; dy < 2; ++dy)
-            for (int dx = 0; dx < 2; ++dx) {
-                ivec2 t = clamp(ivec2(q0) + ivec2(dx, dy), ivec2(0), last);
-                c += texelFetch(u_fresh, t, 0) * ((dx != 0 ? f.x : 1.0 - f.x) * (dy != 0 ? f.y : 1.0 - f.y));
-            }
+        c = cr_bilinear(u_fresh, vec4(q0, q - q0), (size + 3) / 4 - 1);
         a = vec2(fresh_depth, 0.0);
     }
     out_history = c;
