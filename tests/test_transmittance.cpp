@@ -163,5 +163,7 @@ TEST_CASE_TEMPLATE("diffuse_transmittance: the two-stream form, limits, and the 
         ++rows;
     }
     CHECK(rows == 27);
-    MESSAGE("diffuse_transmittance against the slab Monte Carlo: worst " << worst_abs << " absolute, " << worst_rel << " relative");
+    MESSAGE(std::string(sizeof(T) == sizeof(float) ? "float" : "double")
+            << ": diffuse_transmittance against the slab Monte Carlo (27 cases): worst " << worst_abs << " too high, "
+            << worst_rel << " relative");
 }
