@@ -249,6 +249,9 @@ async function main() {
   const dbg = gl.getExtension('WEBGL_debug_renderer_info');
   demo.renderer = dbg ? gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
   document.getElementById('device').textContent = `Renderer: ${demo.renderer}; ${navigator.userAgent}`;
+  // Let the page finish loading before the long synchronous GL work (a software renderer
+  // takes tens of seconds for the parity shaders, the bake and the cloud shader).
+  await new Promise((resolve) => setTimeout(resolve, 0));
   status('parity...');
   demo.parity = runParity();
   status('baking noise textures...');

@@ -54,7 +54,7 @@ try {
   page.on('pageerror', (e) => logs.push(`pageerror: ${e.message}`));
 
   const load = async (query) => {
-    await page.goto(`${base}/demo/${query}`);
+    await page.goto(`${base}/demo/${query}`, { waitUntil: 'commit' });  // the demo sets ready itself
     await page.waitForFunction(() => window.cloudmathDemo && (window.cloudmathDemo.ready || window.cloudmathDemo.error), null, { timeout: 600000, polling: 500 });
     return page.evaluate(() => window.cloudmathDemo);
   };
@@ -91,7 +91,7 @@ try {
   imageOk(demo.image, 'horizon, sun 12 deg, coverage 0.4');
 
   // The three.js snippet of web/README.md, run as written with three.js from npm.
-  await page.goto(`${base}/demo/three.html`);
+  await page.goto(`${base}/demo/three.html`, { waitUntil: 'commit' });
   await page.waitForFunction(() => window.threeDemo && (window.threeDemo.ready || window.threeDemo.error), null, { timeout: 120000, polling: 250 });
   const three = await page.evaluate(() => window.threeDemo);
   threeRevision = three.threeRevision;
