@@ -5,8 +5,8 @@
 // Skybox::draw. Where we differ, a comment says so and why.
 #include "peer_clouds.hpp"
 
+#include "gl_functions.hpp"
 #include "instrument.hpp"
-#include "peer_gl.hpp"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -22,6 +22,8 @@
 #include <vector>
 
 namespace peer_bench {
+
+using gl_api = cloudmath_egl::gl_functions;  // tools/egl's table of GL entry points
 
 namespace {
 
@@ -340,7 +342,7 @@ std::unique_ptr<peer_clouds> peer_clouds::create(const std::string& peer_dir, pr
     }
     auto s = std::make_unique<state>();
     s->quiet = quiet;
-    const std::string missing = s->gl.load(load);
+    const std::string missing = s->gl.load(load, true);
     if (!missing.empty()) {
         why = "OpenGL function " + missing + " not available";
         return nullptr;

@@ -6,6 +6,7 @@
 #include <cloudmath/reprojection.hpp>
 
 #include "egl_headless.hpp"
+#include "gl_functions.hpp"
 
 #include <GL/glcorearb.h>
 
@@ -60,6 +61,15 @@ std::vector<shader_int> variant_values(const variant& v) {
             {"u_dither", v.dither ? 1 : 0}};
 }
 
+// `body` with its line `#include "cloudmath.glsl"` (the line itself, not a comment that names
+// it) replaced by the library's GLSL.
+std::string with_cloudmath(std::string body) {
+    const std::string include_line = "\n#include \"cloudmath.glsl\"\n";
+    const std::size_t at = body.find(include_line);
+    if (at != std::string::npos) body.replace(at, include_line.size(), "\n" + cloudmath::glsl_source("cloudmath") + "\n");
+    return body;
+}
+
 }  // namespace
 
 std::string fragment_shader_source(const variant& v, bool compile_time) {
@@ -71,90 +81,13 @@ std::string fragment_shader_source(const variant& v, bool compile_time) {
     } else {
         head += "#define CR_PARAM(type, name) uniform type name;\n";
     }
-    std::string body = clouds_frag_text;
-    const std::string include_line = "\n#include \"cloudmath.glsl\"\n";  // the line itself, not the comment
-    const std::size_t at = body.find(include_line);
-    if (at != std::string::npos) body.replace(at, include_line.size(), "\n" + cloudmath::glsl_source("cloudmath") + "\n");
-    return head + body;
+    return head + with_cloudmath(clouds_frag_text);
 }
 
-std::string temporal_resolve_shader_source() {
-    std::string body = temporal_resolve_frag_text;
-    const std::string include_line = "\n#include \"cloudmath.glsl\"\n";
-    const std::size_t at = body.find(include_line);
-    if (at != std::string::npos) body.replace(at, include_line.size(), "\n" + cloudmath::glsl_source("cloudmath") + "\n");
-    return "#version 410 core\n" + body;
-}
+std::string temporal_resolve_shader_source() { return "#version 410 core\n" + with_cloudmath(temporal_resolve_frag_text); }
 
-// ---------------------------------------------------------------------------------------
-// GL entry points, loaded at run time (no loader library).
-
-#define CR_GL_FUNCTIONS(X)                                      \
-    X(PFNGLGETERRORPROC, GetError)                              \
-    X(PFNGLGETSTRINGPROC, GetString)                            \
-    X(PFNGLGETINTEGERVPROC, GetIntegerv)                        \
-    X(PFNGLCREATESHADERPROC, CreateShader)                      \
-    X(PFNGLSHADERSOURCEPROC, ShaderSource)                      \
-    X(PFNGLCOMPILESHADERPROC, CompileShader)                    \
-    X(PFNGLGETSHADERIVPROC, GetShaderiv)                        \
-    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)              \
-    X(PFNGLDELETESHADERPROC, DeleteShader)                      \
-    X(PFNGLCREATEPROGRAMPROC, CreateProgram)                    \
-    X(PFNGLATTACHSHADERPROC, AttachShader)                      \
-    X(PFNGLLINKPROGRAMPROC, LinkProgram)                        \
-    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                      \
-    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)            \
-    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                    \
-    X(PFNGLUSEPROGRAMPROC, UseProgram)                          \
-    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)          \
-    X(PFNGLUNIFORM1IPROC, Uniform1i)                            \
-    X(PFNGLUNIFORM1UIPROC, Uniform1ui)                          \
-    X(PFNGLUNIFORM2UIPROC, Uniform2ui)                          \
-    X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                        \
-    X(PFNGLREADBUFFERPROC, ReadBuffer)                          \
-    X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                \
-    X(PFNGLUNIFORM1FPROC, Uniform1f)                            \
-    X(PFNGLUNIFORM2FPROC, Uniform2f)                            \
-    X(PFNGLUNIFORM3FPROC, Uniform3f)                            \
-    X(PFNGLGENTEXTURESPROC, GenTextures)                        \
-    X(PFNGLDELETETEXTURESPROC, DeleteTextures)                  \
-    X(PFNGLBINDTEXTUREPROC, BindTexture)                        \
-    X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                    \
-    X(PFNGLTEXIMAGE2DPROC, TexImage2D)                          \
-    X(PFNGLTEXIMAGE3DPROC, TexImage3D)                          \
-    X(PFNGLTEXPARAMETERIPROC, TexParameteri)                    \
-    X(PFNGLPIXELSTOREIPROC, PixelStorei)                        \
-    X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                \
-    X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)          \
-    X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                \
-    X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)      \
-    X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)  \
-    X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                \
-    X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)          \
-    X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                \
-    X(PFNGLDRAWARRAYSPROC, DrawArrays)                          \
-    X(PFNGLVIEWPORTPROC, Viewport)                              \
-    X(PFNGLREADPIXELSPROC, ReadPixels)                          \
-    X(PFNGLFINISHPROC, Finish)                                  \
-    X(PFNGLGENQUERIESPROC, GenQueries)                          \
-    X(PFNGLDELETEQUERIESPROC, DeleteQueries)                    \
-    X(PFNGLQUERYCOUNTERPROC, QueryCounter)                      \
-    X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)
-
-struct gl_api {
-#define CR_GL_DECLARE(type, name) type name = nullptr;
-    CR_GL_FUNCTIONS(CR_GL_DECLARE)
-#undef CR_GL_DECLARE
-    // Empty on success, else the first missing function.
-    std::string load(gl_renderer::proc_loader get) {
-#define CR_GL_LOAD(type, name)                                   \
-    name = reinterpret_cast<type>(get("gl" #name));               \
-    if (name == nullptr) return "gl" #name;
-        CR_GL_FUNCTIONS(CR_GL_LOAD)
-#undef CR_GL_LOAD
-        return {};
-    }
-};
+// The GL entry points (tools/egl's table, loaded at run time: no loader library).
+using gl_api = cloudmath_egl::gl_functions;
 
 struct gl_renderer::state {
     // Only for the headless context this class created (tools/egl); null on the caller's.
@@ -181,70 +114,27 @@ struct gl_renderer::state {
         scene previous;
     } temporal;
 
-    std::string gl_errors(const char* where) const {
-        std::string text;
-        for (int i = 0; i < 8; ++i) {
-            const GLenum e = gl.GetError();
-            if (e == GL_NO_ERROR) break;
-            char buf[16];
-            std::snprintf(buf, sizeof buf, "0x%04x", e);
-            text += (text.empty() ? std::string("GL error after ") + where + ": " : ", ") + buf;
-        }
-        return text;
-    }
+    std::string gl_errors(const char* where) const { return gl.errors(where); }
 
-    GLuint compile(GLenum kind, const std::string& source, std::string& why) const {
-        const GLuint sh = gl.CreateShader(kind);
-        const char* text = source.c_str();
-        gl.ShaderSource(sh, 1, &text, nullptr);
-        gl.CompileShader(sh);
-        GLint ok = 0;
-        gl.GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-        if (!ok) {
-            GLint len = 0;
-            gl.GetShaderiv(sh, GL_INFO_LOG_LENGTH, &len);
-            std::string log(static_cast<std::size_t>(len > 1 ? len : 1), '\0');
-            gl.GetShaderInfoLog(sh, len, nullptr, log.data());
-            why = std::string(kind == GL_VERTEX_SHADER ? "vertex" : "fragment") + " shader does not compile:\n" + log;
-            gl.DeleteShader(sh);
-            return 0;
-        }
-        return sh;
+    // Links a vertex and a fragment shader (and deletes them); 0 and the log on failure.
+    GLuint link(GLuint vs, GLuint fs, std::string& why) const {
+        const GLuint shaders[2] = {vs, fs};
+        return gl.link(shaders, 2, "shader program", why);
     }
 
     GLuint program_for(const variant& v, bool compile_time, std::string& why) {
         const std::string key = compile_time ? variant_spec(v) : std::string();
         const auto found = programs.find(key);
         if (found != programs.end()) return found->second;
-        const GLuint vs = compile(GL_VERTEX_SHADER, vertex_shader_source(), why);
+        const GLuint vs = gl.compile(GL_VERTEX_SHADER, vertex_shader_source(), "vertex shader", why);
         if (vs == 0) return 0;
-        const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment_shader_source(v, compile_time), why);
+        const GLuint fs = gl.compile(GL_FRAGMENT_SHADER, fragment_shader_source(v, compile_time), "fragment shader", why);
         if (fs == 0) {
             gl.DeleteShader(vs);
             return 0;
         }
         const GLuint p = link(vs, fs, why);
         if (p != 0) programs[key] = p;
-        return p;
-    }
-
-    // Links a vertex and a fragment shader (and deletes them); 0 and the log on failure.
-    GLuint link(GLuint vs, GLuint fs, std::string& why) const {
-        const GLuint p = gl.CreateProgram();
-        gl.AttachShader(p, vs);
-        gl.AttachShader(p, fs);
-        gl.LinkProgram(p);
-        gl.DeleteShader(vs);
-        gl.DeleteShader(fs);
-        GLint ok = 0;
-        gl.GetProgramiv(p, GL_LINK_STATUS, &ok);
-        if (!ok) {
-            char log[4096] = {0};
-            gl.GetProgramInfoLog(p, sizeof log, nullptr, log);
-            why = std::string("shader program does not link:\n") + log;
-            gl.DeleteProgram(p);
-            return 0;
-        }
         return p;
     }
 
@@ -284,7 +174,7 @@ namespace {
 
 // Loads the GL functions and creates the objects every draw needs; checks the version.
 bool init_gl(gl_renderer::state& s, gl_renderer::proc_loader load, std::string& why) {
-    const std::string missing = s.gl.load(load);
+    const std::string missing = s.gl.load(load, false);
     if (!missing.empty()) {
         why = "OpenGL function " + missing + " not available";
         return false;
@@ -556,9 +446,9 @@ bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std:
     auto& t = st.temporal;
     const gl_api& gl = st.gl;
     if (t.resolve_program == 0) {
-        const GLuint vs = st.compile(GL_VERTEX_SHADER, vertex_shader_source(), why);
+        const GLuint vs = st.gl.compile(GL_VERTEX_SHADER, vertex_shader_source(), "vertex shader", why);
         if (vs == 0) return false;
-        const GLuint fs = st.compile(GL_FRAGMENT_SHADER, temporal_resolve_shader_source(), why);
+        const GLuint fs = st.gl.compile(GL_FRAGMENT_SHADER, temporal_resolve_shader_source(), "temporal resolve shader", why);
         if (fs == 0) {
             gl.DeleteShader(vs);
             return false;

@@ -1,85 +1,23 @@
 // Implementation notes: the context comes from tools/egl (egl_headless.hpp, shared with the
 // cloud renderer): EGL with no window system, so the same code runs on a headless CI box (Mesa
-// llvmpipe) and on a GPU server (NVIDIA through EGL devices). GL entry points are loaded with
+// llvmpipe) and on a GPU server (NVIDIA through EGL devices). GL entry points are tools/egl's
+// table (gl_functions.hpp, shared with the renderer and the peer bench), loaded with
 // cloudmath_egl::gl_proc (eglGetProcAddress), so no loader library and no link-time GL symbols
 // are needed.
 #include "gl_compute.hpp"
 
 #include "egl_headless.hpp"
-
-#include <GL/glcorearb.h>
+#include "gl_functions.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <limits>
 #include <utility>
 
 namespace cm_gl {
-namespace {
 
-// Every GL function used here, once: the list declares the pointers and loads them.
-#define CM_GL_FUNCTIONS(X)                              \
-    X(PFNGLGETERRORPROC, GetError)                      \
-    X(PFNGLGETSTRINGPROC, GetString)                    \
-    X(PFNGLGETINTEGERI_VPROC, GetIntegeri_v)            \
-    X(PFNGLGETINTEGER64VPROC, GetInteger64v)            \
-    X(PFNGLCREATESHADERPROC, CreateShader)              \
-    X(PFNGLSHADERSOURCEPROC, ShaderSource)              \
-    X(PFNGLCOMPILESHADERPROC, CompileShader)            \
-    X(PFNGLGETSHADERIVPROC, GetShaderiv)                \
-    X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)      \
-    X(PFNGLDELETESHADERPROC, DeleteShader)              \
-    X(PFNGLCREATEPROGRAMPROC, CreateProgram)            \
-    X(PFNGLATTACHSHADERPROC, AttachShader)              \
-    X(PFNGLLINKPROGRAMPROC, LinkProgram)                \
-    X(PFNGLGETPROGRAMIVPROC, GetProgramiv)              \
-    X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)    \
-    X(PFNGLDELETEPROGRAMPROC, DeleteProgram)            \
-    X(PFNGLUSEPROGRAMPROC, UseProgram)                  \
-    X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)  \
-    X(PFNGLUNIFORM1IPROC, Uniform1i)                    \
-    X(PFNGLGENBUFFERSPROC, GenBuffers)                  \
-    X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)            \
-    X(PFNGLBINDBUFFERPROC, BindBuffer)                  \
-    X(PFNGLBUFFERDATAPROC, BufferData)                  \
-    X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)          \
-    X(PFNGLGETBUFFERSUBDATAPROC, GetBufferSubData)      \
-    X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)        \
-    X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)
-
-struct gl_api {
-#define CM_GL_DECLARE(type, name) type name = nullptr;
-    CM_GL_FUNCTIONS(CM_GL_DECLARE)
-#undef CM_GL_DECLARE
-
-    // Empty on success, else the name of the first function the driver does not provide.
-    std::string load() {
-#define CM_GL_LOAD(type, name)                                                     \
-    name = reinterpret_cast<type>(cloudmath_egl::gl_proc("gl" #name));             \
-    if (name == nullptr) return "gl" #name;
-        CM_GL_FUNCTIONS(CM_GL_LOAD)
-#undef CM_GL_LOAD
-        return {};
-    }
-};
-
-const char* gl_error_name(GLenum e) {
-    switch (e) {
-    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
-    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
-    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    case GL_CONTEXT_LOST: return "GL_CONTEXT_LOST";
-    default: return "unknown GL error";
-    }
-}
-
-}  // namespace
+using gl_api = cloudmath_egl::gl_functions;  // tools/egl's table of GL entry points
 
 struct compute_context::state {
     std::unique_ptr<cloudmath_egl::headless_context> egl;  // display reference, context
@@ -105,16 +43,7 @@ struct compute_context::state {
 
     // All pending GL errors as text, empty when there are none. Bounded because a lost
     // context may report the same error forever.
-    std::string gl_errors(const char* phase) const {
-        std::string text;
-        for (int i = 0; i < 8; ++i) {
-            const GLenum e = gl.GetError();
-            if (e == GL_NO_ERROR) break;
-            text += text.empty() ? std::string("GL error after ") + phase + ": " : ", ";
-            text += gl_error_name(e);
-        }
-        return text;
-    }
+    std::string gl_errors(const char* phase) const { return gl.errors(phase); }
 
     void drop_program() {
         if (program != 0) {
@@ -142,7 +71,7 @@ std::unique_ptr<compute_context::state> compute_context::state::open(
     // newest version compatible with it (4.5 or 4.6 in practice).
     s->egl = cloudmath_egl::headless_context::open(4, 3, only, why);
     if (s->egl == nullptr) return nullptr;
-    const std::string missing = s->gl.load();
+    const std::string missing = s->gl.load(cloudmath_egl::gl_proc, true);
     if (!missing.empty()) {
         why = "GL entry point " + missing + " not found";
         return nullptr;
@@ -191,23 +120,6 @@ std::string compute_context::version() const {
     return text != nullptr ? reinterpret_cast<const char*>(text) : "";
 }
 
-namespace {
-
-// Reads a shader or program info log with the matching pair of GL getters.
-template <class GetIv, class GetLog>
-std::string info_log(GLuint object, GetIv get_iv, GetLog get_log) {
-    GLint length = 0;
-    get_iv(object, GL_INFO_LOG_LENGTH, &length);
-    if (length <= 1) return {};
-    std::string text(static_cast<std::size_t>(length), '\0');
-    GLsizei written = 0;
-    get_log(object, length, &written, &text[0]);
-    text.resize(static_cast<std::size_t>(std::max(written, 0)));
-    return text;
-}
-
-}  // namespace
-
 bool compute_context::compile(const std::string& source, std::string& log) {
     log.clear();
     state& s = *s_;
@@ -218,36 +130,11 @@ bool compute_context::compile(const std::string& source, std::string& log) {
     const gl_api& gl = s.gl;
     s.gl_errors("");  // errors from earlier calls must not be blamed on this compile
     s.drop_program();
-    if (source.size() > static_cast<std::size_t>(std::numeric_limits<GLint>::max())) {
-        log = "shader source too long";
-        return false;
-    }
 
-    const GLuint shader = gl.CreateShader(GL_COMPUTE_SHADER);
-    const GLchar* text = source.c_str();
-    const GLint length = static_cast<GLint>(source.size());
-    gl.ShaderSource(shader, 1, &text, &length);
-    gl.CompileShader(shader);
-    GLint ok = GL_FALSE;
-    gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    log += info_log(shader, gl.GetShaderiv, gl.GetShaderInfoLog);
-    if (ok != GL_TRUE) {
-        gl.DeleteShader(shader);
-        if (log.empty()) log = "compile failed, empty info log";
-        return false;
-    }
-
-    const GLuint program = gl.CreateProgram();
-    gl.AttachShader(program, shader);
-    gl.LinkProgram(program);
-    gl.DeleteShader(shader);  // only flagged: it stays alive while attached to the program
-    gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
-    log += info_log(program, gl.GetProgramiv, gl.GetProgramInfoLog);
-    if (ok != GL_TRUE) {
-        gl.DeleteProgram(program);
-        if (log.empty()) log = "link failed, empty info log";
-        return false;
-    }
+    const GLuint shader = gl.compile(GL_COMPUTE_SHADER, source, "compute shader", log);
+    if (shader == 0) return false;
+    const GLuint program = gl.link(&shader, 1, "compute program", log);
+    if (program == 0) return false;
 
     // run() maps invocation i to element i along x only, so a 2D/3D local size would
     // silently run extra invocations on the same elements: refuse it.

@@ -33,8 +33,8 @@ public:
     std::string version() const;   // GL_VERSION, e.g. "4.5 (Core Profile) Mesa 22.3.6"
 
     // Compiles and links a compute shader from complete source text (the caller writes
-    // #version and layout(local_size_x = N) in;). `log` receives the compiler and linker info
-    // logs (warnings too, on success). On success the program becomes current; on failure
+    // #version and layout(local_size_x = N) in;). On failure `log` says which step failed,
+    // with the driver's info log; on success it is empty. On success the program becomes current; on failure
     // there is no current program, so a later run() fails instead of running a stale one.
     bool compile(const std::string& source, std::string& log);
 

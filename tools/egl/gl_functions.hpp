@@ -1,19 +1,24 @@
-// The OpenGL 4.3+ entry points the peer harness calls itself (compute dispatch, image units,
-// buffers), loaded at run time from the headless context (tools/egl, gl_proc) like
-// examples/cloud_renderer/gl_renderer.cpp does: no loader library, one X-macro table.
-#ifndef CLOUDMATH_PEER_BENCH_PEER_GL_HPP
-#define CLOUDMATH_PEER_BENCH_PEER_GL_HPP
+// The OpenGL entry points that the cloud renderer (examples/cloud_renderer/gl_renderer.cpp),
+// the GLSL parity harness (tests/glsl/gl_compute.cpp) and the peer bench (bench/peer) call,
+// loaded at run time from any context (tools/egl's headless one through gl_proc, or a
+// window's through glfwGetProcAddress): no loader library and no link-time GL symbols. One
+// table, so a function is declared and loaded in one place, with the error, compile and link
+// helpers every consumer needs.
+#ifndef CLOUDMATH_TOOLS_EGL_GL_FUNCTIONS_HPP
+#define CLOUDMATH_TOOLS_EGL_GL_FUNCTIONS_HPP
 
 #include <GL/glcorearb.h>
 
 #include <string>
 
-namespace peer_bench {
+namespace cloudmath_egl {
 
-#define PEER_GL_FUNCTIONS(X)                                    \
+// OpenGL 4.1 core: what the renderer needs (4.1 is the newest that macOS offers).
+#define CLOUDMATH_GL_CORE_FUNCTIONS(X)                          \
     X(PFNGLGETERRORPROC, GetError)                              \
     X(PFNGLGETSTRINGPROC, GetString)                            \
     X(PFNGLGETINTEGERVPROC, GetIntegerv)                        \
+    X(PFNGLGETINTEGER64VPROC, GetInteger64v)                    \
     X(PFNGLCREATESHADERPROC, CreateShader)                      \
     X(PFNGLSHADERSOURCEPROC, ShaderSource)                      \
     X(PFNGLCOMPILESHADERPROC, CompileShader)                    \
@@ -29,9 +34,11 @@ namespace peer_bench {
     X(PFNGLUSEPROGRAMPROC, UseProgram)                          \
     X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)          \
     X(PFNGLUNIFORM1IPROC, Uniform1i)                            \
+    X(PFNGLUNIFORM2IPROC, Uniform2i)                            \
+    X(PFNGLUNIFORM1UIPROC, Uniform1ui)                          \
+    X(PFNGLUNIFORM2UIPROC, Uniform2ui)                          \
     X(PFNGLUNIFORM1FPROC, Uniform1f)                            \
     X(PFNGLUNIFORM2FPROC, Uniform2f)                            \
-    X(PFNGLUNIFORM2IPROC, Uniform2i)                            \
     X(PFNGLUNIFORM3FPROC, Uniform3f)                            \
     X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)              \
     X(PFNGLGENTEXTURESPROC, GenTextures)                        \
@@ -44,9 +51,6 @@ namespace peer_bench {
     X(PFNGLGENERATEMIPMAPPROC, GenerateMipmap)                  \
     X(PFNGLGETTEXIMAGEPROC, GetTexImage)                        \
     X(PFNGLPIXELSTOREIPROC, PixelStorei)                        \
-    X(PFNGLBINDIMAGETEXTUREPROC, BindImageTexture)              \
-    X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                \
-    X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                    \
     X(PFNGLGENBUFFERSPROC, GenBuffers)                          \
     X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                    \
     X(PFNGLBINDBUFFERPROC, BindBuffer)                          \
@@ -59,6 +63,8 @@ namespace peer_bench {
     X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)      \
     X(PFNGLCHECKFRAMEBUFFERSTATUSPROC, CheckFramebufferStatus)  \
     X(PFNGLDRAWBUFFERSPROC, DrawBuffers)                        \
+    X(PFNGLREADBUFFERPROC, ReadBuffer)                          \
+    X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                \
     X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                \
     X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)          \
     X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                \
@@ -67,31 +73,45 @@ namespace peer_bench {
     X(PFNGLDRAWARRAYSPROC, DrawArrays)                          \
     X(PFNGLVIEWPORTPROC, Viewport)                              \
     X(PFNGLDISABLEPROC, Disable)                                \
-    X(PFNGLFINISHPROC, Finish)
+    X(PFNGLREADPIXELSPROC, ReadPixels)                          \
+    X(PFNGLFINISHPROC, Finish)                                  \
+    X(PFNGLGENQUERIESPROC, GenQueries)                          \
+    X(PFNGLDELETEQUERIESPROC, DeleteQueries)                    \
+    X(PFNGLQUERYCOUNTERPROC, QueryCounter)                      \
+    X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)
 
-struct gl_api {
-#define PEER_GL_DECLARE(type, name) type name = nullptr;
-    PEER_GL_FUNCTIONS(PEER_GL_DECLARE)
-#undef PEER_GL_DECLARE
+// OpenGL 4.3 core: compute shaders and image units (the parity harness, the peer bench).
+#define CLOUDMATH_GL_COMPUTE_FUNCTIONS(X)                       \
+    X(PFNGLGETINTEGERI_VPROC, GetIntegeri_v)                    \
+    X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                \
+    X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                    \
+    X(PFNGLBINDIMAGETEXTUREPROC, BindImageTexture)
 
+struct gl_functions {
+#define CLOUDMATH_GL_DECLARE(type, name) type name = nullptr;
+    CLOUDMATH_GL_CORE_FUNCTIONS(CLOUDMATH_GL_DECLARE)
+    CLOUDMATH_GL_COMPUTE_FUNCTIONS(CLOUDMATH_GL_DECLARE)
+#undef CLOUDMATH_GL_DECLARE
+
+    using proc_loader = void* (*)(const char* name);
+
+    // Loads the 4.1 table, and the 4.3 one when `compute` is true (a 4.1 context lacks it).
     // Empty on success, else the name of the first entry point the driver lacks.
-    std::string load(void* (*get)(const char* name)) {
-#define PEER_GL_LOAD(type, name)                                  \
-    name = reinterpret_cast<type>(get("gl" #name));                \
-    if (name == nullptr) return "gl" #name;
-        PEER_GL_FUNCTIONS(PEER_GL_LOAD)
-#undef PEER_GL_LOAD
-        return {};
-    }
+    std::string load(proc_loader get, bool compute);
 
-    // "GL error after <where>: 0x0502, ..." for every pending error, empty when none.
+    // "GL error after <where>: GL_INVALID_VALUE, ..." for every pending error (at most 8: a
+    // lost context can report errors forever), empty when there is none.
     std::string errors(const char* where) const;
-    // Compiles one shader; 0 and the driver's log in `why` (prefixed with `label`) on failure.
+
+    // One shader from its source; 0 on failure, with `why` = "<label> does not compile:" and
+    // the driver's log.
     GLuint compile(GLenum kind, const std::string& source, const std::string& label, std::string& why) const;
-    // Links the given shaders (deleting them) into a program; 0 and the log on failure.
+
+    // A program of `count` shaders, which it deletes (the program keeps them alive); 0 on
+    // failure, with `why` = "<label> does not link:" and the driver's log.
     GLuint link(const GLuint* shaders, int count, const std::string& label, std::string& why) const;
 };
 
-}  // namespace peer_bench
+}  // namespace cloudmath_egl
 
-#endif  // CLOUDMATH_PEER_BENCH_PEER_GL_HPP
+#endif  // CLOUDMATH_TOOLS_EGL_GL_FUNCTIONS_HPP
