@@ -42,8 +42,8 @@ temporal_compare=$("$renderer" --compare --preset ground "${common[@]}" --tempor
   --out build/main/compare_temporal.png | grep 'GPU vs CPU')
 # name|variant spec|caption, all on the "horizon" preset (low sun ahead: phase and powder show)
 variants=(
-  "default||default: diffusion model, dual-lobe HG, 6-step march toward the sun, cone behind, 64 steps"
-  "octaves|lighting=octaves,powder=on,light=cone,ambient=flat|octaves: 3, powder, cone, flat sky light (the previous default)"
+  "default||default: diffusion model, dual-lobe HG, 6-step marches both ways (quadratic, jittered), 64 steps refined where opaque"
+  "octaves|lighting=octaves,powder=on,light=cone,ambient=flat,refine=1|octaves: 3, powder, cone, flat sky light (the previous default)"
   "flat_ambient|ambient=flat|sky light not occluded inside the clouds"
   "hg|phase=hg|phase: HG"
   "mie|phase=mie|phase: Mie fit (15 um droplets)"

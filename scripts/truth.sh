@@ -30,13 +30,17 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 presets=(ground horizon inside above)
 selection=(sun_behind cumulus stratus)
-# default: the diffusion model (6-step march toward the sun, cone behind, occluded sky light);
-# octaves: the production octaves it replaced (flat sky light); octaves_march: the octaves
-# given an accurate light march; flat_ambient: the default without the sky light's occlusion.
-variants=(default= octaves=lighting=octaves,powder=on,light=cone,ambient=flat
+# default: the diffusion model (6-step marches toward the sun and away from it, quadratic
+# and jittered, opaque view steps refined, occluded sky light); previous_estimators: the
+# same model with the estimators it had before (no refinement, uniform light steps at their
+# midpoints, the cone behind); cone_behind: the default with the cone behind; octaves: the
+# production octaves it replaced (flat sky light); octaves_march: the octaves given an
+# accurate light march; flat_ambient: the default without the sky light's occlusion.
+variants=(default= previous_estimators=refine=1,light-spacing=uniform,light-jitter=off,behind=cone
+          octaves=lighting=octaves,powder=on,light=cone,ambient=flat,refine=1
           octaves_march=lighting=octaves,powder=on,light=march,light-steps=64,ambient=flat
           single=lighting=octaves,octaves=1,light=cone,ambient=flat mie=phase=mie
-          diffusion_cone=light=cone diffusion_march=behind=march flat_ambient=ambient=flat)
+          diffusion_cone=light=cone,behind=cone cone_behind=behind=cone flat_ambient=ambient=flat)
 width=160 height=90 spp=1536 selection_spp=384
 reports_only=0 build="" check="" cache=() shape=classic
 while [[ $# -gt 0 ]]; do

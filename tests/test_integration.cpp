@@ -153,3 +153,48 @@ TEST_CASE_TEMPLATE("march_schedule_distance: the closed form, exact ends, geomet
         CHECK(cm_test::nan_bits(march_schedule_distance(T(0.5), T(0), T(10), nan)));
     }
 }
+
+TEST_CASE_TEMPLATE("light_march_distance: t = length u^2, exact ends, steps of length (2i + 1) / n^2", T, float, double) {
+    CHECK(light_march_distance(T(0), T(3000)) == T(0));
+    CHECK(light_march_distance(T(1), T(3000)) == T(3000));
+    CHECK(light_march_distance(T(-2), T(3000)) == T(0));  // u clamped to [0, 1]
+    CHECK(light_march_distance(T(5), T(3000)) == T(3000));
+    CHECK(light_march_distance(T(0.5), T(0)) == T(0));
+    // Against the closed form in long double, and the step lengths (2 i + 1) L / n^2 that
+    // sum to L: the first of 6 steps is 6 times shorter than a uniform step.
+    const int n = 6;
+    const T length = T(3300);
+    T sum = 0;
+    for (int i = 0; i < n; ++i) {
+        const T a = light_march_distance(T(i) / T(n), length), b = light_march_distance(T(i + 1) / T(n), length);
+        const ld want = ld(length) * ld(2 * i + 1) / ld(n * n);
+        CHECK(std::abs(ld(b - a) - want) <= 4 * ld(std::numeric_limits<T>::epsilon()) * ld(length));
+        sum += b - a;
+    }
+    CHECK(double(sum) == doctest::Approx(double(length)).epsilon(1e-6));
+    const T first = light_march_distance(T(1) / T(n), length);
+    CHECK(double(first) * n == doctest::Approx(double(length) / n).epsilon(1e-6));
+    if (cm_test::ieee_build) CHECK(cm_test::nan_bits(light_march_distance(T(0.5), cm_test::make_nan<T>())));
+}
+
+TEST_CASE_TEMPLATE("refine_substeps: ceil of the optical depth in [1, max], NaN, Inf and huge values", T, float, double) {
+    CHECK(refine_substeps(T(0), 16) == 1);
+    CHECK(refine_substeps(T(-5), 16) == 1);
+    CHECK(refine_substeps(T(1), 16) == 1);                // a step of optical depth 1 stays whole
+    CHECK(refine_substeps(std::nextafter(T(1), T(2)), 16) == 2);
+    CHECK(refine_substeps(T(2.5), 16) == 3);
+    CHECK(refine_substeps(T(16), 16) == 16);
+    CHECK(refine_substeps(T(15.01), 16) == 16);
+    CHECK(refine_substeps(T(1e30), 16) == 16);            // no overflow in the int conversion
+    CHECK(refine_substeps(std::numeric_limits<T>::max(), 1 << 30) == 1 << 30);
+    CHECK(refine_substeps(T(7), 0) == 1);                 // max_substeps < 1 is taken as 1
+    CHECK(refine_substeps(T(7), -3) == 1);
+    CHECK(refine_substeps(std::numeric_limits<T>::denorm_min(), 16) == 1);
+    if (cm_test::ieee_build) {
+        CHECK(refine_substeps(cm_test::make_nan<T>(), 16) == 1);
+        CHECK(refine_substeps(cm_test::make_inf<T>(), 16) == 16);
+        CHECK(refine_substeps(-cm_test::make_inf<T>(), 16) == 1);
+    }
+    // Every sub-step then has an optical depth of at most 1 (below the cap).
+    for (T tau = T(0.25); tau < T(16); tau += T(0.37)) CHECK(tau / T(refine_substeps(tau, 16)) <= T(1));
+}

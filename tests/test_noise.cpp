@@ -354,6 +354,37 @@ TEST_CASE("low-discrepancy sequences: Roberts' closed form, even coverage, bit-e
     }
 }
 
+TEST_CASE("sample_jitter: index 0 is frame_jitter, R1 over frames for each index, no shared offsets within a frame") {
+    for (std::uint32_t pixel_hash : {0U, 12345U, 0xdeadbeefU, 0xffffffffU, noise_hash(7U)}) {
+        for (std::uint32_t frame : {0U, 1U, 77U, 0xfffffff0U})
+            CHECK(sample_jitter(pixel_hash, frame, 0U) == frame_jitter(pixel_hash, frame));
+        // The closed form: the top 24 bits of hash + index * 0xc13fa9a9 + frame * 0x9e3779b9
+        // (mod 2^32), exact in float and identical in double.
+        const std::uint32_t index = 41U, frame = 9U;
+        const std::uint64_t sum = (std::uint64_t(pixel_hash) + std::uint64_t(index) * 0xc13fa9a9ULL +
+                                   std::uint64_t(frame) * 0x9e3779b9ULL) & 0xffffffffULL;
+        CHECK(sample_jitter(pixel_hash, frame, index) == float(sum >> 8) / 16777216.0f);
+        CHECK(double(sample_jitter<float>(pixel_hash, frame, index)) == sample_jitter<double>(pixel_hash, frame, index));
+        // For a fixed index the frames leave no gap wider than 2/N; within a frame the
+        // indices do not either (an R-sequence, not one offset repeated).
+        for (std::uint32_t fixed : {3U, 200U}) {
+            std::vector<double> over_frames, over_indices;
+            for (std::uint32_t k = 0; k < 64; ++k) {
+                over_frames.push_back(sample_jitter<double>(pixel_hash, k, fixed));
+                over_indices.push_back(sample_jitter<double>(pixel_hash, fixed, k));
+            }
+            for (std::vector<double>* xs : {&over_frames, &over_indices}) {
+                std::sort(xs->begin(), xs->end());
+                double widest = 1.0 - xs->back() + xs->front();
+                for (std::size_t i = 1; i < xs->size(); ++i) widest = std::max(widest, (*xs)[i] - (*xs)[i - 1]);
+                CHECK(widest * double(xs->size()) < 2.0);
+                CHECK(xs->back() < 1.0);
+                CHECK(xs->front() >= 0.0);
+            }
+        }
+    }
+}
+
 TEST_CASE("triangular_dither: the closed form, triangular moments, quantisation without bias") {
     CHECK(triangular_dither(0U) == 0.0f);
     CHECK(triangular_dither(0x0000ffffU) == 65535.0f / 65536.0f);   // the extremes stay inside (-1, 1)

@@ -186,7 +186,7 @@ int run(const options& o) {
 
     const variant defaults;
     variant octaves;
-    const char* octaves_spec = "lighting=octaves,powder=on,light=cone,ambient=flat";
+    const char* octaves_spec = previous_default_spec;
     why = apply_variant_spec(octaves_spec, octaves);
     if (!why.empty()) return fail(why);
 

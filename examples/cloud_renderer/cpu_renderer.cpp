@@ -141,9 +141,10 @@ struct pixel_program {
     // Optical depth from p along the unit vector `toward` (the sun, or away from it for the
     // diffusion model's tau_behind) by the cone or by a march to where the cloud type's
     // altitude band ends (height_range_for_type: no density beyond it, so the band's steps
-    // lose nothing and a 225 m stratus sheet gets all of them instead of 1 in 11).
+    // lose nothing and a 225 m stratus sheet gets all of them instead of 1 in 11), its steps
+    // uniform or quadratic (variant::light_quadratic), sampled at light_offset within each.
     float light_optical_depth(vec3 p, float alt, vec3 toward, light_mode mode, long* counter = nullptr,
-                              float footprint = 0.0f) const {
+                              float footprint = 0.0f, float light_offset = 0.5f) const {
         if (mode == light_mode::map) {
             // Toward the sun: the map's optical depth at p's depth; away from it: the rest of
             // the column. Off the map: the cone.
@@ -167,10 +168,16 @@ struct pixel_program {
         const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up), s.planet_radius, band.x, band.y);
         const float reach = v.long_reach ? light_long_reach : k.light_march_max;
         const float length_to_exit = seg.y > seg.x ? std::min(seg.y, reach) : 0.0f;
-        const float ds = length_to_exit / float(v.light_steps);
         float tau = 0.0f;
-        for (int i = 0; i < v.light_steps; ++i)
-            tau += light_extinction(p + toward * ((float(i) + 0.5f) * ds), i >= light_far_step, counter, footprint) * ds;
+        // Step i spans [at(i / n), at((i + 1) / n)], its sample at at((i + offset) / n).
+        const float nl = float(v.light_steps);
+        const auto at = [&](float u) {
+            return v.light_quadratic ? cm::light_march_distance(u, length_to_exit) : u * length_to_exit;
+        };
+        for (int i = 0; i < v.light_steps; ++i) {
+            const float ds = at((float(i) + 1.0f) / nl) - at(float(i) / nl);
+            tau += light_extinction(p + toward * at((float(i) + light_offset) / nl), i >= light_far_step, counter, footprint) * ds;
+        }
         return tau;
     }
 
@@ -194,12 +201,6 @@ struct pixel_program {
         return v.lod ? cm::pixel_footprint(t, k.tan_half_fov, float(height)) : 0.0f;
     }
 
-    // The march's start offset in [0, 1) steps: the pixel's hash advanced by R1 each frame.
-    float jitter(int x, int y) const {
-        const std::uint32_t h = cm::noise_hash(static_cast<std::uint32_t>(x) + static_cast<std::uint32_t>(y) * 8192u);
-        return cm::frame_jitter(h, s.frame);
-    }
-
     // main() of the shader for the pixel whose centre is (x + 0.5, y + 0.5), before the
     // tonemap: rgb linear radiance, a opacity. depth (optional): the cloud's
     // transmittance-weighted distance, 0 where the ray meets no cloud (out_depth).
@@ -218,7 +219,8 @@ struct pixel_program {
         if (counted) counted->in_layer = layer.y > layer.x;
         if (seg.y > seg.x) {
             const float t1 = seg.y;
-            const float offset = v.jitter ? jitter(x, y) : 0.5f;
+            const std::uint32_t pixel_hash = cm::noise_hash(static_cast<std::uint32_t>(x) + static_cast<std::uint32_t>(y) * 8192u);
+            const float offset = v.jitter ? cm::frame_jitter(pixel_hash, s.frame) : 0.5f;
             const float mu = glm::dot(dir, k.sun_dir);
             const float n = float(v.view_steps);
             const auto at = [&](float u) {
@@ -229,6 +231,8 @@ struct pixel_program {
             float depth_sum = 0.0f;   // sum of each step's opacity times its distance
             float step_begin = seg.x; // = at(0), for both schedules
             int empty_steps = skip_block;  // empty-space skipping starts by probing
+            float last_empty = -1.0f;      // the last view sample (or skipped block's end) with no cloud
+            std::uint32_t light_index = 0; // light estimates so far (their jitter's index)
             for (int i = 0; i < v.view_steps; ++i) {
                 if (v.skip && empty_steps >= skip_block) {
                     // Probe the next block of steps with the base shape at a jittered point;
@@ -238,6 +242,7 @@ struct pixel_program {
                     const float altp = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, tp);
                     if (field.base_density(dir * tp, altp, view_reads, footprint_at(tp, height)) <= 0.0f) {
                         step_begin = at(float(j) / n);
+                        last_empty = step_begin;
                         i = j - 1;
                         continue;
                     }
@@ -245,33 +250,50 @@ struct pixel_program {
                 }
                 const float t = at((float(i) + offset) / n);
                 const float step_end = at((float(i) + 1.0f) / n);
-                const float ds = step_end - step_begin;
-                step_begin = step_end;
                 const float alt = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, t);
-                const float footprint = footprint_at(t, height);
-                const float d = density(dir * t, alt, view_reads, footprint);
+                const float d = density(dir * t, alt, view_reads, footprint_at(t, height));
                 if (d <= 0.0f) {
+                    last_empty = t;
+                    step_begin = step_end;
                     ++empty_steps;
                     continue;
                 }
+                // Refinement (variant::refine): a step thicker than optical depth 1 is
+                // marched again in sub-steps, from the last empty sample when it is the
+                // first step in cloud; its sample above then only told that it has cloud.
+                const float r0 = empty_steps > 0 && last_empty >= 0.0f ? last_empty : step_begin;
+                const int sub = cm::refine_substeps(s.extinction * d * (step_end - r0), v.refine);
+                const float from = sub > 1 ? r0 : step_begin, ds = (step_end - from) / float(sub);
                 empty_steps = 0;
-                const float sigma_t = s.extinction * d;
-                const float tau_light = light_optical_depth(dir * t, alt, k.sun_dir, v.light, light_reads, footprint);
-                const float tau_behind = v.lighting == lighting_model::diffusion
-                                             ? light_optical_depth(dir * t, alt, -k.sun_dir, v.behind, light_reads, footprint)
-                                             : 0.0f;
-                const float h = cm::height_fraction(alt, s.layer_bottom, s.layer_top);
-                const vec3 S = (s.albedo * sigma_t) * in_scattering(tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu, h);
-                tau_view += sigma_t * ds;
-                const float before = acc.transmittance.r;  // grey extinction: every channel alike
-                if (v.integration == integration_mode::analytic) {
-                    acc.add_segment(S, sigma_t, ds);
-                } else {
-                    acc.luminance += acc.transmittance * S * ds;  // the textbook Riemann sum
-                    acc.transmittance *= cm::beer_lambert(sigma_t * ds);
+                bool opaque = false;
+                for (int m = 0; m < sub && !opaque; ++m) {
+                    const float ts = sub > 1 ? from + (float(m) + offset) * ds : t;
+                    const float alts = sub > 1 ? cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, ts) : alt;
+                    const float footprint = footprint_at(ts, height);
+                    const float dm = sub > 1 ? density(dir * ts, alts, view_reads, footprint) : d;
+                    if (dm <= 0.0f) continue;
+                    const float sigma_t = s.extinction * dm;
+                    // The light march's offset: new for each light estimate and frame.
+                    const float lo = v.jitter && v.light_jitter ? cm::sample_jitter(pixel_hash, s.frame, light_index++) : 0.5f;
+                    const float tau_light = light_optical_depth(dir * ts, alts, k.sun_dir, v.light, light_reads, footprint, lo);
+                    const float tau_behind = v.lighting == lighting_model::diffusion
+                                                 ? light_optical_depth(dir * ts, alts, -k.sun_dir, v.behind, light_reads, footprint, lo)
+                                                 : 0.0f;
+                    const float h = cm::height_fraction(alts, s.layer_bottom, s.layer_top);
+                    const vec3 S = (s.albedo * sigma_t) * in_scattering(tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu, h);
+                    tau_view += sigma_t * ds;
+                    const float before = acc.transmittance.r;  // grey extinction: every channel alike
+                    if (v.integration == integration_mode::analytic) {
+                        acc.add_segment(S, sigma_t, ds);
+                    } else {
+                        acc.luminance += acc.transmittance * S * ds;  // the textbook Riemann sum
+                        acc.transmittance *= cm::beer_lambert(sigma_t * ds);
+                    }
+                    depth_sum += (before - acc.transmittance.r) * ts;
+                    opaque = acc.is_opaque(k.min_transmittance);
                 }
-                depth_sum += (before - acc.transmittance.r) * t;
-                if (acc.is_opaque(k.min_transmittance)) break;
+                step_begin = step_end;
+                if (opaque) break;
             }
             // Aerial perspective: the air between the camera and the cloud's
             // transmittance-weighted depth dims its light and adds the horizon's haze in

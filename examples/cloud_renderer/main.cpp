@@ -247,7 +247,7 @@ const std::vector<bench_row>& bench_rows() {
     static const std::vector<bench_row> rows = {
         {"reference: 256 steps, light march 32 steps both ways, Mie phase, no jitter",
          "steps=256,light=march,light-steps=32,behind=march,phase=mie,jitter=off", false},
-        {"default: diffusion model, 64 steps, 6-step march toward the sun, cone behind, dual-lobe HG", "", false},
+        {"default: diffusion model, 64 steps refined where opaque, 6-step marches both ways (quadratic, jittered), dual-lobe HG", "", false},
         {"default, variant compiled in as constants", "", true},
         {"temporal scheme: the default on 1 of 16 pixels per frame, resolved from the reprojected history", "", false, true},
         {"temporal scheme, compiled in as constants", "", true, true},
@@ -255,7 +255,7 @@ const std::vector<bench_row>& bench_rows() {
         {"phase: Cornette-Shanks", "phase=cs", false},
         {"phase: Mie fit", "phase=mie", false},
         {"the previous default: octaves (3, powder, cone 6 samples), flat sky light, classic field",
-         "lighting=octaves,powder=on,light=cone,ambient=flat", false, false, true},
+         previous_default_spec, false, false, true},
         {"octaves: 3, powder, cone 6 samples, flat sky light", "lighting=octaves,powder=on,light=cone,ambient=flat", false},
         {"octaves: 1, powder, cone", "lighting=octaves,powder=on,light=cone,ambient=flat,octaves=1", false},
         {"octaves: 2, powder, cone", "lighting=octaves,powder=on,light=cone,ambient=flat,octaves=2", false},
@@ -263,9 +263,11 @@ const std::vector<bench_row>& bench_rows() {
         {"sky light not occluded", "ambient=flat", false},
         {"octaves: 3, no powder, cone", "lighting=octaves,light=cone", false},
         {"octaves: 3, powder, light march 6 steps", "lighting=octaves,powder=on", false},
-        {"diffusion model, cone both ways", "light=cone", false},
-        {"diffusion model, 6-step march both ways", "behind=march", false},
-        {"cone behind: 4 samples", "cone-samples=4", false},
+        {"diffusion model, cone both ways", "light=cone,behind=cone", false},
+        {"diffusion model, cone behind (the default before refinement)", "behind=cone", false},
+        {"no refinement of opaque view steps", "refine=1", false},
+        {"light marches: uniform steps", "light-spacing=uniform", false},
+        {"light marches: midpoints, no jitter", "light-jitter=off", false},
         {"light march: 3 steps", "light-steps=3", false},
         {"light march: 12 steps", "light-steps=12", false},
         {"naive (Riemann) integration", "integration=naive", false},
@@ -374,9 +376,10 @@ int run_bench(const options& o) {
     return 0;
 }
 
-// --convergence: for every preset, the variant (and the same with each step schedule)
-// against a converged render of the same lighting model: 1024 view steps with uniform
-// spacing and 128-step light marches toward the sun and behind the sample, no jitter. CPU
+// --convergence: for every preset, the variant (and the same with one setting changed per
+// row) against a converged render of the same lighting model: 1024 uniform view steps (none
+// refined) and 128-step light marches toward the sun and behind the sample, uniform steps
+// at their midpoints, no jitter. CPU
 // renders (the GPU image's twin), PSNR over the display image and over the horizon band
 // (pixels whose ray is within 5 degrees of the horizon), and the texture reads.
 int run_convergence(const options& o) {
@@ -386,7 +389,8 @@ int run_convergence(const options& o) {
     variant base = o.var;
     base.dither = false;
     const char* const reference_spec =
-        "steps=1024,light=march,light-steps=128,behind=march,schedule=uniform,skip=off,lod=off,jitter=off";
+        "steps=1024,refine=1,light=march,light-steps=128,light-spacing=uniform,behind=march,schedule=uniform,skip=off,"
+        "lod=off,jitter=off";
     // The variant, then one change each: the other step schedule, 4x the view steps, and
     // converged light (which error dominates: the view march's or the light estimate's).
     const std::pair<std::string, std::string> rows[] = {
@@ -395,6 +399,9 @@ int run_convergence(const options& o) {
         {"the other step schedule", o.var.schedule == step_schedule::uniform ? "schedule=growing" : "schedule=uniform"},
         {"the other texture LOD setting", o.var.lod ? "lod=off" : "lod=on"},
         {"4x the view steps", "steps=" + std::to_string(std::min(1024, 4 * o.var.view_steps))},
+        {"no refinement of opaque view steps", "refine=1"},
+        {"the light marches' previous steps: uniform, at their midpoints", "light-spacing=uniform,light-jitter=off"},
+        {"the cone behind the sample", "behind=cone"},
         {"light marches of 128 steps both ways", "light=march,light-steps=128,behind=march"}};
     std::ostringstream table;
     table << "| Preset | Variant | PSNR, image (dB) | PSNR, horizon band (dB) | frame to frame, horizon band (dB) | "

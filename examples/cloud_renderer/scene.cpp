@@ -231,6 +231,15 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
         } else if (key == "cone-samples") {
             if (!parse_int(value, 2, 16, out.cone_samples))
                 return "cone-samples must be an integer from 2 to 16, not '" + value + "'";
+        } else if (key == "light-jitter") {
+            if (!parse_switch(value, out.light_jitter)) return "light-jitter must be on or off, not '" + value + "'";
+        } else if (key == "light-spacing") {
+            if (value == "quadratic") out.light_quadratic = true;
+            else if (value == "uniform") out.light_quadratic = false;
+            else return "light-spacing must be quadratic or uniform, not '" + value + "'";
+        } else if (key == "refine") {
+            if (!parse_int(value, 1, 64, out.refine))
+                return "refine must be an integer from 1 to 64, not '" + value + "'";
         } else if (key == "light-steps") {
             if (!parse_int(value, 1, 256, out.light_steps))
                 return "light-steps must be an integer from 1 to 256, not '" + value + "'";
@@ -273,7 +282,7 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
         } else {
             return "unknown variant key '" + key +
-                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, integration, steps, schedule, skip, ambient, lod, far, reach, shadows, sun, haze, dither, "
+                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, light-spacing, light-jitter, integration, steps, refine, schedule, skip, ambient, lod, far, reach, shadows, sun, haze, dither, "
                    "jitter)";
         }
     }
@@ -285,7 +294,8 @@ std::string variant_spec(const variant& v) {
     std::ostringstream s;
     s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",octaves=" << v.octaves << ",powder=" << (v.powder ? "on" : "off")
       << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
-      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
+      << ",light-spacing=" << (v.light_quadratic ? "quadratic" : "uniform") << ",light-jitter=" << (v.light_jitter ? "on" : "off")
+      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
       << ",reach=" << (v.long_reach ? "band" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
     return s.str();
 }

@@ -48,12 +48,23 @@ struct variant {
     int octaves = 3;                 // Wrenninge octaves, 1..8
     bool powder = false;             // Schneider's powder term
     light_mode light = light_mode::march;  // the optical depth toward the sun
-    light_mode behind = light_mode::cone;  // the one behind the sample (diffusion model only)
+    light_mode behind = light_mode::march;  // the one behind the sample (diffusion model only)
     int cone_samples = 6;            // cone: samples toward the sun, the far one included (2..16)
-    int light_steps = 6;             // march: midpoint steps to where the cloud type's band ends (1..256)
+    int light_steps = 6;             // march: steps to where the cloud type's band ends (1..256)
+    // The light march's steps: quadratic (light_march_distance: short near the sample, where
+    // the light is decided) or uniform; their sample offset: new for each view sample and
+    // frame (sample_jitter, when `jitter` is on too: the frames average the march's error
+    // away) or the steps' midpoints.
+    bool light_quadratic = true;
+    bool light_jitter = true;
     integration_mode integration = integration_mode::analytic;
     int view_steps = 64;             // steps along the view ray through the layer (8..1024)
     step_schedule schedule = step_schedule::uniform;
+    // A view step whose sample gives it an optical depth above 1 is marched again in up to
+    // `refine` sub-steps of optical depth <= 1 (refine_substeps), from the last empty sample
+    // when it is the first step in cloud (the cloud's front lies between): the light is then
+    // read near the front, not up to a step inside. 1: never (1..64).
+    int refine = 16;
     // Empty-space skipping: after skip_block empty steps, the march probes the next
     // skip_block steps with one sample of the base shape (weather map and base volume, no
     // detail, no light) and steps over them when it is empty; a probe that finds cloud
@@ -122,6 +133,10 @@ struct scene {
     std::uint32_t frame = 0;         // frame number: advances each pixel's march jitter (frame_jitter)
     float exposure = 1.0f;
 };
+
+// The default before the renderer's rework (issue 15's baseline, with --shape classic): the
+// octaves with powder, the cone toward the sun, flat sky light, no refinement.
+inline constexpr const char* previous_default_spec = "lighting=octaves,powder=on,light=cone,ambient=flat,refine=1";
 
 // The first light-march step that variant::far_base reads on the base shape only.
 inline constexpr int light_far_step = 3;

@@ -122,12 +122,43 @@ TEST_CASE("both density fields: GPU and CPU agree, and the detailed field differ
     CHECK(band.y <= s.layer_top);
 }
 
+TEST_CASE("refined view steps and quadratic light steps converge: closer to 1024 steps, within their read bound") {
+    // sun_behind: crisp cumulus lit from behind the camera, where a sample up to a step inside
+    // the cloud reads far less sunlight than the cloud's front. Deterministic (no jitter), so
+    // the gain is the estimators', not an average of frames.
+    const scene& s = *find_preset("sun_behind");
+    variant reference, refined, plain, refine_only;
+    REQUIRE(apply_variant_spec("steps=1024,refine=1,light-steps=128,light-spacing=uniform,jitter=off", reference).empty());
+    REQUIRE(apply_variant_spec("jitter=off", refined).empty());  // the defaults: refine=16, quadratic light steps
+    REQUIRE(apply_variant_spec("jitter=off,refine=1,light-spacing=uniform", plain).empty());
+    REQUIRE(apply_variant_spec("jitter=off,light-spacing=uniform", refine_only).empty());
+    const int w = 80, h = 45;
+    const image want = render_cpu(s, reference, shared().textures, w, h);
+    const double db_refined = compare(render_cpu(s, refined, shared().textures, w, h), want).psnr_db;
+    const double db_plain = compare(render_cpu(s, plain, shared().textures, w, h), want).psnr_db;
+    const double db_refine_only = compare(render_cpu(s, refine_only, shared().textures, w, h), want).psnr_db;
+    MESSAGE("PSNR against 1024 steps: plain " << db_plain << " dB, refined " << db_refine_only << " dB, refined + quadratic light "
+                                              << db_refined << " dB");
+    CHECK(db_refine_only > db_plain);
+    CHECK(db_refined > db_plain + 6.0);
+    CHECK(db_refined > 35.0);
+    // The refinement's cost is bounded: at most `refine` sub-steps per step, each as many
+    // reads as a step (3 per density, 6 + 6 light steps of 3).
+    variant few = refined, few_plain = plain;
+    REQUIRE(apply_variant_spec("steps=8,refine=4", few).empty());
+    REQUIRE(apply_variant_spec("steps=8", few_plain).empty());
+    const texture_read_stats r4 = count_texture_reads(s, few, shared().textures, 64, 36);
+    const texture_read_stats r1 = count_texture_reads(s, few_plain, shared().textures, 64, 36);
+    CHECK(r4.mean > r1.mean);
+    CHECK(r4.p95 <= 8.0 * (3.0 + 4.0 * (3.0 + 12.0 * 3.0)));
+}
+
 TEST_CASE("texture reads: bounded by the march, the same view reads for both lighting models") {
     const scene& s = *find_preset("ground");
     variant octaves, diffusion, standard;
-    REQUIRE(apply_variant_spec("steps=8,jitter=off,lighting=octaves,powder=on,light=cone", octaves).empty());
-    REQUIRE(apply_variant_spec("steps=8,jitter=off,lighting=diffusion,light=cone,behind=cone", diffusion).empty());
-    REQUIRE(apply_variant_spec("steps=8,jitter=off", standard).empty());  // 6-step march + cone
+    REQUIRE(apply_variant_spec("steps=8,jitter=off,refine=1,lighting=octaves,powder=on,light=cone", octaves).empty());
+    REQUIRE(apply_variant_spec("steps=8,jitter=off,refine=1,lighting=diffusion,light=cone,behind=cone", diffusion).empty());
+    REQUIRE(apply_variant_spec("steps=8,jitter=off,refine=1", standard).empty());  // 6-step marches both ways
     const texture_read_stats a = count_texture_reads(s, octaves, shared().textures, 64, 36);
     const texture_read_stats b = count_texture_reads(s, diffusion, shared().textures, 64, 36);
     const texture_read_stats c = count_texture_reads(s, standard, shared().textures, 64, 36);
@@ -136,7 +167,7 @@ TEST_CASE("texture reads: bounded by the march, the same view reads for both lig
     CHECK(a.pixels_in_layer == c.pixels_in_layer);
     // At most 3 reads per density (weather, base, detail): 8 view samples, each with 6 cone
     // samples toward the sun (and 6 away from it for the diffusion model; the default's
-    // 6-step march toward the sun takes the place of the first cone).
+    // 6-step marches take the place of the cones).
     CHECK(a.p95 <= 8.0 * (3.0 + 6.0 * 3.0));
     CHECK(b.p95 <= 8.0 * (3.0 + 12.0 * 3.0));
     CHECK(c.p95 <= 8.0 * (3.0 + 12.0 * 3.0));
@@ -415,13 +446,19 @@ TEST_CASE("command-line errors are clear") {
     CHECK(parse({"--variant", "lighting=lut"}) == "--variant: lighting must be octaves or diffusion, not 'lut'");
     CHECK(parse({"--variant", "behind=shadow"}) == "--variant: behind must be cone, march or map, not 'shadow'");
     CHECK(parse({"--variant", "schedule=log"}) == "--variant: schedule must be uniform or growing, not 'log'");
+    CHECK(parse({"--variant", "refine=0"}) == "--variant: refine must be an integer from 1 to 64, not '0'");
+    CHECK(parse({"--variant", "light-spacing=cubic"}) == "--variant: light-spacing must be quadratic or uniform, not 'cubic'");
+    CHECK(parse({"--variant", "light-jitter=maybe"}) == "--variant: light-jitter must be on or off, not 'maybe'");
     // Every key round-trips through variant_spec.
     variant v, back;
-    REQUIRE(apply_variant_spec("lighting=octaves,behind=march,schedule=growing,light=cone", v).empty());
+    REQUIRE(apply_variant_spec("lighting=octaves,behind=cone,schedule=growing,light=cone,refine=3,light-spacing=uniform,light-jitter=off", v).empty());
     REQUIRE(apply_variant_spec(variant_spec(v), back).empty());
     CHECK(variant_spec(back) == variant_spec(v));
-    CHECK(back.behind == light_mode::march);
+    CHECK(back.behind == light_mode::cone);
     CHECK(back.schedule == step_schedule::growing);
+    CHECK(back.refine == 3);
+    CHECK(!back.light_quadratic);
+    CHECK(!back.light_jitter);
     CHECK(parse({"--headless", "--cpu"}).find("choose one mode") == 0);
     CHECK(parse({"--cpu", "--temporal", "16", "--accumulate", "4"}).find("exclude each other") != std::string::npos);
     CHECK(parse({"--cpu", "--pan", "1"}) == "--pan, --drift and --save-every need --temporal N");

@@ -7,7 +7,9 @@
 //           color = background * acc.transmittance + acc.luminance;
 // Units:    S is the source term per unit length (radiance / m), for single scattering
 //           S = sigma_s * phase * L_light * T_light; sigma_t in 1/m; ds in m.
-//           Step placement: march_schedule_distance (steps that grow with distance).
+//           Step placement: march_schedule_distance (steps that grow with distance),
+//           light_march_distance (light steps short near the sample), refine_substeps
+//           (marching an opaque step again in thinner ones).
 // Source:   Hillaire, "Physically based and unified volumetric rendering in Frostbite",
 //           SIGGRAPH 2015 Advances: within a step of length ds with constant S and sigma_t,
 //           integral_0^ds S exp(-sigma_t t) dt = S (1 - exp(-sigma_t ds)) / sigma_t.
@@ -107,6 +109,37 @@ template <class T>
     const T L = std::log1p((t_end - t_start) / (t_start + near_distance));
     const T g = v * std::exp((v - T(1)) * L) * one_minus_exp_neg_over_x(v * L) / one_minus_exp_neg_over_x(L);
     return t_start + (t_end - t_start) * g;
+}
+
+// light_march_distance(u, length): where a march of `length` toward the light puts fraction
+// u of its steps, quadratically: t(u) = length u^2. Step i of n spans
+// [length (i/n)^2, length ((i+1)/n)^2], which is length (2 i + 1) / n^2 long: the first step
+// is n times shorter than a uniform one and the last about twice as long. Why: the light that
+// reaches a sample is decided by the optical depth of its first few tens of metres (a
+// cloud's edge, its crisp fringe), which uniform steps of length / n sample once. The
+// example renderer's convergence table (docs/renderer.md) measures 6 quadratic steps
+// against 6 uniform ones and 128 uniform ones on every preset. The sample of step i at
+// offset o in [0, 1) is t((i + o) / n). Domain: length >= 0; u is clamped to [0, 1].
+template <class T>
+[[nodiscard]] constexpr T light_march_distance(T u, T length) noexcept {
+    const T v = saturate(u);
+    return length * (v * v);
+}
+
+// refine_substeps(step_optical_depth, max_substeps): how many sub-steps a view step of this
+// optical depth (sigma_t ds, from its one sample) is marched in again so that each has an
+// optical depth of at most 1: ceil(step_optical_depth), clamped to [1, max_substeps]. Why: a
+// step far thicker than 1 is opaque, and its light is read at the sample, up to a whole step
+// inside the cloud, where the sun's light is dimmer than at the cloud's front (the image
+// darkens and the bias does not average out over frames). Marched again from the last empty
+// sample (the cloud's front lies between), the front is found to within a sub-step. NaN and
+// values <= 1 give 1; +Inf gives max_substeps; max_substeps < 1 is taken as 1.
+template <class T>
+[[nodiscard]] inline int refine_substeps(T step_optical_depth, int max_substeps) noexcept {
+    const int most = max_substeps > 1 ? max_substeps : 1;
+    if (!(step_optical_depth > T(1))) return 1;  // NaN too
+    if (step_optical_depth >= T(most)) return most;  // before the int conversion: no overflow
+    return static_cast<int>(std::ceil(step_optical_depth));
 }
 
 }  // namespace cloudmath

@@ -89,6 +89,18 @@ template <class T = float>
     return T((pixel_hash + frame * 0x9e3779b9U) >> 8U) * T(1.0 / 16777216.0);
 }
 
+// sample_jitter(pixel_hash, frame, index): an offset in [0, 1) for the index-th sample of a
+// pixel's frame (a light march's start, say), decorrelated from the pixel's other samples:
+// frame_jitter of the hash advanced by index times the plastic number's R2 constant. For a
+// fixed index the frames follow R1 (as frame_jitter: the temporal average converges as 1/N);
+// within a frame the indices follow an R-sequence, so consecutive samples do not share one
+// offset (which would make their errors add up instead of cancel). Index 0 gives
+// frame_jitter(pixel_hash, frame). 32-bit integer arithmetic: bit-identical in GLSL.
+template <class T = float>
+[[nodiscard]] constexpr T sample_jitter(std::uint32_t pixel_hash, std::uint32_t frame, std::uint32_t index) noexcept {
+    return frame_jitter<T>(pixel_hash + index * 0xc13fa9a9U, frame);
+}
+
 // triangular_dither(h): a value in (-1, 1) with the triangular distribution (the difference
 // of two uniforms from the hash's low and high 16 bits, each (k + 1/2) / 65536), to add in
 // units of the output's last bit before quantising: colour + triangular_dither(h) / 255

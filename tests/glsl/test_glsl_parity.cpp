@@ -258,6 +258,18 @@ std::vector<parity_case> make_cases() {
             for (float u : {-0.5f, 0.0f, 0.01f, 0.1f, 0.37f, 0.5f, 0.9f, 0.999f, 1.0f, 2.0f}) schedule.push_back({vec4(u, r), vec4(0)});
         add({"cm_march_schedule_distance", "vec4(cm_march_schedule_distance(a.x, a.y, a.z, a.w))",
              [](vec4 a, vec4) { return vec4(cm::march_schedule_distance(a.x, a.y, a.z, a.w)); }, schedule, 1, 1e-3f});
+        // Light steps (u clamped, lengths 0 to 30 km) and sub-step counts (below, at and
+        // above the cap, NaN-free edges: 0, 1, just above 1, huge).
+        std::vector<std::pair<vec4, vec4>> light_steps;
+        for (float length : {0.0f, 1.0f, 3300.0f, 30000.0f})
+            for (float u : {-0.5f, 0.0f, 0.01f, 1.0f / 6.0f, 0.5f, 0.999f, 1.0f, 2.0f}) light_steps.push_back({vec4(u, length, 0, 0), vec4(0)});
+        add({"cm_light_march_distance", "vec4(cm_light_march_distance(a.x, a.y))",
+             [](vec4 a, vec4) { return vec4(cm::light_march_distance(a.x, a.y)); }, light_steps, 1, 1e-6f});
+        std::vector<std::pair<vec4, vec4>> taus;
+        for (float tau : {-1.0f, 0.0f, 0.5f, 1.0f, 1.0000001f, 1.5f, 2.0f, 7.3f, 15.99f, 16.0f, 100.0f, 1e30f})
+            for (float most : {-2.0f, 1.0f, 4.0f, 16.0f}) taus.push_back({vec4(tau, most, 0, 0), vec4(0)});
+        add({"cm_refine_substeps", "vec4(float(cm_refine_substeps(a.x, int(a.y))))",
+             [](vec4 a, vec4) { return vec4(float(cm::refine_substeps(a.x, int(a.y)))); }, taus, 1, 1.0f, 0.0});
     }
 
     // diffusion lighting: optical depths from 0 to 1e4 (past the 1e6 clamp is C++-tested),
@@ -482,6 +494,11 @@ std::vector<parity_case> make_cases() {
                  const std::uint32_t n = index(a.x, a.y), frame = index(a.z, a.w);
                  return vec4(cm::low_discrepancy_r1(n), cm::low_discrepancy_r2(n), cm::frame_jitter(n, frame)); },
              indices, 4, 1.0f, 0.0});
+        add({"cm_sample_jitter",
+             "vec4(cm_sample_jitter((uint(a.x) << 16u) | uint(a.y), (uint(a.z) << 16u) | uint(a.w), (uint(a.y) << 16u) | uint(a.z)), 0.0, 0.0, 0.0)",
+             [index](vec4 a, vec4) {
+                 return vec4(cm::sample_jitter(index(a.x, a.y), index(a.z, a.w), index(a.y, a.z)), 0.0f, 0.0f, 0.0f); },
+             indices, 1, 1.0f, 0.0});
         add({"cm_triangular_dither", "vec4(cm_triangular_dither((uint(a.x) << 16u) | uint(a.y)), cm_triangular_dither((uint(a.z) << 16u) | uint(a.w)), 0.0, 0.0)",
              [index](vec4 a, vec4) { return vec4(cm::triangular_dither(index(a.x, a.y)), cm::triangular_dither(index(a.z, a.w)), 0.0f, 0.0f); },
              indices, 2, 1.0f, 0.0});

@@ -385,7 +385,7 @@ int run_report(int argc, char** argv) {
     std::vector<std::string> specs;
     for (auto [it, end] = f.values.equal_range("--variant"); it != end; ++it) specs.push_back(it->second);
     if (specs.empty())
-        specs = {"default=", "octaves=lighting=octaves,powder=on,light=cone,ambient=flat", "single=lighting=octaves,octaves=1,light=cone,ambient=flat",
+        specs = {"default=", std::string("octaves=") + cr::previous_default_spec, "single=lighting=octaves,octaves=1,light=cone,ambient=flat",
                  "mie=phase=mie"};
     std::vector<std::pair<std::string, cr::variant>> variants;
     for (const std::string& spec : specs) {
@@ -496,13 +496,17 @@ int run_report(int argc, char** argv) {
     // The rms of every variant on every preset, the selection split first.
     md << "## Summary: rms over the image mean\n\n";
     if (!selection.empty() && shape == cr::cloud_shape::classic)
-        md << "The renderer's default variant was chosen on the selection presets (" << selection.size()
+        md << "The renderer's default lighting model (the diffusion model, occluded sky light) was chosen on the\n"
+              "selection presets (" << selection.size()
            << " presets, fewer paths per pixel), then measured on the evaluation presets (what had been\n"
-           "measured on them before the choice is in [lighting_research.md](lighting_research.md)).\n\n";
+              "measured on them before the choice is in [lighting_research.md](lighting_research.md)). Its light\n"
+              "estimators (refined view steps, quadratic jittered light marches both ways) were chosen later for\n"
+              "convergence against 1024 view steps (docs/renderer.md), not on this data.\n\n";
     else if (!selection.empty())
-        md << "The renderer's default variant was chosen on the classic field's selection presets\n"
-              "([../lighting_truth.md](../lighting_truth.md)); on this field no choice was made: every preset,\n"
-              "the selection split's included, is out of sample for it ([../lighting_research.md](../lighting_research.md)).\n\n";
+        md << "The renderer's default lighting model was chosen on the classic field's selection presets\n"
+              "([../lighting_truth.md](../lighting_truth.md)) and its light estimators for convergence\n"
+              "(docs/renderer.md); on this field no choice was made: every preset, the selection split's\n"
+              "included, is out of sample for it ([../lighting_research.md](../lighting_research.md)).\n\n";
     md << "| variant |";
     for (std::size_t p = 0; p < names.size(); ++p) md << ' ' << names[p] << (p < selection.size() ? " (selection)" : "") << " |";
     md << "\n|---|";

@@ -184,6 +184,7 @@ function render(state) {
   i1('u_phase_model', v.phase); i1('u_lighting', v.lighting); i1('u_octaves', state.ms === 'production' ? v.octaves : msN); i1('u_powder', v.powder);
   i1('u_light_mode', v.light); i1('u_behind_mode', v.behind); f1('u_phase_mean_cosine', phaseMeanCosine(f, v.phase));
   i1('u_cone_samples', v.coneSamples); i1('u_light_steps', v.lightSteps); i1('u_integration', v.integration);
+  i1('u_light_quadratic', v.lightQuadratic); i1('u_light_jitter', v.lightJitter); i1('u_refine', v.refine);
   i1('u_view_steps', v.viewSteps); i1('u_schedule', v.schedule); i1('u_jitter', v.jitter); i1('u_sun_disc', v.sun); i1('u_haze', v.haze); i1('u_dither', v.dither);
   i1('u_skip', v.skip); i1('u_occluded_ambient', v.ambient); i1('u_shadows', v.shadows); i1('u_pass', 0);
   i1('u_shape', 0);  // the classic density field: the demo bakes no wide weather map or curl texture

@@ -20,6 +20,9 @@ CR_PARAM(int, u_light_mode)       // toward the sun: 0 cone, 1 march over the cl
 CR_PARAM(int, u_behind_mode)      // behind the sample (diffusion model): 0 cone, 1 march, 2 shadow map
 CR_PARAM(int, u_cone_samples)
 CR_PARAM(int, u_light_steps)
+CR_PARAM(int, u_light_quadratic)  // light march steps: 0 uniform, 1 quadratic (cm_light_march_distance)
+CR_PARAM(int, u_light_jitter)     // light march offset: 0 midpoints, 1 cm_sample_jitter (with u_jitter)
+CR_PARAM(int, u_refine)           // at most this many sub-steps for a view step thicker than optical depth 1
 CR_PARAM(int, u_integration)      // 0 energy-conserving (analytic), 1 naive Riemann sum
 CR_PARAM(int, u_view_steps)
 CR_PARAM(int, u_schedule)         // view steps: 0 uniform, 1 growing with distance
@@ -179,14 +182,17 @@ vec3 cr_shadow_lookup(vec2 uv) {
     return texel;
 }
 
+// Distance of fraction u of a light march of `length`: quadratic or uniform steps.
+float cr_light_distance(float u, float length) { return u_light_quadratic != 0 ? cm_light_march_distance(u, length) : u * length; }
+
 bool cr_on_map(vec3 uvd) { return uvd.x >= 0.0 && uvd.x <= 1.0 && uvd.y >= 0.0 && uvd.y <= 1.0; }
 
 // Optical depth from p along the unit vector `toward` (the sun, or away from it for the
 // diffusion model's tau_behind) by the cone (mode 0), a march (mode 1) to where the cloud
-// type's altitude band ends (no density beyond it), or the shadow map (mode 2: toward the
-// sun its optical depth at p's depth, away from it the rest of the column; off the map the
-// cone).
-float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode) {
+// type's altitude band ends (no density beyond it; steps uniform or quadratic, sampled at
+// light_offset within each), or the shadow map (mode 2: toward the sun its optical depth at
+// p's depth, away from it the rest of the column; off the map the cone).
+float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode, float light_offset) {
     if (mode == 2) {
         vec3 uvd = cm_shadow_map_project(p, u_shadow_origin, u_shadow_right, u_shadow_up, u_sun_dir, u_shadow_half_extent);
         if (cr_on_map(uvd)) {
@@ -208,10 +214,12 @@ float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode) {
     vec2 seg = cm_cloud_layer_segment(altitude, dot(toward, up), u_planet_radius, cr_band.x, cr_band.y);
     float reach = u_long_reach != 0 ? CR_LIGHT_LONG_REACH : u_light_march_max;
     float length_to_exit = seg.y > seg.x ? min(seg.y, reach) : 0.0;
-    float ds = length_to_exit / float(u_light_steps);
+    float n = float(u_light_steps);
     float tau = 0.0;
-    for (int i = 0; i < u_light_steps; ++i)
-        tau += cr_cone_extinction(p + toward * ((float(i) + 0.5) * ds), i) * ds;
+    for (int i = 0; i < u_light_steps; ++i) {
+        float ds = cr_light_distance((float(i) + 1.0) / n, length_to_exit) - cr_light_distance(float(i) / n, length_to_exit);
+        tau += cr_cone_extinction(p + toward * cr_light_distance((float(i) + light_offset) / n, length_to_exit), i) * ds;
+    }
     return tau;
 }
 
@@ -280,12 +288,9 @@ float cr_march_distance(float u, float t0, float t1) {
 // Exposure, 1 - e^-x tone curve, display gamma 2.2.
 vec3 cr_tonemap(vec3 c) { return pow(vec3(1.0) - exp(-c * u_exposure), vec3(1.0 / 2.2)); }
 
-// Start offset of the march in [0, 1) steps: the pixel's hash advanced by R1 each frame
-// (24 bits, exact in float).
-float cr_jitter(vec2 pixel) {
-    uint h = cm_noise_hash(uint(pixel.x) + uint(pixel.y) * 8192u);
-    return cm_frame_jitter(h, u_frame);
-}
+// The pixel's hash: the march's start offset is it advanced by R1 each frame
+// (cm_frame_jitter), the light marches' offsets by their index too (cm_sample_jitter).
+uint cr_pixel_hash(vec2 pixel) { return cm_noise_hash(uint(pixel.x) + uint(pixel.y) * 8192u); }
 
 void main() {
     // The centre of the image pixel this invocation shades.
@@ -313,13 +318,16 @@ void main() {
     vec2 seg = vec2(max(layer.x, in_band.x), min(min(layer.y, layer.x + u_max_distance), in_band.y));
     if (seg.y > seg.x) {
         float t1 = seg.y;
-        float offset = u_jitter != 0 ? cr_jitter(pixel) : 0.5;
+        uint pixel_hash = cr_pixel_hash(pixel);
+        float offset = u_jitter != 0 ? cm_frame_jitter(pixel_hash, u_frame) : 0.5;
         float mu = dot(dir, u_sun_dir);
         float n = float(u_view_steps);
         float tau_view = 0.0;  // optical depth from the camera to the start of the step
         float depth_sum = 0.0;      // sum of each step's opacity times its distance
         float step_begin = seg.x;   // = cr_march_distance(0), for both schedules
         int empty_steps = CR_SKIP_BLOCK;  // empty-space skipping starts by probing
+        float last_empty = -1.0;    // the last view sample (or skipped block's end) with no cloud
+        uint light_index = 0u;      // light estimates so far (their jitter's index)
         for (int i = 0; i < u_view_steps; ++i) {
             if (u_skip != 0 && empty_steps >= CR_SKIP_BLOCK) {
                 // Probe the next block of steps with the base shape at a jittered point;
@@ -330,6 +338,7 @@ void main() {
                 cr_footprint = u_lod != 0 ? cm_pixel_footprint(tp, u_tan_half_fov, u_resolution.y) : 0.0;
                 if (cr_base_density(dir * tp, altp) <= 0.0) {
                     step_begin = cr_march_distance(float(j) / n, seg.x, t1);
+                    last_empty = step_begin;
                     i = j - 1;
                     continue;
                 }
@@ -337,33 +346,55 @@ void main() {
             }
             float t = cr_march_distance((float(i) + offset) / n, seg.x, t1);
             float step_end = cr_march_distance((float(i) + 1.0) / n, seg.x, t1);
-            float ds = step_end - step_begin;
-            step_begin = step_end;
             float altitude = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, t);
             cr_footprint = u_lod != 0 ? cm_pixel_footprint(t, u_tan_half_fov, u_resolution.y) : 0.0;
             float density = cr_density(dir * t, altitude);
             if (density <= 0.0) {
+                last_empty = t;
+                step_begin = step_end;
                 ++empty_steps;
                 continue;
             }
+            // Refinement (u_refine): a step thicker than optical depth 1 is marched again in
+            // sub-steps, from the last empty sample when it is the first step in cloud; its
+            // sample above then only told that it has cloud.
+            float r0 = empty_steps > 0 && last_empty >= 0.0 ? last_empty : step_begin;
+            int sub = cm_refine_substeps(u_extinction * density * (step_end - r0), u_refine);
+            float from = sub > 1 ? r0 : step_begin;
+            float ds = (step_end - from) / float(sub);
             empty_steps = 0;
-            float sigma_t = u_extinction * density;
-            float tau_light = cr_light_optical_depth(dir * t, altitude, u_sun_dir, u_light_mode);
-            float tau_behind = u_lighting == 1 ? cr_light_optical_depth(dir * t, altitude, -u_sun_dir, u_behind_mode) : 0.0;
-            float h = cm_height_fraction(altitude, u_layer_bottom, u_layer_top);
-            vec3 S = (u_albedo * sigma_t) * cr_in_scattering(tau_light, tau_behind, tau_view + 0.5 * sigma_t * ds, mu, h);
-            tau_view += sigma_t * ds;
-            float before = acc.transmittance.r;  // grey extinction: every channel alike
-            if (u_integration == 0) {
-                cm_march_add_segment(acc, S, sigma_t, ds);
-            } else {
-                // The textbook Riemann sum, kept as a variant to show its error: the source
-                // is taken at full strength over the whole step, ignoring the decay within it.
-                acc.luminance += acc.transmittance * S * ds;
-                acc.transmittance *= cm_beer_lambert(sigma_t * ds);
+            bool opaque = false;
+            for (int m = 0; m < sub && !opaque; ++m) {
+                float ts = t, alts = altitude, dm = density;
+                if (sub > 1) {
+                    ts = from + (float(m) + offset) * ds;
+                    alts = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, ts);
+                    cr_footprint = u_lod != 0 ? cm_pixel_footprint(ts, u_tan_half_fov, u_resolution.y) : 0.0;
+                    dm = cr_density(dir * ts, alts);
+                }
+                if (dm <= 0.0) continue;
+                float sigma_t = u_extinction * dm;
+                // The light march's offset: new for each light estimate and frame.
+                float lo = u_jitter != 0 && u_light_jitter != 0 ? cm_sample_jitter(pixel_hash, u_frame, light_index++) : 0.5;
+                float tau_light = cr_light_optical_depth(dir * ts, alts, u_sun_dir, u_light_mode, lo);
+                float tau_behind = u_lighting == 1 ? cr_light_optical_depth(dir * ts, alts, -u_sun_dir, u_behind_mode, lo) : 0.0;
+                float h = cm_height_fraction(alts, u_layer_bottom, u_layer_top);
+                vec3 S = (u_albedo * sigma_t) * cr_in_scattering(tau_light, tau_behind, tau_view + 0.5 * sigma_t * ds, mu, h);
+                tau_view += sigma_t * ds;
+                float before = acc.transmittance.r;  // grey extinction: every channel alike
+                if (u_integration == 0) {
+                    cm_march_add_segment(acc, S, sigma_t, ds);
+                } else {
+                    // The textbook Riemann sum, kept as a variant to show its error: the source
+                    // is taken at full strength over the whole step, ignoring the decay within it.
+                    acc.luminance += acc.transmittance * S * ds;
+                    acc.transmittance *= cm_beer_lambert(sigma_t * ds);
+                }
+                depth_sum += (before - acc.transmittance.r) * ts;
+                opaque = cm_march_is_opaque(acc, u_min_transmittance);
             }
-            depth_sum += (before - acc.transmittance.r) * t;
-            if (cm_march_is_opaque(acc, u_min_transmittance)) break;
+            step_begin = step_end;
+            if (opaque) break;
         }
         // Aerial perspective at the cloud's transmittance-weighted depth: the air dims its
         // light and adds the horizon's haze in proportion to its opacity.

@@ -58,4 +58,18 @@ float cm_march_schedule_distance(float u, float t_start, float t_end, float near
     return t_start + (t_end - t_start) * g;
 }
 
+// Light steps placed quadratically: fraction u of a march of `length` (integration.hpp).
+float cm_light_march_distance(float u, float length) {
+    float v = cm_saturate(u);
+    return length * (v * v);
+}
+
+// Sub-steps of optical depth <= 1 for a view step: ceil(tau) in [1, max_substeps]; NaN -> 1.
+int cm_refine_substeps(float step_optical_depth, int max_substeps) {
+    int most = max(max_substeps, 1);
+    if (!(step_optical_depth > 1.0)) return 1;
+    if (step_optical_depth >= float(most)) return most;
+    return int(ceil(step_optical_depth));
+}
+
 #endif  // CM_INTEGRATION_GLSL

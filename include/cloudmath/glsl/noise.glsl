@@ -29,6 +29,8 @@ vec2 cm_low_discrepancy_r2(uint n) {
            (1.0 / 16777216.0);
 }
 float cm_frame_jitter(uint pixel_hash, uint frame) { return float((pixel_hash + frame * 0x9e3779b9u) >> 8u) * (1.0 / 16777216.0); }
+// The index-th sample's offset of a pixel's frame (R1 over frames, R-sequence over indices).
+float cm_sample_jitter(uint pixel_hash, uint frame, uint index) { return cm_frame_jitter(pixel_hash + index * 0xc13fa9a9u, frame); }
 // Triangular noise in (-1, 1) from one hash (add / 255 before an 8-bit store).
 float cm_triangular_dither(uint h) { return (float(h & 0xffffu) - float(h >> 16u)) * (1.0 / 65536.0); }
 
