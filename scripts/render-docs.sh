@@ -23,7 +23,7 @@ mkdir -p docs/images
 presets=$("$renderer" --list-presets | awk '{ print $1 }')
 # Before: what the renderer drew when the work on its images began (the classic field, the
 # octaves with the cone, flat sky light, no haze, no shadows, no dither, one frame).
-before=(--shape classic --variant lighting=octaves,powder=on,light=cone,ambient=flat,haze=off,shadows=off,dither=off)
+before=(--shape classic --variant lighting=octaves,powder=on,light=cone,ambient=flat,haze=off,shadows=off,dither=off,refine=1)
 for p in $presets; do
   "$renderer" --headless --preset "$p" "${common[@]}" --temporal 128 --out "docs/images/clouds_$p.png" >/dev/null
   "$renderer" --headless --preset "$p" "${common[@]}" "${before[@]}" --out "docs/images/before_$p.png" >/dev/null
