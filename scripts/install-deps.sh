@@ -6,6 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config   # toolchain
+  clang                                          # tests: compilers.clang, -Weverything header checks
   libglm-dev                                     # vector types (the library's only dependency)
   doctest-dev                                    # unit tests
   libbenchmark-dev                               # bench/
