@@ -6,6 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config   # toolchain
+  clang                                          # tests: compilers.clang, -Weverything header checks
   libglm-dev                                     # vector types (the library's only dependency)
   doctest-dev                                    # unit tests
   libbenchmark-dev                               # bench/
@@ -16,6 +17,7 @@ packages=(
   libglfw3-dev                                   # examples/cloud_renderer: the window mode
   xvfb xauth                                     # its test: the window on a virtual X server
   chromium                                       # web/: the WebGL2 page's browser test
+  node-typescript                                # web/: tsc checks the npm package's .d.ts
 )
 # web/ needs Node.js and npm; a machine that has them (Debian's or another build) keeps them.
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then

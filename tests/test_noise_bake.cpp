@@ -151,7 +151,11 @@ double correlation(const texture& t, int c0, int c1) {
     for (std::size_t p = 0; p < n; ++p) {
         const double a = t.data[p * static_cast<std::size_t>(t.channels) + static_cast<std::size_t>(c0)];
         const double b = t.data[p * static_cast<std::size_t>(t.channels) + static_cast<std::size_t>(c1)];
-        s0 += a, s1 += b, s00 += a * a, s11 += b * b, s01 += a * b;
+        s0 += a;
+        s1 += b;
+        s00 += a * a;
+        s11 += b * b;
+        s01 += a * b;
     }
     const double m = double(n);
     const double cov = s01 / m - s0 / m * s1 / m;

@@ -1,6 +1,8 @@
-// web/build.mjs: generates the cloudmath-glsl package's dist/index.js from the GLSL twins in
-// include/cloudmath/glsl/*.glsl, and demo/clouds_frag.js from the example renderer's shader
+// web/build.mjs: generates the cloudmath-glsl package's dist/index.js and its TypeScript
+// declarations dist/index.d.ts from the GLSL twins in include/cloudmath/glsl/*.glsl, and
+// demo/clouds_frag.js from the example renderer's shader
 // (examples/cloud_renderer/shaders/clouds.frag), so the browser code is never a hand copy.
+// (src/resolve.d.ts, the declarations of the hand-written src/resolve.js, is hand-written.)
 //
 //   node web/build.mjs           write the generated files
 //   node web/build.mjs --check   exit 1 (naming the file) if a generated file is stale
@@ -33,21 +35,46 @@ let index = banner('include/cloudmath/glsl/*.glsl') +
   `export const modules = Object.freeze({\n` +
   names.map((f) => `  ${f.replace('.glsl', '')}: ${JSON.stringify(resolveIncludes(sources[f], sources, { name: f }))},`).join('\n') +
   `\n});\n\n`;
-for (const f of names) {
-  const id = f.replace('.glsl', '');
-  const camel = id.replace(/_([a-z])/g, (_, c) => c.toUpperCase());
-  index += `export const ${camel} = modules.${id};\n`;
-}
+const ids = names.map((f) => f.replace('.glsl', ''));
+const camelCase = (id) => id.replace(/_([a-z])/g, (_, c) => c.toUpperCase());
+for (const id of ids) index += `export const ${camelCase(id)} = modules.${id};\n`;
 index += `\n// Resolves #include lines of your shader against cloudmath's files (and any of yours).\n` +
   `export function resolve(source, extraFiles = {}) {\n` +
   `  return resolveIncludes(source, { ...sources, ...extraFiles });\n}\n\n` +
+  `export { resolveIncludes };\n`;
+
+// The declarations of every export above (web/test/pack.sh checks that they name each one
+// and type-checks a use of them with tsc).
+const union = (items) => items.map((x) => `  | ${JSON.stringify(x)}`).join('\n');
+let declarations = banner('include/cloudmath/glsl/*.glsl') +
+  `// TypeScript declarations of cloudmath-glsl (dist/index.js).\n` +
+  `import { resolveIncludes } from '../src/resolve.js';\n\n` +
+  `/** The package's version (the same as the cloudmath C++ library's). */\n` +
+  `export declare const version: string;\n\n` +
+  `/** The file name of each GLSL twin, as a key of \`sources\`. */\n` +
+  `export type SourceName =\n${union(names)};\n\n` +
+  `/** The name of each module, as a key of \`modules\`. */\n` +
+  `export type ModuleName =\n${union(ids)};\n\n` +
+  `/** The GLSL files as they are, by file name (for resolveIncludes and your own #include lines). */\n` +
+  `export declare const sources: Readonly<Record<SourceName, string>>;\n\n` +
+  `/** Each module with its includes resolved: paste after "#version 300 es" and your precision\n` +
+  ` * statements (and any CM_* #define configuration). */\n` +
+  `export declare const modules: Readonly<Record<ModuleName, string>>;\n\n`;
+for (const id of ids) declarations += `/** \`modules.${id}\` */\nexport declare const ${camelCase(id)}: string;\n`;
+declarations += `\n/** Resolves #include lines of your shader against cloudmath's files and \`extraFiles\`\n` +
+  ` * (file name -> text; yours win on a clash). Throws an Error naming a missing file or a cycle. */\n` +
+  `export declare function resolve(source: string, extraFiles?: Readonly<Record<string, string>>): string;\n\n` +
   `export { resolveIncludes };\n`;
 
 const clouds = readFileSync(join(root, 'examples', 'cloud_renderer', 'shaders', 'clouds.frag'), 'utf8');
 const demo = banner('examples/cloud_renderer/shaders/clouds.frag') +
   `export const cloudsFrag = ${JSON.stringify(clouds)};\n`;
 
-const outputs = [[join(web, 'dist', 'index.js'), index], [join(web, 'demo', 'clouds_frag.js'), demo]];
+const outputs = [
+  [join(web, 'dist', 'index.js'), index],
+  [join(web, 'dist', 'index.d.ts'), declarations],
+  [join(web, 'demo', 'clouds_frag.js'), demo],
+];
 if (process.argv.includes('--check')) {
   let stale = 0;
   for (const [path, text] of outputs) {

@@ -2,6 +2,7 @@
 #ifndef CLOUDMATH_CLOUDMATH_HPP
 #define CLOUDMATH_CLOUDMATH_HPP
 
+#include "version.hpp"
 #include "core.hpp"
 #include "phase.hpp"
 #include "transmittance.hpp"

@@ -77,6 +77,23 @@ constexpr T abs(T x) noexcept {
     return x < T(0) ? -x : x;
 }
 
+// a == b, for the comparisons that are meant to be exact (a range of width exactly 0, a
+// divisor that is exactly 0): the one place our headers compare floats with ==. Users build
+// with -Wfloat-equal (and clang's -Weverything), which cannot tell an intended exact compare
+// from a mistaken one, so the warning is silenced here and only here. Not a <= b && a >= b:
+// GCC keeps that as two compares and a branch.
+#if defined(__GNUC__)  // GCC and Clang
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wfloat-equal"
+#endif
+template <class T>
+constexpr bool exactly_equal(T a, T b) noexcept {
+    return a == b;
+}
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+
 }  // namespace detail
 
 // ---------------------------------------------------------------------------------------
@@ -103,7 +120,7 @@ template <glm::length_t L, class T, glm::qualifier Q>
 // remap_clamped when the result must stay bounded. Reversed ranges work as expected.
 template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
 [[nodiscard]] constexpr T remap(T x, T old_min, T old_max, T new_min, T new_max) noexcept {
-    if (old_max == old_min) return x < old_min ? new_min : new_max;
+    if (detail::exactly_equal(old_max, old_min)) return x < old_min ? new_min : new_max;
     return new_min + (x - old_min) / (old_max - old_min) * (new_max - new_min);
 }
 
@@ -115,7 +132,7 @@ template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
 template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
 [[nodiscard]] constexpr T remap_clamped(T x, T old_min, T old_max, T new_min,
                                         T new_max) noexcept {
-    if (old_max == old_min) return x < old_min ? new_min : new_max;
+    if (detail::exactly_equal(old_max, old_min)) return x < old_min ? new_min : new_max;
     const T t = saturate((x - old_min) / (old_max - old_min));
     return (T(1) - t) * new_min + t * new_max;  // exact at t = 0 and t = 1
 }

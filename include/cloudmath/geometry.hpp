@@ -41,7 +41,7 @@ inline glm::vec<2, T> stable_quadratic_roots(T b, T c, T disc) noexcept {
     const T sq = std::sqrt(disc);
     const T q = b >= T(0) ? -(b + sq) : (sq - b);
     const T t0 = q;
-    const T t1 = q != T(0) ? c / q : T(0);
+    const T t1 = detail::exactly_equal(q, T(0)) ? T(0) : c / q;
     return t0 < t1 ? glm::vec<2, T>(t0, t1) : glm::vec<2, T>(t1, t0);
 }
 

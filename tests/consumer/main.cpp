@@ -4,6 +4,8 @@
 // Usage: consumer GLSL_DIR, the directory of the .glsl files that belong to the headers in
 // use (<prefix>/include/cloudmath/glsl when installed, the source tree's
 // include/cloudmath/glsl under add_subdirectory). Returns non-zero, with a message, on failure.
+// The umbrella header brings in the version macros; built with CONSUMER_EXPECTED_VERSION (the
+// version find_package reported), the consumer also checks the headers are that version.
 #include <cloudmath/cloudmath.hpp>
 #include <cloudmath/glsl.hpp>
 
@@ -29,6 +31,21 @@ int main(int argc, char** argv) {
     const double inv_four_pi = 1.0 / (4.0 * std::acos(-1.0));
     check(std::abs(cloudmath::phase_isotropic<double>() - inv_four_pi) < 1e-15,
           "phase_isotropic<double>() == 1/(4 pi)");
+
+    // Version macros: the string spells the three numbers, the number combines them.
+    const std::string version = std::to_string(CLOUDMATH_VERSION_MAJOR) + "." +
+                                std::to_string(CLOUDMATH_VERSION_MINOR) + "." +
+                                std::to_string(CLOUDMATH_VERSION_PATCH);
+    check(version == CLOUDMATH_VERSION_STRING, "CLOUDMATH_VERSION_STRING == MAJOR.MINOR.PATCH");
+    check(CLOUDMATH_VERSION == CLOUDMATH_VERSION_MAJOR * 10000 + CLOUDMATH_VERSION_MINOR * 100 +
+                                   CLOUDMATH_VERSION_PATCH,
+          "CLOUDMATH_VERSION == MAJOR * 10000 + MINOR * 100 + PATCH");
+#ifdef CONSUMER_EXPECTED_VERSION
+    if (version != CONSUMER_EXPECTED_VERSION)
+        std::fprintf(stderr, "consumer: headers say %s, the package says %s\n", version.c_str(),
+                     CONSUMER_EXPECTED_VERSION);
+    check(version == CONSUMER_EXPECTED_VERSION, "CLOUDMATH_VERSION_STRING == package version");
+#endif
 
     // GLSL: the embedded module, then the same module resolved from the files on disk.
     const std::string phase = cloudmath::glsl_source("phase");

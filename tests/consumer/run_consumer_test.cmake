@@ -1,7 +1,7 @@
 # consumer.find_package: install the main build tree into a scratch prefix, then use it
 # (1) through find_package(cloudmath CONFIG) and (2) through pkg-config.
 # Variables: SOURCE_DIR (this folder), MAIN_BUILD_DIR, CONFIG (may be empty), SCRATCH_DIR,
-# GENERATOR, MAKE_PROGRAM, CXX_COMPILER.
+# PROJECT_VERSION, GENERATOR, MAKE_PROGRAM, CXX_COMPILER.
 cmake_minimum_required(VERSION 3.20)
 include("${CMAKE_CURRENT_LIST_DIR}/consumer_steps.cmake")
 
@@ -17,6 +17,7 @@ consumer_step("install into ${prefix}"
 
 foreach(file
     include/cloudmath/cloudmath.hpp
+    include/cloudmath/version.hpp
     include/cloudmath/glsl.hpp
     include/cloudmath/glsl_embedded.hpp
     include/cloudmath/glsl/cloudmath.glsl
@@ -49,8 +50,8 @@ find_program(PKG_CONFIG_EXECUTABLE NAMES pkg-config pkgconf REQUIRED)
 set(ENV{PKG_CONFIG_PATH} "${prefix}/share/pkgconfig")
 consumer_step("pkg-config --modversion" "${PKG_CONFIG_EXECUTABLE}" --modversion cloudmath)
 string(STRIP "${consumer_step_output}" version)
-if(NOT version STREQUAL "0.1.0")
-  message(FATAL_ERROR "consumer test: pkg-config reports version '${version}', expected 0.1.0")
+if(NOT version STREQUAL PROJECT_VERSION)
+  message(FATAL_ERROR "consumer test: pkg-config reports version '${version}', expected ${PROJECT_VERSION}")
 endif()
 consumer_step("pkg-config --cflags" "${PKG_CONFIG_EXECUTABLE}" --cflags cloudmath)
 string(STRIP "${consumer_step_output}" cflags)
