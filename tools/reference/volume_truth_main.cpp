@@ -355,9 +355,8 @@ void write_side_by_side(const std::string& path, const truth_image& t, const cr:
             img.at(t.width + gap + x, y) = glm::vec4(m, 1.0f);
             img.at(2 * (t.width + gap) + x, y) = glm::vec4(glm::clamp(0.5f + 2.0f * (m - a), 0.0f, 1.0f), 1.0f);
         }
-    const std::string tmp = path + ".tmp";
-    if (!cr::write_png(tmp, img) || std::rename(tmp.c_str(), path.c_str()) != 0)
-        throw std::runtime_error("cannot write " + path);
+    std::string why;  // write_png writes atomically (a temporary beside path, renamed)
+    if (!cr::write_png(path, img, &why)) throw std::runtime_error(why);
 }
 
 std::string fixed(double v, int digits) {
