@@ -33,7 +33,9 @@ endfunction()
 # Bad command lines: exit 2 with one line on stderr.
 foreach(bad "--bogus" "--distribution;c2" "--distribution;gamma" "--sphere;--x;10"
             "--sphere;--m;1.33,0;--x;abc" "--distribution;c1;--wavelength;0.6"
-            "--distribution;c1;--threads;0" "--distribution;c1;--x;5")
+            "--distribution;c1;--threads;0" "--distribution;c1;--x;5"
+            "--sphere;--m;1.33,0;--x;1e-160" "--sphere;--m;1.33,0;--x;1e-31" "--sphere;--m;1.33,0;--x; 5"
+            "--sphere;--m;1.33,0;--x;5xyz" "--sphere;--m;1.33,0;--x;nan" "--sphere;--m;0x1p0,0;--x;5")
   expect(2 ${bad})
   if(NOT err MATCHES "^cloudmath_mie: [^\n]*\n$")
     message(FATAL_ERROR "${bad}: expected one line on stderr, got '${err}'")
@@ -47,6 +49,11 @@ endif()
 expect(0 --sphere --m 1.5,-1 --x 1 --angles 0,180)
 if(NOT out MATCHES "Q_ext = 2\\.33632" OR NOT out MATCHES "S1 = 0\\.58408")
   message(FATAL_ERROR "unexpected sphere output:\n${out}")
+endif()
+# The smallest sphere accepted: the Rayleigh limit, finite (x = 1e-160 gave NaN, exit 0).
+expect(0 --sphere --m 1.33,0 --x 1e-30 --angles 90)
+if(out MATCHES "nan" OR NOT out MATCHES "Q_sca = 1\\.10988[0-9]*e-121" OR NOT out MATCHES "phase = 0\\.059683")
+  message(FATAL_ERROR "x = 1e-30 is not the Rayleigh limit:\n${out}")
 endif()
 # A tiny table (small droplets at a long wavelength: a few Mie terms each).
 expect(0 --distribution gamma --reff 1 --wavelength 2 --m 1.33,0 --step 0.5 --threads 2
