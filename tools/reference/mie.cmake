@@ -3,6 +3,7 @@
 #   cloudmath_mie       command-line tool writing the droplet phase tables of docs/data/
 #   reference.mie       unit tests against published values and closed forms (test_mie.cpp)
 #   reference.mie_cli   command-line checks: exit statuses, one sphere, a tiny table
+#   reference.mie_failed_write  the table's write failing (expect_failed_write.cmake)
 add_library(cloudmath_mie_lib STATIC mie.cpp size_distribution.cpp)
 cloudmath_reference_target(cloudmath_mie_lib)
 target_include_directories(cloudmath_mie_lib PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}")
@@ -79,4 +80,10 @@ endif()
   add_test(NAME reference.mie_cli
     COMMAND "${CMAKE_COMMAND}" "-DTOOL=$<TARGET_FILE:cloudmath_mie>"
       "-DOUT=${CMAKE_CURRENT_BINARY_DIR}/test_mie_cli" -P "${cloudmath_mie_cli_script}")
+  # A failed write of the table: exit 1 naming it, the old table untouched, no temporary.
+  add_test(NAME reference.mie_failed_write
+    COMMAND "${CMAKE_COMMAND}" "-DCOMMAND=$<TARGET_FILE:cloudmath_mie>"
+      "-DARGS=--distribution;gamma;--reff;1;--wavelength;2;--m;1.33,0;--step;0.5;--threads;2;--quiet;--out;@WORK@/tiny.csv"
+      -DFILES=tiny.csv "-DWORK=${CMAKE_CURRENT_BINARY_DIR}/mie_failed_write"
+      -P "${PROJECT_SOURCE_DIR}/tools/common/expect_failed_write.cmake")
 endif()

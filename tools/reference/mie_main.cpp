@@ -22,6 +22,7 @@
 #include <thread>
 #include <vector>
 
+#include "atomic_file.hpp"
 #include "mie.hpp"
 #include "phase_table.hpp"
 #include "size_distribution.hpp"
@@ -237,7 +238,19 @@ int run_sphere(const options& o) {
     return 0;
 }
 
+// Creates the missing directories of --out and checks that the file can be written, before
+// the computation (the table is written atomically at the end; write_phase_table).
+void prepare_output(const std::string& out) {
+    if (out.empty()) return;
+    const std::filesystem::path parent = std::filesystem::path(out).parent_path();
+    std::error_code ec;
+    if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+    if (ec) throw io_error("cannot create directory " + parent.string() + ": " + ec.message());
+    if (const std::string error = cloudmath::tools::check_output_path(out); !error.empty()) throw io_error(error);
+}
+
 int run_distribution(const options& o) {
+    prepare_output(o.out);
     const auto start = std::chrono::steady_clock::now();
     modified_gamma dist = o.distribution == "c1"
                               ? deirmendjian_c1()
@@ -296,10 +309,6 @@ int run_distribution(const options& o) {
     t.set_meta("threads", std::to_string(s.threads));
     t.set_meta("elapsed_s", number(elapsed));
     if (!o.out.empty()) {
-        const std::filesystem::path parent = std::filesystem::path(o.out).parent_path();
-        std::error_code ec;
-        if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-        if (ec) throw io_error("cannot create directory " + parent.string() + ": " + ec.message());
         try {
             write_phase_table(o.out, t);
         } catch (const std::runtime_error& e) {
