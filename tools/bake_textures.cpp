@@ -9,10 +9,15 @@
 // Raw files: <name>_<W>x<H>[x<D>]_<rgba8|rgb8>.raw, texel (i, j, k) at byte
 // ((k H + j) W + i) * channels (x fastest), channels interleaved, UNORM8. Prints the bake
 // time of each texture and the total; a progress line goes to stderr.
+// Every file is written atomically (tools/common/atomic_file.hpp: a temporary beside it,
+// checked, renamed over it): a failed write names the file, leaves the old one and no
+// temporary, and the exit status is 1.
 // Built with the examples (CLOUDMATH_BUILD_EXAMPLES); scripts/main.sh runs it.
 #include <cloudmath/noise_bake.hpp>
 
-#include <stb/stb_image_write.h>
+#include "atomic_file.hpp"
+#include "png_encode.hpp"
+#include "strict_number.hpp"
 
 #include <chrono>
 #include <cstdint>
@@ -20,8 +25,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -71,10 +77,11 @@ void print_usage(std::FILE* to) {
 
 // A decimal integer in [lo, hi], the whole string (no sign, no spaces, no suffix).
 unsigned long parse_number(const std::string& flag, const std::string& text, unsigned long lo, unsigned long hi) {
-    bool digits = !text.empty() && text.size() <= 10;
+    bool digits = !text.empty();
     for (char c : text) digits = digits && c >= '0' && c <= '9';
-    if (!digits) usage_error("bad value '" + text + "' for " + flag + ": expected a whole number");
-    const unsigned long value = std::strtoul(text.c_str(), nullptr, 10);
+    const std::optional<unsigned long> parsed = digits ? cloudmath::tools::parse_integer<unsigned long>(text) : std::nullopt;
+    if (!parsed) usage_error("bad value '" + text + "' for " + flag + ": expected a whole number");
+    const unsigned long value = *parsed;
     if (value < lo || value > hi)
         usage_error("value " + text + " for " + flag + " is out of range [" + std::to_string(lo) + ", " +
                     std::to_string(hi) + "]");
@@ -157,15 +164,19 @@ private:
     int last_percent_ = -1;
 };
 
-bool write_raw(const std::filesystem::path& path, const std::vector<std::uint8_t>& texels) {
-    std::ofstream file(path, std::ios::binary);
-    file.write(reinterpret_cast<const char*>(texels.data()), static_cast<std::streamsize>(texels.size()));
-    return static_cast<bool>(file);
+// "" or the reason the file could not be written (naming it).
+std::string write_raw(const std::filesystem::path& path, const std::vector<std::uint8_t>& texels) {
+    return cloudmath::tools::write_file_atomically(
+        path.string(), std::string_view(reinterpret_cast<const char*>(texels.data()), texels.size()));
 }
 
-bool write_png(const std::filesystem::path& path, int width, int height, int channels,
-               const std::vector<std::uint8_t>& pixels) {
-    return stbi_write_png(path.string().c_str(), width, height, channels, pixels.data(), width * channels) != 0;
+// The PNG encoded in memory (stbi_write_png would truncate the old file first and ignore
+// write errors), then written like the raw files.
+std::string write_png(const std::filesystem::path& path, int width, int height, int channels,
+                      const std::vector<std::uint8_t>& pixels) {
+    const std::string png = cloudmath::tools::encode_png(width, height, channels, pixels.data(), width * channels);
+    if (png.empty()) return "cannot encode '" + path.string() + "' as PNG";
+    return cloudmath::tools::write_file_atomically(path.string(), png);
 }
 
 // Channel c of z slice k of a size^3 volume with `channels` interleaved channels.
@@ -236,10 +247,10 @@ int main(int argc, char** argv) {
         line.finish(seconds);
         return std::make_pair(std::move(texels), seconds);
     };
-    const auto save = [&](result& r, const std::string& name, bool written) {
+    const auto save = [&](result& r, const std::string& name, const std::string& why) {
         r.files.push_back(name);
-        if (!written) {
-            std::fprintf(stderr, "cloudmath_bake_textures: cannot write '%s'\n", (out / name).string().c_str());
+        if (!why.empty()) {
+            std::fprintf(stderr, "cloudmath_bake_textures: %s\n", why.c_str());
             r.ok = false;
         }
     };

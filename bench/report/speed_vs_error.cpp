@@ -35,6 +35,7 @@
 #include <memory>
 #include <numeric>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <utility>
@@ -47,6 +48,7 @@
 #include <cloudmath/cloudmath.hpp>
 #include <cloudmath/fast_math.hpp>
 
+#include "atomic_file.hpp"
 #include "kernels.hpp"
 #include "naive.hpp"
 #include "speed_vs_error_build_info.hpp"
@@ -1168,8 +1170,15 @@ std::string md_escape(const std::string& s) {
     return r;
 }
 
+// Every report file is written atomically (tools/common/atomic_file.hpp: a temporary beside
+// it, checked, renamed): a failed write throws, naming the path, and leaves the old file.
+void save_report_file(const std::string& path, const std::string& text) {
+    const std::string error = cloudmath::tools::write_file_atomically(path, text);
+    if (!error.empty()) throw std::runtime_error(error);
+}
+
 void write_csv(const std::string& path, const std::deque<variant>& rows) {
-    std::ofstream out(path);
+    std::ostringstream out;
     out << "variant,group,family,float_ns_per_eval,batch_ns_per_eval,max_rel_error,rms_rel_error,"
            "batch_max_rel_error,batch_rms_rel_error,error_vs_physical_reference,gpu_spirv_instructions,pareto_front,"
            "error_points,max_error_at,error_reference_note,batch_note\n";
@@ -1181,6 +1190,7 @@ void write_csv(const std::string& path, const std::deque<variant>& rows) {
             << csv_quote(v.gpu_cost) << ',' << (v.front ? "yes" : "no") << ',' << v.err.count << ',' << csv_quote(v.err.where_text()) << ','
             << csv_quote(v.error_note) << ',' << csv_quote(v.batch_note) << '\n';
     }
+    save_report_file(path, out.str());
 }
 
 std::string batch_cell(const variant& v) {
@@ -1202,7 +1212,7 @@ struct machine_info {
 
 void write_markdown(const std::string& path, const std::deque<variant>& rows, const std::vector<truncation_row>& truncation,
                     const machine_info& m, int rounds, double target_seconds, const std::string& cost_source, bool cost_found) {
-    std::ofstream out(path);
+    std::ostringstream out;
     std::string g_list;
     for (float g : phase_g_values) g_list += (g_list.empty() ? "" : ", ") + fmt_input(g);
     // Timing spread across all rows: the median and the largest half-IQR relative to the median.
@@ -1340,6 +1350,7 @@ void write_markdown(const std::string& path, const std::deque<variant>& rows, co
     }
     out << "\nMachine: " << m.cpu << ", " << m.cores << " hardware threads; " << m.compiler << " `" << m.flags << "`, batch forms "
         << cloudmath::batch::isa_name(cloudmath::batch::active_isa()) << " (run-time dispatch); " << m.date << ".\n";
+    save_report_file(path, out.str());
 }
 
 // Log-log scatter plot: x = float ns/eval, y = max relative error (floored), colour per
@@ -1547,7 +1558,7 @@ void write_svg(const std::string& path, const std::deque<variant>& rows, const m
       << "<text x=\"" << lx << "\" y=\"" << ly + 55 << "\" fill=\"#444\">Table and method:</text>\n"
       << "<text x=\"" << lx << "\" y=\"" << ly + 70 << "\" fill=\"#444\">docs/speed_vs_error.md</text>\n"
       << "</g>\n</svg>\n";
-    std::ofstream(path) << s.str();
+    save_report_file(path, s.str());
 }
 
 std::string read_cpu_model() {
@@ -1636,9 +1647,14 @@ int main(int argc, char** argv) {
     m.date = utc_date();
     m.command = command;
 
-    write_csv(out_dir + "/speed_vs_error.csv", rows);
-    write_markdown(out_dir + "/speed_vs_error.md", rows, truncation, m, rounds, target_seconds, "docs/glsl_cost.md", !costs.empty());
-    write_svg(out_dir + "/speed_vs_error.svg", rows, m);
+    try {
+        write_csv(out_dir + "/speed_vs_error.csv", rows);
+        write_markdown(out_dir + "/speed_vs_error.md", rows, truncation, m, rounds, target_seconds, "docs/glsl_cost.md", !costs.empty());
+        write_svg(out_dir + "/speed_vs_error.svg", rows, m);
+    } catch (const std::runtime_error& e) {
+        std::cerr << "speed-vs-error: " << e.what() << '\n';
+        return 1;
+    }
 
     auto pad = [](std::string text, std::size_t width, bool right_align) {
         const std::size_t fill = text.size() < width ? width - text.size() : 0;

@@ -1,6 +1,7 @@
 #include "image.hpp"
 
-#include <stb/stb_image_write.h>
+#include "atomic_file.hpp"
+#include "png_encode.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -8,7 +9,7 @@
 
 namespace cloud_renderer {
 
-bool write_png(const std::string& path, const image& img) {
+bool write_png(const std::string& path, const image& img, std::string* error) {
     std::vector<std::uint8_t> rgb(static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height) * 3);
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x) {
@@ -20,7 +21,12 @@ bool write_png(const std::string& path, const image& img) {
                     static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(v * 255.0f + 0.5f);
             }
         }
-    return stbi_write_png(path.c_str(), img.width, img.height, 3, rgb.data(), img.width * 3) != 0;
+    // Encoded in memory, then written by our own checked code: stbi_write_png would truncate
+    // the old file first and ignore the errors of fwrite and fclose.
+    const std::string png = cloudmath::tools::encode_png(img.width, img.height, 3, rgb.data(), img.width * 3);
+    std::string why = png.empty() ? "cannot encode '" + path + "' as PNG" : cloudmath::tools::write_file_atomically(path, png);
+    if (error != nullptr) *error = why;
+    return why.empty();
 }
 
 image_stats statistics(const image& img) {

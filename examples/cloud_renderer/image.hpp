@@ -15,8 +15,11 @@ struct image {
     glm::vec4& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)]; }
 };
 
-// Writes the rgb channels as an 8-bit sRGB PNG, top row first. False if writing fails.
-bool write_png(const std::string& path, const image& img);
+// Writes the rgb channels as an 8-bit sRGB PNG, top row first, atomically: to a temporary
+// file beside path, checked, then renamed over it (tools/common/atomic_file.hpp), so that a
+// failed write leaves the old file and no temporary. False if writing fails, with the
+// reason (naming the path) in *error when given.
+bool write_png(const std::string& path, const image& img, std::string* error = nullptr);
 
 struct image_stats {
     int nan_pixels = 0;         // pixels with a NaN or Inf in any channel

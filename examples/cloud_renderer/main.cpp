@@ -8,12 +8,13 @@
 #include "textures.hpp"
 #include "window.hpp"
 
+#include "atomic_file.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -55,9 +56,13 @@ std::string with_suffix(const std::string& path, const char* suffix) {
     return dot == std::string::npos ? path + suffix + ".png" : path.substr(0, dot) + suffix + path.substr(dot);
 }
 
+// Every output file goes through write_png or write_file_atomically (tools/common): a
+// temporary beside the target, checked, renamed; a failure leaves the old file, no
+// temporary, a message and exit status 1.
 bool save(const image& img, const std::string& path) {
-    if (!write_png(path, img)) {
-        std::fprintf(stderr, "error: cannot write %s\n", path.c_str());
+    std::string why;
+    if (!write_png(path, img, &why)) {
+        std::fprintf(stderr, "error: %s\n", why.c_str());
         return false;
     }
     std::printf("wrote %s (%d x %d)\n", path.c_str(), img.width, img.height);
@@ -80,10 +85,12 @@ scene temporal_scene(const options& o, int f) {
 }
 
 // Frames 0..o.temporal-1 of the temporal scheme by render(scene, image&); the last is left in
-// `out`; with --save-every, every Nth frame is also written. The median host time of the
-// frames after the first 16 (whose history is still filling) goes to *median_ms.
+// `out`; with --save-every, every Nth frame is also written (a failed write: false, the
+// reason in `why`). The median host time of the frames after the first 16 (whose history is
+// still filling) goes to *median_ms.
 template <class Render>
-bool temporal_frames(const options& o, const char* default_out, Render render, image& out, double* median_ms = nullptr) {
+bool temporal_frames(const options& o, const char* default_out, Render render, image& out, std::string& why,
+                     double* median_ms = nullptr) {
     std::vector<double> ms;
     for (int f = 0; f < o.temporal; ++f) {
         frame_timing ft;
@@ -92,7 +99,7 @@ bool temporal_frames(const options& o, const char* default_out, Render render, i
         if (o.save_every > 0 && (f + 1) % o.save_every == 0) {
             char suffix[32];
             std::snprintf(suffix, sizeof suffix, "_f%03d", f);
-            if (!write_png(with_suffix(o.out.empty() ? default_out : o.out, suffix), out)) return false;
+            if (!write_png(with_suffix(o.out.empty() ? default_out : o.out, suffix), out, &why)) return false;
         }
     }
     std::sort(ms.begin(), ms.end());
@@ -118,30 +125,30 @@ bool accumulate_frames(scene s, int n, Render render, image& out) {
 }
 
 // The options' image: averaged over o.accumulate frames, or the last of o.temporal frames of
-// the temporal scheme, on the CPU and on the GPU.
-image render_cpu_frames(const options& o, const cloud_textures& t, texture_read_stats* temporal_reads = nullptr) {
-    image out;
+// the temporal scheme, on the CPU and on the GPU. False (with the reason in `why`) only when
+// a --save-every frame cannot be written.
+bool render_cpu_frames(const options& o, const cloud_textures& t, image& out, std::string& why,
+                       texture_read_stats* temporal_reads = nullptr) {
     if (o.temporal > 0) {
         cpu_temporal_renderer r(o.width, o.height, temporal_max_samples);
-        (void)temporal_frames(o, "clouds_cpu.png", [&](const scene& s, image& img, frame_timing&) {
+        const bool ok = temporal_frames(o, "clouds_cpu.png", [&](const scene& s, image& img, frame_timing&) {
             img = r.frame(s, o.var, t);
             return true;
-        }, out);
+        }, out, why);
         if (temporal_reads != nullptr) *temporal_reads = r.last_reads();
-        return out;
+        return ok;
     }
-    (void)accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& img) {
+    return accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& img) {
         img = render_cpu(s, o.var, t, o.width, o.height);
         return true;
     }, out);
-    return out;
 }
 bool render_gpu_frames(gl_renderer& gpu, const options& o, image& out, std::string& why, double* temporal_ms = nullptr) {
     if (o.temporal > 0) {
         gpu.reset_temporal();
         return temporal_frames(o, "clouds.png", [&](const scene& s, image& img, frame_timing& ft) {
             return gpu.render_temporal(s, o.var, o.compile_time, o.width, o.height, img, &ft, why);
-        }, out, temporal_ms);
+        }, out, why, temporal_ms);
     }
     return accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& img) {
         return gpu.render(s, o.var, o.compile_time, o.width, o.height, img, nullptr, why);
@@ -185,7 +192,12 @@ int run_cpu(const options& o) {
     if (!load_textures(o, t)) return 1;
     const auto t0 = std::chrono::steady_clock::now();
     texture_read_stats reads;
-    const image img = render_cpu_frames(o, t, &reads);
+    image img;
+    std::string why;
+    if (!render_cpu_frames(o, t, img, why, &reads)) {
+        std::fprintf(stderr, "error: %s\n", why.c_str());
+        return 1;
+    }
     std::printf("CPU: preset %s, %d x %d, %s: %.2f s\n", o.sc.name.c_str(), o.width, o.height, variant_spec(o.var).c_str(),
                 seconds_since(t0));
     print_stats("CPU image", img);
@@ -217,7 +229,11 @@ int run_compare(const options& o) {
         return 1;
     }
     const auto t0 = std::chrono::steady_clock::now();
-    const image c = render_cpu_frames(o, t);
+    image c;
+    if (!render_cpu_frames(o, t, c, why)) {
+        std::fprintf(stderr, "error: %s\n", why.c_str());
+        return 1;
+    }
     const double cpu_s = seconds_since(t0);
     const image_difference d = compare(g, c);
     std::printf("preset %s, %d x %d, %s: GPU %.1f ms, CPU %.2f s\n", o.sc.name.c_str(), o.width, o.height,
@@ -365,10 +381,9 @@ int run_bench(const options& o) {
     }
     std::printf("%s", table.str().c_str());
     if (!o.bench_out.empty()) {
-        std::ofstream out(o.bench_out);
-        out << table.str();
-        if (!out) {
-            std::fprintf(stderr, "error: cannot write %s\n", o.bench_out.c_str());
+        const std::string why = cloudmath::tools::write_file_atomically(o.bench_out, table.str());
+        if (!why.empty()) {
+            std::fprintf(stderr, "error: %s\n", why.c_str());
             return 1;
         }
         std::printf("wrote %s\n", o.bench_out.c_str());
@@ -475,6 +490,23 @@ int run_convergence(const options& o) {
     return 0;
 }
 
+// The files a mode will write, checked before any work (a missing or unwritable directory
+// fails at once, not after minutes of rendering); the writes themselves are checked again.
+std::vector<std::string> output_files(const options& o) {
+    switch (o.mode) {
+    case run_mode::headless: return {o.out.empty() ? "clouds.png" : o.out};
+    case run_mode::cpu: return {o.out.empty() ? "clouds_cpu.png" : o.out};
+    case run_mode::compare: {
+        const std::string out = o.out.empty() ? "clouds.png" : o.out;
+        return {out, with_suffix(out, "_cpu")};
+    }
+    case run_mode::bench:
+        if (o.bench_out.empty()) return {};
+        return {o.bench_out};
+    default: return {};
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -484,6 +516,11 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "cloudmath_cloud_renderer: %s\n", error.c_str());
         return 2;
     }
+    for (const std::string& path : output_files(o))
+        if (const std::string why = cloudmath::tools::check_output_path(path); !why.empty()) {
+            std::fprintf(stderr, "error: %s\n", why.c_str());
+            return 1;
+        }
     switch (o.mode) {
     case run_mode::help: std::printf("%s", usage_text()); return 0;
     case run_mode::list_presets:

@@ -1,18 +1,20 @@
 #include "options.hpp"
 
-#include <cmath>
-#include <cstdlib>
+#include "strict_number.hpp"
+
+#include <cstdio>
+#include <optional>
 #include <vector>
 
 namespace cloud_renderer {
 namespace {
 
+// The whole text a finite decimal number in [lo, hi] (tools/common/strict_number.hpp: no
+// spaces, hexadecimal, nan or suffix).
 bool to_number(const std::string& text, double lo, double hi, double& out) {
-    if (text.empty()) return false;
-    char* end = nullptr;
-    const double v = std::strtod(text.c_str(), &end);
-    if (*end != '\0' || !std::isfinite(v) || v < lo || v > hi) return false;
-    out = v;
+    const std::optional<double> v = cloudmath::tools::parse_finite(text);
+    if (!v || *v < lo || *v > hi) return false;
+    out = *v;
     return true;
 }
 

@@ -1,5 +1,7 @@
 #include "scene.hpp"
 
+#include "strict_number.hpp"
+
 #include <cloudmath/density.hpp>
 #include <cloudmath/phase.hpp>
 #include <cloudmath/sun.hpp>
@@ -8,6 +10,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 
 namespace cloud_renderer {
@@ -36,13 +39,12 @@ glm::vec3 direction(float heading_deg, float elevation_deg) {
     return {std::cos(e) * std::sin(h), std::sin(e), -std::cos(e) * std::cos(h)};
 }
 
-// Parses an integer in [lo, hi]; false if it is not one.
+// Parses an integer in [lo, hi] (tools/common/strict_number.hpp: the whole text, decimal);
+// false if it is not one.
 bool parse_int(const std::string& text, int lo, int hi, int& out) {
-    if (text.empty()) return false;
-    char* end = nullptr;
-    const long v = std::strtol(text.c_str(), &end, 10);
-    if (*end != '\0' || v < lo || v > hi) return false;
-    out = static_cast<int>(v);
+    const std::optional<int> v = cloudmath::tools::parse_integer<int>(text);
+    if (!v || *v < lo || *v > hi) return false;
+    out = *v;
     return true;
 }
 

@@ -1,5 +1,7 @@
 #include "textures.hpp"
 
+#include "atomic_file.hpp"
+
 #include <cloudmath/noise_bake.hpp>
 
 #include <cstdio>
@@ -56,24 +58,26 @@ void make_directories(const std::string& dir) {
         if (i == dir.size() || dir[i] == '/') ::mkdir(dir.substr(0, i).c_str(), 0755);
 }
 
-bool write_cache(const std::string& dir, const std::string& path, const cloud_textures& t) {
+// Writes the cache atomically (tools/common/atomic_file.hpp: a temporary beside it, checked,
+// renamed): no reader ever sees half a cache, and a failure leaves no temporary behind.
+// Returns "" or the reason.
+std::string write_cache(const std::string& dir, const std::string& path, const cloud_textures& t) {
     make_directories(dir);
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        header h{};
-        std::memcpy(h.magic, magic, sizeof magic);
-        h.base_size = t.base_size;
-        h.detail_size = t.detail_size;
-        h.weather_size = t.weather_size;
-        h.seed = seed;
-        h.checksum = checksum_of(t);
-        out.write(reinterpret_cast<const char*>(&h), sizeof h);
-        for (const std::vector<std::uint8_t>* v : {&t.base, &t.detail, &t.weather, &t.weather_wide, &t.curl})
-            out.write(reinterpret_cast<const char*>(v->data()), static_cast<std::streamsize>(v->size()));
-        if (!out) return false;
-    }
-    return std::rename(tmp.c_str(), path.c_str()) == 0;  // atomic: no half-written cache
+    header h{};
+    std::memcpy(h.magic, magic, sizeof magic);
+    h.base_size = t.base_size;
+    h.detail_size = t.detail_size;
+    h.weather_size = t.weather_size;
+    h.seed = seed;
+    h.checksum = checksum_of(t);
+    const std::vector<std::uint8_t>* const parts[] = {&t.base, &t.detail, &t.weather, &t.weather_wide, &t.curl};
+    std::size_t size = sizeof h;
+    for (const std::vector<std::uint8_t>* v : parts) size += v->size();
+    std::string bytes;
+    bytes.reserve(size);
+    bytes.append(reinterpret_cast<const char*>(&h), sizeof h);
+    for (const std::vector<std::uint8_t>* v : parts) bytes.append(reinterpret_cast<const char*>(v->data()), v->size());
+    return cloudmath::tools::write_file_atomically(path, bytes);
 }
 
 }  // namespace
@@ -143,10 +147,11 @@ bool load_or_bake_textures(const std::string& cache_dir, bool quiet, cloud_textu
         return false;
     }
     if (!path.empty()) {
-        if (write_cache(cache_dir, path, t)) {
+        const std::string error = write_cache(cache_dir, path, t);
+        if (error.empty()) {
             if (!quiet) std::fprintf(stderr, "textures: cached in %s\n", path.c_str());
         } else {
-            std::fprintf(stderr, "textures: warning: could not write the cache %s\n", path.c_str());
+            std::fprintf(stderr, "textures: warning: could not write the cache: %s\n", error.c_str());
         }
     }
     build_mipmaps(t);

@@ -20,12 +20,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "atomic_file.hpp"
 #include "gl_compute.hpp"
 
 namespace cm = cloudmath;
@@ -788,7 +788,7 @@ int main(int argc, char** argv) {
                     pass ? "" : "FAIL ", r.worst_at.c_str());
     }
     if (!markdown.empty()) {
-        std::ofstream md(markdown);
+        std::ostringstream md;
         md << "# GLSL parity: GLSL twins against the C++ float functions\n\n"
            << "Measured by `test_glsl_parity --markdown` (ctest `glsl.parity`; regenerate with `bash scripts/glsl-parity.sh`) on **"
            << gl->renderer() << "**, OpenGL " << gl->version() << ".\n\n"
@@ -799,6 +799,12 @@ int main(int argc, char** argv) {
             char buf[64];
             std::snprintf(buf, sizeof buf, "%.2g", r.worst);
             md << "| `" << r.function << "` | " << r.evaluations << " | " << buf << " | " << r.budget << " | " << r.nonfinite << " |\n";
+        }
+        // Atomically (tools/common/atomic_file.hpp): a failed write leaves the old table.
+        const std::string error = cloudmath::tools::write_file_atomically(markdown, md.str());
+        if (!error.empty()) {
+            std::fprintf(stderr, "test_glsl_parity: %s\n", error.c_str());
+            return 1;
         }
     }
     std::printf("%s: %zu functions, %zu cases\n", ok ? "PASSED" : "FAILED", rows.size(), case_count);

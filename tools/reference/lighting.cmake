@@ -57,4 +57,26 @@ if(CLOUDMATH_BUILD_TESTS)
       grep -q "diffusion_models::fitted" "$2/choice.hpp" || { echo "choice data lacks the diffusion model"; exit 1; }
       "$1" --help >/dev/null || { echo "--help failed"; exit 1; }
       ]=] sh $<TARGET_FILE:cloudmath_lighting_error> "${CMAKE_CURRENT_BINARY_DIR}/lighting_error_cli_test")
+
+  # Numbers on the command line are read strictly and path counts are capped (exit 2 at
+  # once: " -5" paths wrapped round to 2^64 - 5, "0.01xyz" read as 0.01, nan accepted), and
+  # --out is checked before any tracing (exit 1 at once, the old file untouched).
+  add_test(NAME reference.lighting_error_cli_numbers
+    COMMAND sh -c [=[
+      set -u
+      rm -rf "$2"; mkdir -p "$2"
+      for bad in "--paths=-5" "--paths= -5" "--paths= 5" "--paths=5x" "--paths=1e12" "--max-paths=2e8" "--threads=-1" \
+                 "--seed=1.5" "--target-error=0.01xyz" "--target-error=nan" "--albedo=nan" "--albedo=0x1"; do
+        flag=${bad%%=*} value=${bad#*=}
+        "$1" reference --quick "$flag" "$value" --out "$2/ref.csv" 2>"$2.err"; s=$?
+        [ $s -eq 2 ] || { echo "reference $flag '$value': exit $s, want 2"; exit 1; }
+        grep -q "^cloudmath_lighting_error: $flag" "$2.err" || { echo "reference $bad: no message naming the flag"; cat "$2.err"; exit 1; }
+      done
+      [ ! -e "$2/ref.csv" ] || { echo "a rejected command line wrote ref.csv"; exit 1; }
+      "$1" reference --quick --out "$2/no_such_dir/ref.csv" 2>"$2.err"; s=$?
+      [ $s -eq 1 ] || { echo "missing directory: exit $s, want 1"; exit 1; }
+      grep -q "no_such_dir/ref.csv" "$2.err" || { echo "the message does not name the path"; exit 1; }
+      grep -q "sphere" "$2.err" && { echo "traced before checking --out"; exit 1; }
+      exit 0
+      ]=] sh $<TARGET_FILE:cloudmath_lighting_error> "${CMAKE_CURRENT_BINARY_DIR}/lighting_error_cli_numbers")
 endif()

@@ -4,12 +4,14 @@
 #include <cloudmath/multiple_scattering.hpp>
 
 #include "lighting_report.hpp"
+#include "strict_number.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -22,11 +24,11 @@ hg_mixture parse_hg_mixture(const std::string& spec) {
         std::vector<double> out;
         std::stringstream ss(list);
         for (std::string cell; std::getline(ss, cell, ',');) {
-            char* end = nullptr;
-            out.push_back(std::strtod(cell.c_str(), &end));
-            if (cell.empty() || *end != '\0')
+            const std::optional<double> v = cloudmath::tools::parse_finite(cell);
+            if (!v)
                 throw std::invalid_argument("phase spec '" + spec + "': '" + cell +
                                             "' is not a number");
+            out.push_back(*v);
         }
         return out;
     };

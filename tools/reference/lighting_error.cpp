@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -19,6 +20,7 @@
 #include <cloudmath/transmittance.hpp>
 
 #include "phase_error.hpp"  // nelder_mead
+#include "strict_number.hpp"
 
 namespace cloudmath::reference::lighting {
 
@@ -245,10 +247,10 @@ reference_set read_reference(const std::string& path) {
             const auto [key, value] = parse_metadata_line(line);
             if (key == "phase") set.phase_spec = value;
             if (key == "albedo") {
-                char* end = nullptr;
-                set.albedo = std::strtod(value.c_str(), &end);
-                if (value.empty() || *end != '\0' || !(set.albedo >= 0.0 && set.albedo <= 1.0))
+                const std::optional<double> albedo = cloudmath::tools::parse_finite(value);
+                if (!albedo || !(*albedo >= 0.0 && *albedo <= 1.0))
                     fail("albedo '" + value + "' is not a number in [0, 1]");
+                set.albedo = *albedo;
             }
             set.metadata.emplace_back(key, value);
             continue;
@@ -267,13 +269,21 @@ reference_set read_reference(const std::string& path) {
         if (r.geometry != "sphere" && r.geometry != "slab_reflected" &&
             r.geometry != "slab_transmitted")
             fail("unknown geometry '" + r.geometry + "'");
+        // Every cell the whole number, finite (strict_number.hpp): std::stod read "0.067xyz"
+        // as 0.067 and accepted nan, std::stoull read "-5" paths as 2^64 - 5.
+        static const char* const columns[16] = {"tau", "sun_deg", "view_mu", "view_phi_deg", "u",
+                                                "origin_x", "origin_y", "origin_z", "dir_x", "dir_y",
+                                                "dir_z", "sun_x", "sun_y", "sun_z", "radiance",
+                                                "std_error"};
         double v[16];
-        try {
-            for (int i = 0; i < 16; ++i) v[i] = std::stod(f[static_cast<std::size_t>(i) + 1]);
-            r.paths = std::stoull(f[17]);
-        } catch (const std::exception&) {
-            fail("not a number");
+        for (std::size_t i = 0; i < 16; ++i) {
+            const std::optional<double> x = cloudmath::tools::parse_finite(f[i + 1]);
+            if (!x) fail(std::string(columns[i]) + " '" + f[i + 1] + "' is not a finite number");
+            v[i] = *x;
         }
+        const std::optional<std::uint64_t> paths = cloudmath::tools::parse_integer<std::uint64_t>(f[17]);
+        if (!paths || *paths == 0) fail("paths '" + f[17] + "' is not a whole number > 0");
+        r.paths = *paths;
         r.tau = v[0];
         r.sun_deg = v[1];
         r.view_mu = v[2];

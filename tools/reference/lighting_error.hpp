@@ -88,8 +88,9 @@ struct reference_options {
 
 // Throws std::invalid_argument for empty lists or values out of range.
 [[nodiscard]] reference_set generate_reference(const reference_options& options);
-// CSV with "# key: value" metadata lines; written to path + ".tmp" and renamed. Throws
-// std::runtime_error naming the path on I/O failure.
+// CSV with "# key: value" metadata lines, written through write_text_file_atomically (a
+// temporary beside path, renamed over it). Throws std::runtime_error naming the path on I/O
+// failure.
 void write_reference(const reference_set& set, const std::string& path);
 // Throws std::runtime_error naming the path and line for unreadable or malformed files.
 [[nodiscard]] reference_set read_reference(const std::string& path);

@@ -22,10 +22,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -33,7 +36,9 @@
 
 #include <cloudmath/multiple_scattering.hpp>
 
+#include "atomic_file.hpp"
 #include "cli_main.hpp"  // split_list
+#include "strict_number.hpp"
 #include "lighting_diffusion.hpp"
 #include "lighting_error.hpp"
 #include "lighting_report.hpp"
@@ -49,7 +54,8 @@ const char* const usage_text =
     "  reference  path-traces the reference: a sphere seen from 6 directions around the sun\n"
     "             and a slab under 3 sun angles, optical thickness 1 to 100, HG g = 0.85.\n"
     "             flags: --out docs/data/lighting_reference.csv --paths 200000\n"
-    "                    --max-paths 3200000 --target-error 0.01 --threads 0 --seed 1\n"
+    "                    --max-paths 3200000 (paths per ray, each at most 1e8)\n"
+    "                    --target-error 0.01 --threads 0 --seed 1\n"
     "                    --quick (3 thicknesses, 2 view angles, 1 sun, few paths: a smoke\n"
     "                    test, not a reference)\n"
     "                    --holdout (the held-out split: thicknesses, view and sun angles\n"
@@ -103,21 +109,26 @@ std::map<std::string, std::string> parse_flags(int argc, char** argv,
     return out;
 }
 
-std::uint64_t to_count(const std::string& flag, const std::string& text) {
-    char* end = nullptr;
-    const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || text[0] == '-')
-        throw usage_error("--" + flag + " needs a non-negative integer, got '" + text + "'");
-    return v;
+// Numbers are read strictly (strict_number.hpp): the whole text, no spaces, nan or inf;
+// counts may be written 2e5. strtoull read " -5" as 2^64 - 5.
+std::uint64_t to_count(const std::string& flag, const std::string& text, std::uint64_t max) {
+    const std::optional<std::uint64_t> v = cloudmath::tools::parse_count(text);
+    if (!v) throw usage_error("--" + flag + " needs a non-negative integer, got '" + text + "'");
+    if (*v > max)
+        throw usage_error("--" + flag + " is at most " + std::to_string(max) + ", got '" + text + "'");
+    return *v;
 }
 
 double to_positive(const std::string& flag, const std::string& text) {
-    char* end = nullptr;
-    const double v = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !(v > 0.0) || !std::isfinite(v))
+    const std::optional<double> v = cloudmath::tools::parse_finite(text);
+    if (!v || !(*v > 0.0))
         throw usage_error("--" + flag + " needs a positive number, got '" + text + "'");
-    return v;
+    return *v;
 }
+
+// Paths per ray: the default reference gives each 200000, up to 3200000 where it is noisy;
+// the cap, 30 times that, keeps a typo (an extra zero or two) from running for days.
+constexpr std::uint64_t max_paths_per_ray = 100000000;
 
 int run_reference(int argc, char** argv) {
     auto f = parse_flags(argc, argv, {"out", "paths", "max-paths", "target-error", "threads",
@@ -140,14 +151,18 @@ int run_reference(int argc, char** argv) {
         o.paths = 2000;
         o.max_paths = 8000;
     }
-    if (f.count("paths")) o.paths = to_count("paths", f["paths"]);
-    if (f.count("max-paths")) o.max_paths = to_count("max-paths", f["max-paths"]);
+    if (f.count("paths")) o.paths = to_count("paths", f["paths"], max_paths_per_ray);
+    if (f.count("max-paths")) o.max_paths = to_count("max-paths", f["max-paths"], max_paths_per_ray);
     if (f.count("target-error")) o.target_rel_error = to_positive("target-error", f["target-error"]);
-    if (f.count("threads")) o.threads = static_cast<unsigned>(to_count("threads", f["threads"]));
-    if (f.count("seed")) o.seed = to_count("seed", f["seed"]);
+    if (f.count("threads")) o.threads = static_cast<unsigned>(to_count("threads", f["threads"], 1024));
+    if (f.count("seed")) o.seed = to_count("seed", f["seed"], std::numeric_limits<std::uint64_t>::max());
     if (o.paths == 0) throw usage_error("--paths must be > 0");
     if (o.max_paths < o.paths) o.max_paths = o.paths;
     const std::string out = f.count("out") ? f["out"] : "docs/data/lighting_reference.csv";
+    // Checked now, written atomically when done (write_reference): a bad path fails before
+    // hours of path tracing, and an interrupted run leaves the old file as it was.
+    if (const std::string error = cloudmath::tools::check_output_path(out); !error.empty())
+        throw std::runtime_error(error);
     o.log = [](const std::string& line) { std::cerr << "cloudmath_lighting_error: " << line << '\n'; };
 
     const auto t0 = std::chrono::steady_clock::now();

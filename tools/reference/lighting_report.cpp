@@ -9,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -18,6 +19,7 @@
 
 #include "lighting_diffusion.hpp"
 #include "phase_error.hpp"  // xml_escape
+#include "strict_number.hpp"
 
 namespace cloudmath::reference::lighting {
 
@@ -252,7 +254,11 @@ double medium_g(const reference_set& set) {
     if (set.phase_spec.rfind("hg:", 0) != 0)
         throw std::runtime_error("lighting report: the reference phase must be hg:G (the models' "
                                  "octaves are HG), got '" + set.phase_spec + "'");
-    return std::stod(set.phase_spec.substr(3));
+    const std::optional<double> g = cloudmath::tools::parse_finite(set.phase_spec.substr(3));
+    if (!g || !(*g > -1.0 && *g < 1.0))
+        throw std::runtime_error("lighting report: the reference phase hg:G needs a number G in (-1, 1), got '" +
+                                 set.phase_spec + "'");
+    return *g;
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #   cloudmath_mie       command-line tool writing the droplet phase tables of docs/data/
 #   reference.mie       unit tests against published values and closed forms (test_mie.cpp)
 #   reference.mie_cli   command-line checks: exit statuses, one sphere, a tiny table
+#   reference.mie_failed_write  the table's write failing (expect_failed_write.cmake)
 add_library(cloudmath_mie_lib STATIC mie.cpp size_distribution.cpp)
 cloudmath_reference_target(cloudmath_mie_lib)
 target_include_directories(cloudmath_mie_lib PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}")
@@ -33,7 +34,9 @@ endfunction()
 # Bad command lines: exit 2 with one line on stderr.
 foreach(bad "--bogus" "--distribution;c2" "--distribution;gamma" "--sphere;--x;10"
             "--sphere;--m;1.33,0;--x;abc" "--distribution;c1;--wavelength;0.6"
-            "--distribution;c1;--threads;0" "--distribution;c1;--x;5")
+            "--distribution;c1;--threads;0" "--distribution;c1;--x;5"
+            "--sphere;--m;1.33,0;--x;1e-160" "--sphere;--m;1.33,0;--x;1e-31" "--sphere;--m;1.33,0;--x; 5"
+            "--sphere;--m;1.33,0;--x;5xyz" "--sphere;--m;1.33,0;--x;nan" "--sphere;--m;0x1p0,0;--x;5")
   expect(2 ${bad})
   if(NOT err MATCHES "^cloudmath_mie: [^\n]*\n$")
     message(FATAL_ERROR "${bad}: expected one line on stderr, got '${err}'")
@@ -47,6 +50,11 @@ endif()
 expect(0 --sphere --m 1.5,-1 --x 1 --angles 0,180)
 if(NOT out MATCHES "Q_ext = 2\\.33632" OR NOT out MATCHES "S1 = 0\\.58408")
   message(FATAL_ERROR "unexpected sphere output:\n${out}")
+endif()
+# The smallest sphere accepted: the Rayleigh limit, finite (x = 1e-160 gave NaN, exit 0).
+expect(0 --sphere --m 1.33,0 --x 1e-30 --angles 90)
+if(out MATCHES "nan" OR NOT out MATCHES "Q_sca = 1\\.10988[0-9]*e-121" OR NOT out MATCHES "phase = 0\\.059683")
+  message(FATAL_ERROR "x = 1e-30 is not the Rayleigh limit:\n${out}")
 endif()
 # A tiny table (small droplets at a long wavelength: a few Mie terms each).
 expect(0 --distribution gamma --reff 1 --wavelength 2 --m 1.33,0 --step 0.5 --threads 2
@@ -72,4 +80,10 @@ endif()
   add_test(NAME reference.mie_cli
     COMMAND "${CMAKE_COMMAND}" "-DTOOL=$<TARGET_FILE:cloudmath_mie>"
       "-DOUT=${CMAKE_CURRENT_BINARY_DIR}/test_mie_cli" -P "${cloudmath_mie_cli_script}")
+  # A failed write of the table: exit 1 naming it, the old table untouched, no temporary.
+  add_test(NAME reference.mie_failed_write
+    COMMAND "${CMAKE_COMMAND}" "-DCOMMAND=$<TARGET_FILE:cloudmath_mie>"
+      "-DARGS=--distribution;gamma;--reff;1;--wavelength;2;--m;1.33,0;--step;0.5;--threads;2;--quiet;--out;@WORK@/tiny.csv"
+      -DFILES=tiny.csv "-DWORK=${CMAKE_CURRENT_BINARY_DIR}/mie_failed_write"
+      -P "${PROJECT_SOURCE_DIR}/tools/common/expect_failed_write.cmake")
 endif()

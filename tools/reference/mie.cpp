@@ -125,9 +125,10 @@ std::size_t mie_term_count(double size_parameter) {
 }
 
 mie_coefficients compute_mie_coefficients(complex m, double x) {
-    if (!(x > 0.0) || !std::isfinite(x) || !std::isfinite(m.real()) || !std::isfinite(m.imag()) ||
-        !(m.real() > 0.0))
-        throw std::invalid_argument("Mie: need a finite size parameter > 0 and Re(m) > 0");
+    if (!(x >= mie_min_size_parameter) || !std::isfinite(x) || !std::isfinite(m.real()) ||
+        !std::isfinite(m.imag()) || !(m.real() > 0.0))
+        throw std::invalid_argument(
+            "Mie: need a finite size parameter >= 1e-30 (mie_min_size_parameter) and Re(m) > 0");
     // Bohren & Huffman's formulas assume exp(-i omega t), absorption as +i k: work with that
     // and conjugate the coefficients at the end (the efficiencies do not change).
     const complex m_bh(m.real(), std::abs(m.imag()));

@@ -16,7 +16,8 @@
 //   - Riccati-Bessel psi_n(x), chi_n(x) by upward recurrence (stable up to n_stop),
 //     xi = psi - i chi;
 //   - angular functions pi_n(mu), tau_n(mu) by upward recurrence.
-// Valid and tested for size parameters 1e-3 .. 1e4 and any absorption.
+// Valid and tested for size parameters 1e-3 .. 1e4 and any absorption; accepted from
+// mie_min_size_parameter = 1e-30 (see there) upward.
 //
 // Conventions:
 //   - x = 2 pi r / lambda (size parameter), m = relative refractive index (droplet / medium).
@@ -44,6 +45,15 @@
 
 namespace cloudmath::reference {
 
+// The smallest size parameter accepted. Small spheres are the Rayleigh limit (Bohren &
+// Huffman sec. 5.2: Q_sca = 8/3 x^4 |K|^2, Q_abs = 4 x Im K, K = (m^2 - 1)/(m^2 + 2)), which
+// the series reproduces to rounding down to about x = 1e-50 (tested at 1e-30). Below that
+// the coefficients' squares (|a_1|^2 ~ x^6) underflow: Q_sca and the phase function became
+// 0 and NaN near x = 1e-54, every efficiency NaN (2 / x^2 overflows) below 1e-154, with no
+// error. 1e-30 keeps 20 orders of margin; no droplet distribution comes near it (their
+// smallest size parameter is about 1e-6 times the quadrature step).
+inline constexpr double mie_min_size_parameter = 1e-30;
+
 // Wiscombe's number of series terms: floor(x + 4 x^(1/3) + 2), at least 1.
 [[nodiscard]] std::size_t mie_term_count(double size_parameter);
 
@@ -56,7 +66,8 @@ struct mie_coefficients {
     std::vector<std::complex<double>> b;
 };
 
-// Throws std::invalid_argument for x <= 0, non-finite input or Re(m) <= 0.
+// Throws std::invalid_argument for x < mie_min_size_parameter (so for x <= 0), non-finite
+// input or Re(m) <= 0.
 [[nodiscard]] mie_coefficients compute_mie_coefficients(std::complex<double> m,
                                                         double size_parameter);
 

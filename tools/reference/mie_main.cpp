@@ -22,9 +22,11 @@
 #include <thread>
 #include <vector>
 
+#include "atomic_file.hpp"
 #include "mie.hpp"
 #include "phase_table.hpp"
 #include "size_distribution.hpp"
+#include "strict_number.hpp"
 
 namespace {
 
@@ -51,7 +53,9 @@ distribution options:
   --quiet                no progress line
 sphere options:
   --sphere               print Q_ext, Q_sca, Q_abs, Q_back and g of one sphere
-  --x X                  size parameter 2 pi r / lambda (1e-3 .. 1e4 tested)
+  --x X                  size parameter 2 pi r / lambda, 1e-30 .. 1e5 (1e-3 .. 1e4 tested
+                         against published values; below 1e-30 the series underflows and
+                         the Rayleigh limit Q_sca = 8/3 x^4 |(m^2-1)/(m^2+2)|^2 applies)
   --angles DEG,...       also print S1, S2 and the phase function at these angles
   --help                 this text
 )";
@@ -64,17 +68,11 @@ struct io_error : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// The whole text, finite, decimal (strict_number.hpp: std::stod took " 5", "0x1p3", ...).
 double parse_number(const std::string& flag, const std::string& text) {
-    std::size_t used = 0;
-    double v = 0.0;
-    try {
-        v = std::stod(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used == 0 || used != text.size() || !std::isfinite(v))
-        throw usage_error(flag + ": not a number: '" + text + "'");
-    return v;
+    const std::optional<double> v = cloudmath::tools::parse_finite(text);
+    if (!v) throw usage_error(flag + ": not a number: '" + text + "'");
+    return *v;
 }
 
 std::vector<double> parse_list(const std::string& flag, const std::string& text) {
@@ -180,7 +178,9 @@ options parse(int argc, char** argv) {
             if (o.out.empty()) throw usage_error("--out: empty path");
         } else if (flag == "--x") {
             o.x = parse_number(flag, take());
-            if (!(*o.x > 0.0 && *o.x <= 1e5)) throw usage_error("--x must lie in (0, 1e5]");
+            if (!(*o.x >= mie_min_size_parameter && *o.x <= 1e5))
+                throw usage_error("--x must lie in [1e-30, 1e5] (below 1e-30 the series underflows: "
+                                  "the Rayleigh limit applies)");
         } else if (flag == "--angles") {
             o.angles = parse_list(flag, take());
             for (double a : o.angles)
@@ -238,7 +238,19 @@ int run_sphere(const options& o) {
     return 0;
 }
 
+// Creates the missing directories of --out and checks that the file can be written, before
+// the computation (the table is written atomically at the end; write_phase_table).
+void prepare_output(const std::string& out) {
+    if (out.empty()) return;
+    const std::filesystem::path parent = std::filesystem::path(out).parent_path();
+    std::error_code ec;
+    if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+    if (ec) throw io_error("cannot create directory " + parent.string() + ": " + ec.message());
+    if (const std::string error = cloudmath::tools::check_output_path(out); !error.empty()) throw io_error(error);
+}
+
 int run_distribution(const options& o) {
+    prepare_output(o.out);
     const auto start = std::chrono::steady_clock::now();
     modified_gamma dist = o.distribution == "c1"
                               ? deirmendjian_c1()
@@ -297,10 +309,6 @@ int run_distribution(const options& o) {
     t.set_meta("threads", std::to_string(s.threads));
     t.set_meta("elapsed_s", number(elapsed));
     if (!o.out.empty()) {
-        const std::filesystem::path parent = std::filesystem::path(o.out).parent_path();
-        std::error_code ec;
-        if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-        if (ec) throw io_error("cannot create directory " + parent.string() + ": " + ec.message());
         try {
             write_phase_table(o.out, t);
         } catch (const std::runtime_error& e) {

@@ -2,6 +2,7 @@
 // conventions, the methods and their sources.
 #include "montecarlo.hpp"
 #include "montecarlo_detail.hpp"
+#include "strict_number.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -10,6 +11,7 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -113,13 +115,11 @@ std::vector<std::string> split(const std::string& s, char sep) {
     }
 }
 
+// Spaces around the number are allowed ("hg: 0.85"), nothing else (strict_number.hpp).
 double parse_number(const std::string& text, const std::string& context) {
-    const std::string t = trim(text);
-    char* end = nullptr;
-    const double v = t.empty() ? 0.0 : std::strtod(t.c_str(), &end);
-    if (t.empty() || end != t.c_str() + t.size() || !std::isfinite(v))
-        throw std::invalid_argument(context + ": '" + text + "' is not a finite number");
-    return v;
+    const std::optional<double> v = cloudmath::tools::parse_finite(trim(text));
+    if (!v) throw std::invalid_argument(context + ": '" + text + "' is not a finite number");
+    return *v;
 }
 
 std::vector<double> parse_numbers(const std::string& args, std::size_t count,

@@ -8,30 +8,42 @@
 //   cloudmath_montecarlo sphere --tau 10 --view-angle 90 --points 9 --phase hg:0.85 --out p.csv
 //
 // Exit status: 0 success, 2 bad command line (one-line message on stderr), 1 I/O failure
-// (the message names the path). Progress on stderr, one summary line with the elapsed time
-// on stdout. CSV files: "# key: value" metadata lines (every parameter, seed, elapsed time),
-// a header line, then rows with mean and std_error. Same seed -> same numbers, whatever
-// --threads is.
+// (the message names the path). Progress on stderr (with the time left), one summary line
+// with the elapsed time on stdout. CSV files: "# key: value" metadata lines (every
+// parameter, seed, elapsed time), a header line, then rows with mean and std_error. Same
+// seed -> same numbers, whatever --threads is.
+// --out is checked before the computation (a missing directory fails at once) and written
+// only at the end, atomically (write_text_file_atomically): a killed or failed run leaves
+// the old file as it was. A run traces at most max_paths_per_run paths (see the usage).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "atomic_file.hpp"
 #include "cli_main.hpp"
 #include "montecarlo.hpp"
+#include "phase_table.hpp"  // write_text_file_atomically
+#include "strict_number.hpp"
 
 namespace mc = cloudmath::reference::mc;
 
 namespace {
+
+// The most paths (photons for slab; paths per view or ray times views or rays otherwise)
+// one run may trace: about 20 minutes at 1e7 paths/s, hours on a small machine. Beyond it
+// the run is refused rather than left running for a day; split it over several --seed
+// values and average the results instead.
+constexpr double max_paths_per_run = 1e10;
 
 const char* const usage_text =
     "usage: cloudmath_montecarlo <command> [--flag value ...]\n"
@@ -64,7 +76,12 @@ const char* const usage_text =
     "phase specs: isotropic, rayleigh, hg:G, dual_hg:G0,G1,W, cs:G, draine:G,ALPHA,\n"
     "             mie_approx:D_UM, table:PATH (phase table CSV, see phase_table.hpp)\n"
     "--max-order N keeps light scattered at most N times (1 = single scattering); 0 = all.\n"
-    "--threads 0 uses every core. Exit status: 0 ok, 1 I/O failure, 2 bad command line.\n";
+    "--threads 0 uses every core. Counts take digits or exponent forms (1e6).\n"
+    "A run traces at most 1e10 paths (--photons, or --paths times the views or rays): more\n"
+    "would run for hours; split such a run over several --seed values instead.\n"
+    "--out is written only when the run is done, through a temporary file renamed over it:\n"
+    "a failed or interrupted run leaves the old file as it was.\n"
+    "Exit status: 0 ok, 1 I/O failure, 2 bad command line.\n";
 
 using cloudmath::reference::usage_error;
 
@@ -91,10 +108,9 @@ public:
                   bool lo_open = false) const {
         if (!has(key)) return fallback;
         const std::string& t = values_.at(key);
-        char* end = nullptr;
-        const double v = std::strtod(t.c_str(), &end);
-        if (t.empty() || end != t.c_str() + t.size() || !std::isfinite(v) ||
-            (lo_open ? !(v > lo) : !(v >= lo)) || !(v <= hi)) {
+        const std::optional<double> parsed = cloudmath::tools::parse_finite(t);
+        const double v = parsed.value_or(0.0);
+        if (!parsed || (lo_open ? !(v > lo) : !(v >= lo)) || !(v <= hi)) {
             std::ostringstream m;
             m << "--" << key << " '" << t << "': expected a number in " << (lo_open ? "(" : "[")
               << lo << ", " << hi << "]";
@@ -102,34 +118,64 @@ public:
         }
         return v;
     }
-    // Non-negative integer; accepts exponent forms such as 1e6.
+    // Non-negative integer; accepts exponent forms such as 1e6 (strict_number.hpp).
     std::uint64_t count(const std::string& key, std::uint64_t fallback, std::uint64_t lo) const {
         if (!has(key)) return fallback;
         const std::string& t = values_.at(key);
-        char* end = nullptr;
-        const double v = std::strtod(t.c_str(), &end);
-        if (t.empty() || end != t.c_str() + t.size() || !(v >= static_cast<double>(lo)) ||
-            !(v <= 9.0e15) || v != std::floor(v))
+        const std::optional<std::uint64_t> v = cloudmath::tools::parse_count(t);
+        if (!v || *v < lo)
             throw usage_error("--" + key + " '" + t + "': expected an integer >= " +
                               std::to_string(lo));
-        return static_cast<std::uint64_t>(v);
+        return *v;
     }
 
 private:
     std::map<std::string, std::string> values_;
 };
 
-// Single updating progress line on stderr; run_chunks never calls it concurrently.
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// "40 s", "12 min", "3.5 h".
+std::string duration_text(double seconds) {
+    char buf[32];
+    if (seconds < 120.0) std::snprintf(buf, sizeof buf, "%.0f s", seconds);
+    else if (seconds < 7200.0) std::snprintf(buf, sizeof buf, "%.0f min", seconds / 60.0);
+    else std::snprintf(buf, sizeof buf, "%.1f h", seconds / 3600.0);
+    return buf;
+}
+
+// Single updating progress line on stderr with the time left (extrapolated from the time
+// so far, once a second has passed); run_chunks never calls it concurrently.
 mc::progress_callback progress_line(const std::string& label) {
-    auto last = std::make_shared<int>(-1);
-    return [label, last](double fraction) {
+    struct state {
+        int last = -1;
+        std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    };
+    auto st = std::make_shared<state>();
+    return [label, st](double fraction) {
         const int percent = static_cast<int>(fraction * 100.0);
-        if (percent == *last) return;
-        *last = percent;
-        std::fprintf(stderr, "\r%s ... %d%%", label.c_str(), percent);
+        if (percent == st->last) return;
+        st->last = percent;
+        const double elapsed = seconds_since(st->start);
+        std::string left;
+        if (fraction > 0.0 && percent < 100 && elapsed >= 1.0)
+            left = ", about " + duration_text(elapsed * (1.0 - fraction) / fraction) + " left";
+        std::fprintf(stderr, "\r%s ... %d%%%s   ", label.c_str(), percent, left.c_str());
         if (percent >= 100) std::fputc('\n', stderr);
         std::fflush(stderr);
     };
+}
+
+// Refuses a run above max_paths_per_run; what names the count ("--paths 1e9 x 9 rays").
+void check_path_budget(double paths, const std::string& what) {
+    if (paths <= max_paths_per_run) return;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3g", paths);
+    throw usage_error(what + " = " + buf +
+                      " paths: above the limit of 1e10 per run (hours of work); use fewer, or "
+                      "split the run over several --seed values");
 }
 
 std::string fmt(double v) {
@@ -138,26 +184,26 @@ std::string fmt(double v) {
     return buf;
 }
 
-// Output file opened before the computation, so that a bad path fails at once.
+// The output CSV: its path checked before the computation, so that a bad path fails at
+// once without touching an existing file; the text collected in memory and written at the
+// end through a temporary file renamed over the path (write_text_file_atomically), so that
+// a killed or failed run leaves the old file as it was.
 class csv_output {
 public:
     explicit csv_output(const std::string& path) : path_(path) {
         if (path_.empty()) return;
-        file_.open(path_);
-        if (!file_) throw std::runtime_error("cannot write " + path_);
+        const std::string error = cloudmath::tools::check_output_path(path_);
+        if (!error.empty()) throw std::runtime_error(error);
     }
     bool enabled() const { return !path_.empty(); }
-    std::ostream& stream() { return file_; }
+    std::ostream& stream() { return text_; }
     void finish() {
-        if (!enabled()) return;
-        file_.flush();
-        if (!file_) throw std::runtime_error("cannot write " + path_);
-        file_.close();
+        if (enabled()) cloudmath::reference::write_text_file_atomically(path_, text_.str());
     }
 
 private:
     std::string path_;
-    std::ofstream file_;
+    std::ostringstream text_;
 };
 
 struct common_settings {
@@ -194,10 +240,6 @@ void write_common_metadata(std::ostream& o, const std::string& command,
          "direct solar beam is excluded\n";
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 std::string pm(const mc::estimate& e) { return fmt(e.mean) + " +- " + fmt(e.std_error); }
 
 // ---------------------------------------------------------------------------------------
@@ -211,6 +253,7 @@ int run_slab(int argc, char** argv) {
     slab.mu0 = f.number("mu0", 1.0, 0.0, 1.0, true);
     slab.albedo = c.albedo;
     const std::uint64_t photons = f.count("photons", 1000000, 1);
+    check_path_budget(static_cast<double>(photons), "--photons " + f.text("photons", "1000000"));
     const auto bins = static_cast<unsigned>(f.count("bins", 20, 1));
     if (bins > 100000) throw usage_error("--bins: at most 100000");
     const mc::phase_model phase = mc::make_phase(c.phase_spec);
@@ -274,6 +317,9 @@ int run_slab_radiance(int argc, char** argv) {
     const std::string view_list = f.text("views", "r:1,0");
     const std::vector<mc::slab_view> views = mc::parse_slab_views(view_list);
     const std::uint64_t paths = f.count("paths", 100000, 1);
+    check_path_budget(static_cast<double>(paths) * static_cast<double>(views.size()),
+                      "--paths " + f.text("paths", "100000") + " x " + std::to_string(views.size()) +
+                          " views");
     const mc::phase_model phase = mc::make_phase(c.phase_spec);
     csv_output out(f.text("out", ""));
 
@@ -324,6 +370,9 @@ int run_sphere(int argc, char** argv) {
     const auto n = static_cast<unsigned>(grid ? f.count("grid", 0, 1) : f.count("points", 9, 1));
     if (n > 4096) throw usage_error("--points/--grid: at most 4096");
     const std::uint64_t paths = f.count("paths", 100000, 1);
+    const double rays = grid ? static_cast<double>(n) * static_cast<double>(n) : static_cast<double>(n);
+    check_path_budget(static_cast<double>(paths) * rays, "--paths " + f.text("paths", "100000") + " x " +
+                                                             std::to_string(static_cast<std::uint64_t>(rays)) + " rays");
     const mc::phase_model phase = mc::make_phase(c.phase_spec);
     csv_output out(f.text("out", ""));
 

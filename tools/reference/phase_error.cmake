@@ -19,7 +19,8 @@ if(CLOUDMATH_BUILD_TESTS)
   target_compile_definitions(cloudmath_reference_test_phase_error PRIVATE
     "CLOUDMATH_PHASE_ERROR_EXE=\"$<TARGET_FILE:cloudmath_phase_error>\"")
 
-  # Command-line errors: unknown flag and no table -> 2, unreadable table -> 1, --help -> 0.
+  # Command-line errors: unknown flag and no table -> 2, unreadable table or r_eff_um that is
+  # not a number (strtod read it as 0) -> 1, --help -> 0.
   add_test(NAME reference.phase_error_cli
     COMMAND sh -c [=[
       "$1" --no-such-flag 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "bad flag: exit $s, want 2"; exit 1; }
@@ -29,6 +30,10 @@ if(CLOUDMATH_BUILD_TESTS)
       [ $s -eq 1 ] || { echo "missing table: exit $s, want 1"; exit 1; }
       grep -q missing_table.csv "$2.err" || { echo "message does not name the path"; exit 1; }
       [ ! -e "$2/phase_error.md" ] || { echo "wrote a report despite the error"; exit 1; }
+      printf '# r_eff_um: abc\ntheta_deg,mu,phase\n0,1,0.0795774715\n180,-1,0.0795774715\n' >"$2.bad_reff.csv"
+      "$1" --docs "$2" "$2.bad_reff.csv" 2>"$2.err"; s=$?
+      [ $s -eq 1 ] && grep -q "r_eff_um 'abc' is not a number" "$2.err" || { echo "r_eff_um abc: exit $s, want 1"; exit 1; }
+      [ ! -e "$2/phase_error.md" ] || { echo "wrote a report despite the bad r_eff_um"; exit 1; }
       "$1" --help >/dev/null; s=$?; [ $s -eq 0 ] || { echo "--help: exit $s, want 0"; exit 1; }
       ]=] sh $<TARGET_FILE:cloudmath_phase_error> "${CMAKE_CURRENT_BINARY_DIR}/phase_error_cli_test")
 endif()

@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -27,6 +28,7 @@
 #include <vector>
 
 #include "phase_error.hpp"
+#include "strict_number.hpp"
 
 namespace ref = cloudmath::reference;
 namespace fs = std::filesystem;
@@ -83,6 +85,7 @@ settings parse(int argc, char** argv) {
 struct table_report {
     std::string path, name;
     ref::phase_table table;
+    double r_eff_um = 0.0;  // the table's "# r_eff_um:" line; 0 when absent
     std::vector<ref::phase_variant> variants;
     std::vector<ref::phase_comparison> comparisons;
 };
@@ -372,14 +375,21 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "%s: %s\n", tool, e.what());
             return 1;
         }
+        // Read strictly (strict_number.hpp): strtod turned "abc" into 0 without a word.
+        const std::string reff = r.table.meta("r_eff_um");
+        const std::optional<double> r_eff = reff.empty() ? std::optional<double>(0.0) : cloudmath::tools::parse_finite(reff);
+        if (!r_eff) {
+            std::fprintf(stderr, "%s: %s: r_eff_um '%s' is not a number\n", tool, path.c_str(), reff.c_str());
+            return 1;
+        }
+        r.r_eff_um = *r_eff;
         reports.push_back(std::move(r));
     }
 
     const double n = static_cast<double>(reports.size());
     for (std::size_t t = 0; t < reports.size(); ++t) {
         table_report& r = reports[t];
-        const std::string reff = r.table.meta("r_eff_um");
-        const double r_eff = reff.empty() ? 0.0 : std::strtod(reff.c_str(), nullptr);
+        const double r_eff = r.r_eff_um;
         r.variants = ref::phase_variants(r.table, r_eff, [&](double f) {
             std::fprintf(stderr, "\r%s: fitting %s ... %3.0f%%", tool, r.name.c_str(),
                          100.0 * (static_cast<double>(t) + f) / n);

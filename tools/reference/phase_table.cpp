@@ -1,6 +1,8 @@
 // tools/reference/phase_table.cpp: see phase_table.hpp.
 #include "phase_table.hpp"
 
+#include "atomic_file.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -144,16 +146,8 @@ std::vector<double> default_angles_deg() {
 }
 
 void write_text_file_atomically(const std::string& path, const std::string& text) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream f(tmp, std::ios::binary);
-        if (!f) throw std::runtime_error("cannot write " + tmp);
-        f << text;
-        f.flush();
-        if (!f) throw std::runtime_error("cannot write " + tmp);
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-        throw std::runtime_error("cannot rename " + tmp + " to " + path);
+    const std::string error = cloudmath::tools::write_file_atomically(path, text);
+    if (!error.empty()) throw std::runtime_error(error);
 }
 
 void write_phase_table(const std::string& path, const phase_table& table) {

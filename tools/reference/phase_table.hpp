@@ -67,13 +67,15 @@ template <class F>
 // reference file of the tools starts with such lines.
 [[nodiscard]] std::pair<std::string, std::string> parse_metadata_line(const std::string& line);
 
-// Writes text to path + ".tmp" and renames it over path, so that no reader ever sees half a
-// file and a failed run leaves the old file. Throws std::runtime_error naming the path.
-// Every output file of the reference tools is written through it.
+// Writes text to a temporary file beside path and renames it over path, checking every
+// step, so that no reader ever sees half a file and a failed run leaves the old file and no
+// temporary (tools/common/atomic_file.hpp: cloudmath::tools::write_file_atomically). Throws
+// std::runtime_error naming the path and the reason. Every output file of the reference
+// tools is written through it.
 void write_text_file_atomically(const std::string& path, const std::string& text);
 
-// Writes the table (metadata, header, rows). Throws std::runtime_error when the file cannot
-// be written (the message names the path). Writes to path + ".tmp" then renames.
+// Writes the table (metadata, header, rows) through write_text_file_atomically. Throws
+// std::runtime_error when the file cannot be written (the message names the path).
 void write_phase_table(const std::string& path, const phase_table& table);
 // Reads a table written by write_phase_table (or by hand in that format) and finalizes it.
 // Throws std::runtime_error naming the path and line on any malformed content.

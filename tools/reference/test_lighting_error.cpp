@@ -128,7 +128,16 @@ TEST_CASE("reference CSV: write, read back, and clear errors") {
     expect_error(header, "no rows");
     expect_error(header + "sphere,1,2,3\n", ":3: expected 18 columns");
     expect_error(header + "cube,1,0,0,0,0,0,0,-2,0,0,1,0,0,1,0.1,0.01,10\n", "unknown geometry");
-    expect_error(header + "sphere,1,0,0,0,0,0,0,-2,0,0,1,0,0,1,x,0.01,10\n", "not a number");
+    expect_error(header + "sphere,1,0,0,0,0,0,0,-2,0,0,1,0,0,1,x,0.01,10\n", "radiance 'x' is not a finite number");
+    // Strict cells: std::stod and std::stoull accepted all of these (0.067, NaN, 2^64 - 5).
+    expect_error(header + "sphere,1,0,0,0,0,0,0,-2,0,0,1,0,0,1,0.067xyz,0.01,10\n",
+                 ":3: radiance '0.067xyz' is not a finite number");
+    expect_error(header + "sphere,1,nan,0,0,0,0,0,-2,0,0,1,0,0,1,0.1,0.01,10\n", "sun_deg 'nan' is not a finite number");
+    expect_error(header + "sphere,1,0,0,0, 0.5,0,0,-2,0,0,1,0,0,1,0.1,0.01,10\n", "u ' 0.5' is not a finite number");
+    expect_error(header + "sphere,1,0,0,0,0,0,0,-2,0,0,1,0,0,1,0.1,0.01,-5\n", "paths '-5' is not a whole number > 0");
+    expect_error(header + "sphere,1,0,0,0,0,0,0,-2,0,0,1,0,0,1,0.1,0.01,10.5\n", "paths '10.5' is not a whole number");
+    expect_error(header + "sphere,1,0,0,0,0,0,0,-2,0,0,1,0,0,1,0.1,0.01,0\n", "paths '0' is not a whole number > 0");
+    expect_error("# albedo: nan\n" + header.substr(header.find('\n') + 1), "albedo 'nan' is not a number");
     expect_error(header + "sphere,1,0,0,0,0,0,0,-2,0,0,2,0,0,1,0.1,0.01,10\n", "out of range");
     CHECK_THROWS_AS((void)lm::read_reference(temp_path("no_such_reference.csv")), std::runtime_error);
     std::remove(path.c_str());

@@ -107,6 +107,31 @@ TEST_CASE("Rayleigh limit at x = 1e-3") {
     }
 }
 
+TEST_CASE("tiny spheres: the Rayleigh limit to rounding down to x = 1e-30, below it an error") {
+    // Bohren & Huffman eqs. 5.8-5.9, whose O(x^2) corrections vanish here. Before the
+    // mie_min_size_parameter check, x = 1e-160 gave Q_ext = NaN and no error.
+    for (const complex m : {complex(1.33, 0.0), complex(1.5, -1.0), complex(1.333, -1.96e-9)})
+        for (const double x : {1e-10, 1e-20, mie_min_size_parameter}) {
+            CAPTURE(m);
+            CAPTURE(x);
+            const complex m2 = m * m;
+            const complex polarizability = (m2 - 1.0) / (m2 + 2.0);
+            const mie_result r = solve_mie(m, x, {1.0, 0.0, -1.0});
+            const double q_sca = 8.0 / 3.0 * std::pow(x, 4) * std::norm(polarizability);
+            const double q_abs = 4.0 * x * std::abs(polarizability.imag());
+            CHECK(relative_error(r.efficiencies.q_sca, q_sca) < 1e-12);
+            CHECK(relative_error(r.efficiencies.q_ext, q_sca + q_abs) < 1e-12);
+            CHECK(std::abs(r.efficiencies.g) < 1e-12);
+            for (std::size_t j = 0; j < 3; ++j) {
+                const double mu = r.mu[j];
+                CHECK(relative_error(unpolarized_phase(r.s1[j], r.s2[j], x, r.efficiencies.q_sca),
+                                     3.0 * (1.0 + mu * mu) / (16.0 * pi)) < 1e-12);
+            }
+        }
+    for (const double x : {0.99 * mie_min_size_parameter, 1e-160, 0.0, -1.0})
+        CHECK_THROWS_AS((void)compute_mie_coefficients({1.33, 0.0}, x), std::invalid_argument);
+}
+
 TEST_CASE("single-sphere phase function integrates to 1 and its mean cosine is g") {
     // Simpson in theta, 2 pi int p sin(theta) dtheta, fine enough for the forward peak
     // (angular width about 1/x).

@@ -58,6 +58,38 @@ if(CLOUDMATH_BUILD_TESTS)
 endif()
 
 if(CLOUDMATH_BUILD_TESTS)
+  # Truth files are read strictly (sscanf took "0.3xyz" and nan, std::stoi "8xyz"): each
+  # malformed file exits 1 naming the path and line, before any texture is loaded; render
+  # checks --out before tracing.
+  add_test(NAME reference.volume_truth_malformed
+    COMMAND sh -c [=[
+      set -u
+      tool=$1 out=$2
+      rm -rf "$out"; mkdir -p "$out"
+      head='# preset: ground
+# shape: classic
+# width: 2
+# height: 1
+x,y,r,g,b,se_r,se_g,se_b'
+      for row in "0,0,0.1,0.2,0.3xyz,0,0,0" "0,0,nan,0.2,0.3,0,0,0" "0,0,0.1,0.2,0.3,0,0,0," "0,0,0.1,0.2,0.3,0,0" \
+                 " 0,0,0.1,0.2,0.3,0,0,0" "2,0,0.1,0.2,0.3,0,0,0"; do
+        printf '%s\n%s\n' "$head" "$row" >"$out/truth_ground.csv"
+        "$tool" report --presets ground --data "$out" --docs "$out" --quiet 2>"$out.err" >/dev/null; s=$?
+        [ $s -eq 1 ] || { echo "row '$row': exit $s, want 1"; exit 1; }
+        grep -q "truth_ground.csv:6: malformed row" "$out.err" || { echo "row '$row': no message naming the line"; cat "$out.err"; exit 1; }
+      done
+      printf '%s\n' "$head" | sed 's/# width: 2/# width: 2xyz/' >"$out/truth_ground.csv"
+      "$tool" report --presets ground --data "$out" --docs "$out" --quiet 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "width and height metadata" "$out.err" || { echo "width 2xyz: exit $s"; cat "$out.err"; exit 1; }
+      "$tool" render --preset ground --out "$out/no_such_dir/t.csv" --cache none --quiet 2>"$out.err"; s=$?
+      [ $s -eq 1 ] && grep -q "no_such_dir/t.csv" "$out.err" || { echo "render into a missing directory: exit $s"; cat "$out.err"; exit 1; }
+      "$tool" render --preset ground --width " 8" --out "$out/t.csv" 2>/dev/null; s=$?
+      [ $s -eq 2 ] || { echo "--width ' 8': exit $s, want 2"; exit 1; }
+      exit 0
+      ]=] sh $<TARGET_FILE:cloudmath_volume_truth> "${CMAKE_CURRENT_BINARY_DIR}/volume_truth_malformed")
+endif()
+
+if(CLOUDMATH_BUILD_TESTS)
   # The documented whole-cloud errors (docs/lighting_truth.md's summary table) are what the
   # renderer's variants give against the stored truth images (docs/data/truth_*.csv): the
   # report rerun from the stored data by scripts/truth.sh --check (about 10 s).

@@ -26,6 +26,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -35,11 +36,13 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "atomic_file.hpp"
 #include "cli_main.hpp"
 #include "cloud_medium.hpp"
 #include "cpu_renderer.hpp"
 #include "image.hpp"
 #include "phase_table.hpp"
+#include "strict_number.hpp"
 
 namespace mc = cloudmath::reference::mc;
 namespace vt = cloudmath::reference::volume;
@@ -106,9 +109,9 @@ struct flags {
     long long integer(const std::string& f, long long fallback, long long lo, long long hi) const {
         if (!has(f)) return fallback;
         const std::string t = get(f, "");
-        char* end = nullptr;
-        const long long v = std::strtoll(t.c_str(), &end, 10);
-        if (t.empty() || *end != '\0' || v < lo || v > hi)
+        const std::optional<long long> parsed = cloudmath::tools::parse_integer<long long>(t);  // strict_number.hpp
+        const long long v = parsed.value_or(0);
+        if (!parsed || v < lo || v > hi)
             throw usage_error(f + " must be an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ", not '" +
                               t + "'");
         return v;
@@ -192,22 +195,37 @@ truth_image read_truth(const std::string& path) {
         if (!header) {
             if (line != "x,y,r,g,b,se_r,se_g,se_b") fail("expected the header x,y,r,g,b,se_r,se_g,se_b");
             header = true;
-            try {
-                t.width = std::stoi(t.meta.at("width"));
-                t.height = std::stoi(t.meta.at("height"));
-            } catch (const std::exception&) {
-                fail("width and height metadata missing or malformed");
-            }
-            if (t.width < 1 || t.height < 1) fail("bad image size");
+            const auto size = [&](const char* key) {
+                const auto it = t.meta.find(key);
+                const std::optional<int> v =
+                    it == t.meta.end() ? std::nullopt : cloudmath::tools::parse_integer<int>(it->second);
+                if (!v) fail("width and height metadata missing or malformed");
+                if (*v < 1 || *v > 4096) fail("bad image size");
+                return *v;
+            };
+            t.width = size("width");
+            t.height = size("height");
             t.radiance.assign(static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height), {});
             t.std_error = t.radiance;
             continue;
         }
-        int x = 0, y = 0;
+        // Eight cells, each the whole number (strict_number.hpp): sscanf took trailing junk
+        // and nan.
+        std::vector<std::string> cells;
+        std::stringstream row(line);
+        for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+        if (cells.size() != 8 || line.back() == ',') fail("malformed row: expected 8 comma-separated cells");
+        const std::optional<int> px = cloudmath::tools::parse_integer<int>(cells[0]);
+        const std::optional<int> py = cloudmath::tools::parse_integer<int>(cells[1]);
+        if (!px || !py || *px < 0 || *py < 0 || *px >= t.width || *py >= t.height)
+            fail("malformed row: pixel '" + cells[0] + "," + cells[1] + "' is not in the image");
+        const int x = *px, y = *py;
         double v[6];
-        if (std::sscanf(line.c_str(), "%d,%d,%lf,%lf,%lf,%lf,%lf,%lf", &x, &y, &v[0], &v[1], &v[2], &v[3], &v[4], &v[5]) != 8 ||
-            x < 0 || y < 0 || x >= t.width || y >= t.height)
-            fail("malformed row");
+        for (std::size_t c = 0; c < 6; ++c) {
+            const std::optional<double> value = cloudmath::tools::parse_finite(cells[c + 2]);
+            if (!value) fail("malformed row: '" + cells[c + 2] + "' is not a finite number");
+            v[c] = *value;
+        }
         const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(x);
         t.radiance[i] = {v[0], v[1], v[2]};
         t.std_error[i] = {v[3], v[4], v[5]};
@@ -223,6 +241,9 @@ int run_render(int argc, char** argv) {
                   {"--quiet"});
     if (!f.has("--preset")) throw usage_error("render needs --preset NAME");
     if (!f.has("--out")) throw usage_error("render needs --out FILE.csv");
+    // Checked before hours of tracing; written atomically at the end.
+    if (const std::string error = cloudmath::tools::check_output_path(f.get("--out", "")); !error.empty())
+        throw std::runtime_error(error);
     const cr::scene s = preset(f.get("--preset", ""), shape_flag(f.get("--shape", "classic")));
     const int width = static_cast<int>(f.integer("--width", 160, 1, 4096));
     const int height = static_cast<int>(f.integer("--height", 90, 1, 4096));
@@ -355,9 +376,8 @@ void write_side_by_side(const std::string& path, const truth_image& t, const cr:
             img.at(t.width + gap + x, y) = glm::vec4(m, 1.0f);
             img.at(2 * (t.width + gap) + x, y) = glm::vec4(glm::clamp(0.5f + 2.0f * (m - a), 0.0f, 1.0f), 1.0f);
         }
-    const std::string tmp = path + ".tmp";
-    if (!cr::write_png(tmp, img) || std::rename(tmp.c_str(), path.c_str()) != 0)
-        throw std::runtime_error("cannot write " + path);
+    std::string why;  // write_png writes atomically (a temporary beside path, renamed)
+    if (!cr::write_png(path, img, &why)) throw std::runtime_error(why);
 }
 
 std::string fixed(double v, int digits) {
