@@ -362,6 +362,13 @@ std::vector<parity_case> make_cases() {
         for (const vec3& d : dirs)
             for (vec4 o : {vec4(0, 0, -5, 1), vec4(0, 0, 0, 2), vec4(0, 0, 5, 1), vec4(0, 2, -5, 1), vec4(0.3f, 0.2f, -1e5f, 1), vec4(3, -1, 2, 10)})
                 in.push_back({o, vec4(d, 0.0f)});
+        // A camera 1.8 m above a 6371 km sphere, the sphere 1500 m above it, rays from the
+        // zenith to the horizon in a slanted plane (the compensated c and discriminant).
+        for (int i = 0; i <= 12; ++i) {
+            const float elevation = 1.5707963f * float(i) / 12.0f;
+            const vec3 up = glm::normalize(vec3(0.3f, 0.9f, -0.2f)), side = glm::normalize(glm::cross(up, vec3(0, 0, 1)));
+            in.push_back({vec4(up * 6371001.8f, 6372500.0f), vec4(up * std::sin(elevation) + side * std::cos(elevation), 0.0f)});
+        }
         add({"cm_ray_sphere_intersect", "vec4(cm_ray_sphere_intersect(a.xyz, b.xyz, vec3(0.0), a.w), 0.0, 0.0)",
              [](vec4 a, vec4 b) { return vec4(cm::ray_sphere_intersect(vec3(a), vec3(b), vec3(0.0f), a.w), 0.0f, 0.0f); }, in, 2, 1.0f});
     }
