@@ -338,3 +338,31 @@ TEST_CASE_TEMPLATE("height_fraction: saturated linear fraction, degenerate layer
         CHECK(cm_test::rel_err(height_fraction(a, T(1500), T(4000)), (ld(a) - 1500) / 2500) <= 4 * cm_test::eps<T>());
     }
 }
+
+TEST_CASE_TEMPLATE("point_altitude: camera-relative points at planet scale against long double", T, float, double) {
+    using v3 = glm::vec<3, T>;
+    const T R = T(6371000);
+    for (T cam : {T(1.8), T(2700), T(7000)}) {
+        CHECK(point_altitude(v3(T(0)), cam, R) == cam);  // the camera itself
+        // Straight up: the camera's altitude plus the height.
+        CHECK(double(point_altitude(v3(T(0), T(1500), T(0)), cam, R)) == doctest::Approx(double(cam) + 1500.0).epsilon(1e-6));
+        // Anywhere: |(0, R + cam, 0) + p| - R in long double, for points up to 100 km away.
+        for (const v3 p : {v3(T(100000), T(0), T(0)), v3(T(-3000), T(1200), T(40000)), v3(T(0), T(-1), T(20000)),
+                           v3(T(5), T(-2), T(-7))}) {
+            // |q|^2 - R^2 with y^2 - R^2 = (y - R)(y + R) taken exactly: the reference has no
+            // cancellation either.
+            const ld x = ld(p.x), h = ld(p.y) + ld(cam), z = ld(p.z);
+            const ld excess = x * x + z * z + h * (h + 2 * ld(R));
+            const ld want = excess / (std::sqrt(ld(R) * ld(R) + excess) + ld(R));
+            const T got = point_altitude(p, cam, R);
+            CAPTURE(double(want));
+            // A few ulp of the distance (the altitude is a difference of planet-size numbers
+            // taken without cancellation).
+            CHECK(std::fabs(ld(got) - want) <= 8 * ld(std::numeric_limits<T>::epsilon()) * (ld(glm::length(glm::vec<3, ld>(p))) + ld(cam)));
+        }
+    }
+    // The same as altitude_along_ray along p's direction.
+    const v3 p(T(300), T(200), T(-4000));
+    const T t = glm::length(p);
+    CHECK(point_altitude(p, T(10), R) == altitude_along_ray(T(10), p.y / t, R, t));
+}

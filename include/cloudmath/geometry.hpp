@@ -229,6 +229,18 @@ template <class T>
     return excess / (radius + R);
 }
 
+// point_altitude(p, camera_altitude, planet_radius): altitude of the point p given relative
+// to a camera `camera_altitude` above the planet, in the camera's local frame with +y up (the
+// radial direction through the camera): altitude_along_ray along p's direction at distance
+// |p|, so a point 100 km away keeps the centimetres that |p_planet| - R loses in float. The
+// camera itself (p = 0) is at camera_altitude. For another up axis, pass p rotated so that
+// up is +y (or call altitude_along_ray with dot(p, up) / |p|).
+template <class T, glm::qualifier Q>
+[[nodiscard]] inline T point_altitude(const glm::vec<3, T, Q>& p, T camera_altitude, T planet_radius) noexcept {
+    const T t = glm::length(p);
+    return t > T(0) ? altitude_along_ray(camera_altitude, p.y / t, planet_radius, t) : camera_altitude;
+}
+
 // height_fraction(altitude, layer_bottom, layer_top) = saturate((altitude - bottom) /
 // (top - bottom)): 0 at the bottom of the layer, 1 at the top. A layer of zero thickness
 // gives the step of remap_clamped (0 below, 1 at and above).

@@ -678,6 +678,12 @@ float cm_altitude_along_ray(float altitude, float cos_zenith, float planet_radiu
 )cm_glsl"
      R"cm_glsl(}
 
+// Altitude of p given relative to the camera (+y up at the camera); the camera at p = 0.
+float cm_point_altitude(vec3 p, float camera_altitude, float planet_radius) {
+    float t = length(p);
+    return t > 0.0 ? cm_altitude_along_ray(camera_altitude, p.y / t, planet_radius, t) : camera_altitude;
+}
+
 float cm_height_fraction(float altitude, float layer_bottom, float layer_top) {
     return cm_remap_clamped(altitude, layer_bottom, layer_top, 0.0, 1.0);
 }
@@ -892,7 +898,8 @@ int cmi_wrap_cell(int i, int n) { return i >= 0 ? i % n : n - 1 - ((-(i + 1)) % 
 // overflow for coordinates or octave counts outside the documented domain.
 ivec3 cmi_floor_to_cell(vec3 p) { return ivec3(clamp(floor(p), vec3(-1073741824.0), vec3(1073741824.0))); }
 int cmi_grow_period(int period, int factor) { return period > 1073741824 / factor ? 1073741824 : period * factor; }
-float cmi_hash_to_unit(uint h) { return float(h >> 8u) * (1.0 / 16777216.0); }
+// The top 24 bits of a hash in [0, 1), exact (noise.hpp's hash_to_unit).
+float cm_hash_to_unit(uint h) { return float(h >> 8u) * (1.0 / 16777216.0); }
 float cmi_fade(float t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 float cmi_fade_derivative(float t) { return 30.0 * t * t * (t - 1.0) * (t - 1.0); }
 
@@ -909,9 +916,9 @@ vec3 cmi_gradient3(uint h) { return CMI_GRADIENTS3[int(h & 15u)]; }
 vec2 cmi_gradient2(uint h) { return CMI_GRADIENTS2[int(h & 7u)]; }
 
 #define CMI_PERLIN3_SCALE 0.96592582628906829  // cos 15 deg: raw extremes +-1.0352764
-#define CMI_PERLIN2_SCALE 1.41421356237309505  // sqrt 2: raw extremes +-0.70710678
 )cm_glsl"
-     R"cm_glsl(
+     R"cm_glsl(#define CMI_PERLIN2_SCALE 1.41421356237309505  // sqrt 2: raw extremes +-0.70710678
+
 // (value, d/dx, d/dy, d/dz) of improved Perlin noise, before the clamp of cm_perlin_noise.
 vec4 cm_perlin_noise_derivatives(vec3 p, int period, uint seed) {
     int n = max(period, 1);
@@ -970,9 +977,9 @@ float cm_perlin_noise(vec3 p, int period) { return cm_perlin_noise(p, period, 0u
 float cm_perlin_noise(vec2 p, int period, uint seed) {
     int n = max(period, 1);
     ivec2 i = cmi_floor_to_cell(vec3(p, 0.0)).xy;
-    vec2 q = p - floor(p);
 )cm_glsl"
-     R"cm_glsl(    uint x0 = uint(cmi_wrap_cell(i.x, n)), y0 = uint(cmi_wrap_cell(i.y, n));
+     R"cm_glsl(    vec2 q = p - floor(p);
+    uint x0 = uint(cmi_wrap_cell(i.x, n)), y0 = uint(cmi_wrap_cell(i.y, n));
     uint x1 = uint(cmi_wrap_cell(i.x + 1, n)), y1 = uint(cmi_wrap_cell(i.y + 1, n));
     vec2 g00 = cmi_gradient2(cm_noise_hash(x0, y0, 0u, seed));
     vec2 g10 = cmi_gradient2(cm_noise_hash(x1, y0, 0u, seed));
@@ -1002,9 +1009,9 @@ float cm_worley_f1(vec3 p, int period, uint seed) {
                                        uint(cmi_wrap_cell(i.z + dz, n)), seed);
                 uint h2 = cm_noise_hash(h);
                 uint h3 = cm_noise_hash(h2);
-                float ox = float(dx) + cmi_hash_to_unit(h) - q.x;
-                float oy = float(dy) + cmi_hash_to_unit(h2) - q.y;
-                float oz = float(dz) + cmi_hash_to_unit(h3) - q.z;
+                float ox = float(dx) + cm_hash_to_unit(h) - q.x;
+                float oy = float(dy) + cm_hash_to_unit(h2) - q.y;
+                float oz = float(dz) + cm_hash_to_unit(h3) - q.z;
                 float d2 = ox * ox + oy * oy + oz * oz;
                 best = d2 < best ? d2 : best;
             }
@@ -1031,9 +1038,9 @@ float cmi_fbm(vec3 p, int period, int octaves, int lacunarity, float gain, uint 
         float octave = kind == 0 ? cm_perlin_noise(q, per, s) : (kind == 1 ? cm_perlin_noise(q.xy, per, s) : cm_worley_noise(q, per, s));
         sum += amplitude * octave;
         norm += amplitude;
-        amplitude *= gain;
 )cm_glsl"
-     R"cm_glsl(        frequency *= float(lac);
+     R"cm_glsl(        amplitude *= gain;
+        frequency *= float(lac);
         per = cmi_grow_period(per, lac);
     }
     return sum / norm;

@@ -393,6 +393,12 @@ std::vector<parity_case> make_cases() {
                 for (float t : {0.0f, 10.0f, 1000.0f, 20000.0f, 100000.0f}) along.push_back({vec4(h, mu, t, 0.0f), vec4(0)});
         add({"cm_altitude_along_ray", "vec4(cm_altitude_along_ray(a.x, a.y, 6371e3, a.z))",
              [R](vec4 a, vec4) { return vec4(cm::altitude_along_ray(a.x, a.y, R, a.z)); }, along, 1, 1.0f});
+        std::vector<std::pair<vec4, vec4>> points;
+        for (float cam : {1.8f, 2700.0f, 7000.0f})
+            for (vec3 p : {vec3(0.0f), vec3(0, 1500, 0), vec3(100000, 0, 0), vec3(-3000, 1200, 40000), vec3(5, -2, -7)})
+                points.push_back({vec4(p, cam), vec4(0)});
+        add({"cm_point_altitude", "vec4(cm_point_altitude(a.xyz, a.w, 6371e3))",
+             [R](vec4 a, vec4) { return vec4(cm::point_altitude(vec3(a), a.w, R)); }, points, 1, 1.0f});
         std::vector<std::pair<vec4, vec4>> hf;
         for (float alt : {-100.0f, 0.0f, 1499.0f, 1500.0f, 2000.0f, 2750.0f, 3999.0f, 4000.0f, 1e9f})
             for (vec2 l : {vec2(1500, 4000), vec2(2000, 2000), vec2(4000, 1500)}) hf.push_back({vec4(alt, l.x, l.y, 0.0f), vec4(0)});
@@ -501,6 +507,9 @@ std::vector<parity_case> make_cases() {
                  const std::uint32_t n = index(a.x, a.y), frame = index(a.z, a.w);
                  return vec4(cm::low_discrepancy_r1(n), cm::low_discrepancy_r2(n), cm::frame_jitter(n, frame)); },
              indices, 4, 1.0f, 0.0});
+        add({"cm_hash_to_unit", "vec4(cm_hash_to_unit((uint(a.x) << 16u) | uint(a.y)), cm_hash_to_unit((uint(a.z) << 16u) | uint(a.w)), 0.0, 0.0)",
+             [index](vec4 a, vec4) { return vec4(cm::hash_to_unit<float>(index(a.x, a.y)), cm::hash_to_unit<float>(index(a.z, a.w)), 0.0f, 0.0f); },
+             indices, 2, 1.0f, 0.0});
         add({"cm_sample_jitter",
              "vec4(cm_sample_jitter((uint(a.x) << 16u) | uint(a.y), (uint(a.z) << 16u) | uint(a.w), (uint(a.y) << 16u) | uint(a.z)), 0.0, 0.0, 0.0)",
              [index](vec4 a, vec4) {

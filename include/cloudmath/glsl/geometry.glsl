@@ -120,6 +120,12 @@ float cm_altitude_along_ray(float altitude, float cos_zenith, float planet_radiu
     return excess / (radius + R);
 }
 
+// Altitude of p given relative to the camera (+y up at the camera); the camera at p = 0.
+float cm_point_altitude(vec3 p, float camera_altitude, float planet_radius) {
+    float t = length(p);
+    return t > 0.0 ? cm_altitude_along_ray(camera_altitude, p.y / t, planet_radius, t) : camera_altitude;
+}
+
 float cm_height_fraction(float altitude, float layer_bottom, float layer_top) {
     return cm_remap_clamped(altitude, layer_bottom, layer_top, 0.0, 1.0);
 }
