@@ -8,7 +8,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 bash scripts/install-deps.sh
 if [ ! -f build/test/CMakeCache.txt ]; then
-  cmake -S . -B build/test -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake -S . -B build/test -G Ninja -DCMAKE_BUILD_TYPE=Release -DCLOUDMATH_BUILD_TESTS=ON >/dev/null
 fi
 modules=(core phase transmittance integration multiple_scattering cone_sampling geometry density)
 targets=()

@@ -8,7 +8,7 @@ out="${1:-docs/glsl_parity.md}"
 
 bash scripts/install-deps.sh
 if [ ! -f build/test/CMakeCache.txt ]; then
-  cmake -S . -B build/test -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake -S . -B build/test -G Ninja -DCMAKE_BUILD_TYPE=Release -DCLOUDMATH_BUILD_TESTS=ON >/dev/null
 fi
 cmake --build build/test -j "$(nproc 2>/dev/null || echo 2)" --target test_glsl_parity >/dev/null
 build/test/tests/test_glsl_parity --markdown "$out"

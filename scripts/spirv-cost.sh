@@ -23,7 +23,7 @@ done
 if [[ ! -f "$build/CMakeCache.txt" ]]; then
     generator=()
     command -v ninja >/dev/null && generator=(-G Ninja)
-    cmake -S "$root" -B "$build" "${generator[@]}" >/dev/null
+    cmake -S "$root" -B "$build" "${generator[@]}" -DCLOUDMATH_BUILD_TESTS=ON >/dev/null
 fi
 cmake --build "$build" --target cloudmath_glsl_flatten >/dev/null
 flatten="$build/tests/glsl/cloudmath_glsl_flatten"

@@ -115,6 +115,37 @@ TEST_CASE_TEMPLATE("ray_sphere_intersect: stable roots, inside, behind, miss, ta
     }
 }
 
+TEST_CASE("ray_sphere_intersect: float at Earth radius, within 1 m of the exact roots of the same inputs") {
+    // A camera 1.8 m above a 6371 km sphere, at points all over it (so every component of the
+    // position is rounded), rays from the zenith to the horizon; the sphere 1500 m above the
+    // ground. Reference: the quadratic in long double on the same float inputs (the input's
+    // own rounding is not the formula's error). The textbook quadratic in float, for scale.
+    const float R = 6371000.0f, r = R + 1500.0f;
+    ld worst = 0, worst_textbook = 0, worst_haines = 0;
+    for (int i = 0; i < 64; ++i)
+        for (int j = 0; j <= 24; ++j) {
+            const double lon = 0.37 + 0.71 * i, lat = -1.2 + 0.1 * (i % 25);
+            const glm::dvec3 up(std::cos(lat) * std::cos(lon), std::sin(lat), std::cos(lat) * std::sin(lon));
+            const glm::dvec3 east = glm::normalize(glm::cross(glm::dvec3(0, 1, 0), up));
+            const double elevation = 1.5707963 * double(j) / 24.0;
+            const glm::vec3 o(up * (double(R) + 1.8)), d(glm::normalize(up * std::sin(elevation) + east * std::cos(elevation)));
+            const ld b = ld(o.x) * d.x + ld(o.y) * d.y + ld(o.z) * d.z;
+            const ld dd = ld(d.x) * d.x + ld(d.y) * d.y + ld(d.z) * d.z;
+            const ld c = ld(o.x) * o.x + ld(o.y) * o.y + ld(o.z) * o.z - ld(r) * ld(r);
+            const ld exit = (-b + std::sqrt(b * b - dd * c)) / dd;  // from inside the sphere
+            const glm::vec2 t = ray_sphere_intersect(o, d, glm::vec3(0.0f), r);
+            worst = std::max(worst, std::fabs(ld(t.y) - exit));
+            const float fb = glm::dot(o, d), fc = glm::dot(o, o) - r * r;
+            worst_textbook = std::max(worst_textbook, std::fabs(ld(-fb + std::sqrt(fb * fb - fc)) - exit));
+            const glm::vec3 perp = o - fb * d;  // Haines et al.'s discriminant alone (the form before)
+            worst_haines = std::max(worst_haines, std::fabs(ld(-fb + std::sqrt(r * r - glm::dot(perp, perp))) - exit));
+        }
+    MESSAGE("worst distance error " << double(worst) << " m; the textbook quadratic " << double(worst_textbook)
+                                     << " m; Haines' discriminant alone " << double(worst_haines) << " m");
+    CHECK(worst <= 1.0L);
+    CHECK(worst_textbook > 4.0L * worst);
+}
+
 TEST_CASE("ray_sphere_intersect_altitude: float accuracy at Earth radius against the textbook forms") {
     struct scene { float h, H; ld budget; const char* name; bool textbook_fails; };
     // Budgets: the measured worst plus margin; REFERENCES.md reports 2.4e-7, 2.1e-7 and
@@ -306,4 +337,32 @@ TEST_CASE_TEMPLATE("height_fraction: saturated linear fraction, degenerate layer
         const T a = T(1500) + T(25) * T(i);
         CHECK(cm_test::rel_err(height_fraction(a, T(1500), T(4000)), (ld(a) - 1500) / 2500) <= 4 * cm_test::eps<T>());
     }
+}
+
+TEST_CASE_TEMPLATE("point_altitude: camera-relative points at planet scale against long double", T, float, double) {
+    using v3 = glm::vec<3, T>;
+    const T R = T(6371000);
+    for (T cam : {T(1.8), T(2700), T(7000)}) {
+        CHECK(point_altitude(v3(T(0)), cam, R) == cam);  // the camera itself
+        // Straight up: the camera's altitude plus the height.
+        CHECK(double(point_altitude(v3(T(0), T(1500), T(0)), cam, R)) == doctest::Approx(double(cam) + 1500.0).epsilon(1e-6));
+        // Anywhere: |(0, R + cam, 0) + p| - R in long double, for points up to 100 km away.
+        for (const v3 p : {v3(T(100000), T(0), T(0)), v3(T(-3000), T(1200), T(40000)), v3(T(0), T(-1), T(20000)),
+                           v3(T(5), T(-2), T(-7))}) {
+            // |q|^2 - R^2 with y^2 - R^2 = (y - R)(y + R) taken exactly: the reference has no
+            // cancellation either.
+            const ld x = ld(p.x), h = ld(p.y) + ld(cam), z = ld(p.z);
+            const ld excess = x * x + z * z + h * (h + 2 * ld(R));
+            const ld want = excess / (std::sqrt(ld(R) * ld(R) + excess) + ld(R));
+            const T got = point_altitude(p, cam, R);
+            CAPTURE(double(want));
+            // A few ulp of the distance (the altitude is a difference of planet-size numbers
+            // taken without cancellation).
+            CHECK(std::fabs(ld(got) - want) <= 8 * ld(std::numeric_limits<T>::epsilon()) * (ld(glm::length(glm::vec<3, ld>(p))) + ld(cam)));
+        }
+    }
+    // The same as altitude_along_ray along p's direction.
+    const v3 p(T(300), T(200), T(-4000));
+    const T t = glm::length(p);
+    CHECK(point_altitude(p, T(10), R) == altitude_along_ray(T(10), p.y / t, R, t));
 }

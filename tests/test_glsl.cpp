@@ -100,3 +100,41 @@ TEST_CASE("unknown modules and folders give an empty string and a message, no ex
     CHECK(error.find("phase.glsl") != std::string::npos);
     CHECK(cloudmath::glsl_source("no_such_module").empty());  // error pointer optional
 }
+
+TEST_CASE("glsl_resolve_includes: a user's shader, its own files and cloudmath's, each once, defines kept") {
+    const std::string source =
+        "#version 450\n"
+        "#define CM_CONE_EXTINCTION my_extinction\n"
+        "float my_extinction(vec3 p, int i);\n"
+        "#include \"cloudmath/glsl/cone_sampling.glsl\"\n"
+        "  #  include \"lighting.glsl\"\n"
+        "#include \"phase.glsl\"\n"
+        "void main() {}\n";
+    const std::vector<std::pair<std::string, std::string>> files = {
+        {"shaders/lighting.glsl", "#include \"cloudmath/glsl/phase.glsl\"\nfloat my_light() { return cm_phase_hg(0.5, 0.8); }\n"}};
+    std::string error = "stale";
+    const std::string out = cloudmath::glsl_resolve_includes(source, files, &error);
+    CHECK(error.empty());
+    CHECK(include_directives(out) == 0);
+    // The user's lines are kept, in order, the define before the code that reads it.
+    const std::size_t define = out.find("#define CM_CONE_EXTINCTION my_extinction");
+    const std::size_t cone = out.find("cm_cone_optical_depth");
+    REQUIRE(define != std::string::npos);
+    REQUIRE(cone != std::string::npos);
+    CHECK(define < cone);
+    CHECK(out.rfind("#version 450\n", 0) == 0);
+    CHECK(out.find("void main() {}") != std::string::npos);
+    // The user's file by its base name, cloudmath's files once each (phase.glsl is asked for
+    // by cone_sampling.glsl's dependencies, by lighting.glsl and by the source).
+    CHECK(count(out, "float my_light()") == 1);
+    CHECK(count(out, "#ifndef CM_PHASE_GLSL") == 1);
+    CHECK(count(out, "#ifndef CM_CORE_GLSL") == 1);
+    // Embedded twins resolve the same as glsl_source.
+    CHECK(cloudmath::glsl_resolve_includes("#include \"phase.glsl\"\n") == cloudmath::glsl_source("phase"));
+    // A missing file: empty, and the message names it.
+    const std::string bad = cloudmath::glsl_resolve_includes("#include \"nowhere/missing.glsl\"\n", {}, &error);
+    CHECK(bad.empty());
+    CHECK(error.find("nowhere/missing.glsl") != std::string::npos);
+    // No includes: the text unchanged (plus a final newline).
+    CHECK(cloudmath::glsl_resolve_includes("float x;") == "float x;\n");
+}

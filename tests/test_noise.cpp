@@ -415,3 +415,15 @@ TEST_CASE("triangular_dither: the closed form, triangular moments, quantisation 
         CHECK(std::floor(v * 255.0 + 0.5) / 255.0 != doctest::Approx(v).epsilon(1e-4));  // without dither: biased
     }
 }
+
+TEST_CASE("hash_to_unit: k / 2^24 from the top 24 bits, in [0, 1), exact in float") {
+    CHECK(hash_to_unit<float>(0U) == 0.0f);
+    CHECK(hash_to_unit<float>(0xffU) == 0.0f);  // the low 8 bits do not count
+    CHECK(hash_to_unit<float>(0x100U) == 1.0f / 16777216.0f);
+    CHECK(hash_to_unit<float>(0xffffffffU) == 16777215.0f / 16777216.0f);
+    CHECK(hash_to_unit<float>(0xffffffffU) < 1.0f);
+    for (std::uint32_t h : {1U, 12345U, 0x80000000U, 0xdeadbeefU, noise_hash(9U)}) {
+        CHECK(double(hash_to_unit<float>(h)) == hash_to_unit<double>(h));
+        CHECK(hash_to_unit<double>(h) == double(h >> 8) / 16777216.0);
+    }
+}

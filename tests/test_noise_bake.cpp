@@ -5,6 +5,7 @@
 // invalid arguments; quantisation, coordinates and the curl encoding.
 // Sizes stay small (16^3 volumes, 64^2 images) so the sanitizer build stays fast; sizes and
 // cells are powers of two, which makes the noise coordinate one period away exact.
+#include <cloudmath/density.hpp>
 #include <cloudmath/noise_bake.hpp>
 
 #include <algorithm>
@@ -560,4 +561,81 @@ TEST_CASE("noise_bake: the measured curl bound holds on the baked plane") {
         CHECK((w[k] >= 0.0f && w[k] <= 1.0f));
         CHECK((d[k] >= 0.0f && d[k] <= 1.0f));
     }
+}
+
+TEST_CASE_TEMPLATE("texture_trilinear_repeat / texture_bilinear_repeat: GL_LINEAR with GL_REPEAT on the CPU", T, float, double) {
+    // A 4 x 3 x 2 texture whose texel (i, j, k) holds (i, 10 j, 100 k, 1): at texel centres the
+    // texel itself; between two centres the mean; across the wrap the last and the first.
+    const glm::ivec3 size(4, 3, 2);
+    const auto fetch = [&](int i, int j, int k) {
+        REQUIRE(i >= 0);
+        REQUIRE(i < size.x);
+        REQUIRE(j >= 0);
+        REQUIRE(j < size.y);
+        REQUIRE(k >= 0);
+        REQUIRE(k < size.z);
+        return glm::vec<4, T>(T(i), T(10 * j), T(100 * k), T(1));
+    };
+    using v3 = glm::vec<3, T>;
+    const auto centre = [&](int i, int j, int k) {
+        return v3((T(i) + T(0.5)) / T(size.x), (T(j) + T(0.5)) / T(size.y), (T(k) + T(0.5)) / T(size.z));
+    };
+    for (int k = 0; k < size.z; ++k)
+        for (int j = 0; j < size.y; ++j)
+            for (int i = 0; i < size.x; ++i) {
+                const glm::vec<4, T> v = texture_trilinear_repeat(centre(i, j, k), size, fetch);
+                CHECK(v.x == doctest::Approx(double(i)));
+                CHECK(v.y == doctest::Approx(double(10 * j)));
+                CHECK(v.z == doctest::Approx(double(100 * k)));
+                CHECK(v.w == doctest::Approx(1.0));
+                // One period away in every axis, negative too: the same value.
+                const glm::vec<4, T> w = texture_trilinear_repeat(centre(i, j, k) + v3(T(-3), T(2), T(5)), size, fetch);
+                CHECK(w.x == doctest::Approx(double(i)).epsilon(1e-5));
+                CHECK(w.y == doctest::Approx(double(10 * j)).epsilon(1e-5));
+            }
+    // Halfway between texel 1 and 2 in x: the mean; at u = 0 (between the last texel, 3, and
+    // the first, 0): their mean 1.5, by the wrap.
+    const glm::vec<4, T> mid = texture_trilinear_repeat(v3(T(2) / T(4), centre(0, 1, 0).y, centre(0, 1, 0).z), size, fetch);
+    CHECK(mid.x == doctest::Approx(1.5));
+    const glm::vec<4, T> edge = texture_trilinear_repeat(v3(T(0), centre(0, 0, 1).y, T(0)), size, fetch);
+    CHECK(edge.x == doctest::Approx(1.5));
+    CHECK(edge.z == doctest::Approx(50.0));  // z = 0: halfway between slice 1 and slice 0
+    // 2D, and a degenerate size (taken as 1: every coordinate reads texel 0).
+    const auto fetch2 = [](int i, int j) { return T(i + 2 * j); };
+    CHECK(texture_bilinear_repeat(glm::vec<2, T>(T(0.25), T(0.75)), glm::ivec2(2, 2), fetch2) == doctest::Approx(2.0));
+    CHECK(texture_bilinear_repeat(glm::vec<2, T>(T(0.5), T(0.75)), glm::ivec2(2, 2), fetch2) == doctest::Approx(2.5));
+    CHECK(texture_bilinear_repeat(glm::vec<2, T>(T(0.3), T(7.1)), glm::ivec2(0, -4), fetch2) == doctest::Approx(0.0));
+    // NaN and Inf coordinates: NaN out, no index outside the texture (fetch REQUIREs it).
+    if (cm_test::ieee_build) {
+        CHECK(std::isnan(texture_trilinear_repeat(v3(cm_test::make_nan<T>(), T(0), T(0)), size, fetch).x));
+        CHECK(std::isnan(texture_trilinear_repeat(v3(T(0), cm_test::make_inf<T>(), T(0)), size, fetch).y));
+        CHECK(std::isnan(texture_bilinear_repeat(glm::vec<2, T>(-cm_test::make_inf<T>(), T(0)), glm::ivec2(2, 2), fetch2)));
+    }
+    // Huge coordinates stay in range.
+    (void)texture_trilinear_repeat(v3(T(1e30), T(-1e30), T(3e9)), size, fetch);
+}
+
+TEST_CASE("the default base volume and coverage: what coverage 0.5 covers (docs/integration.md)") {
+    // nubis_base_cloud of the default bake (4 cells; at 64^3 here, the default is 128^3 of the
+    // same field) and the share of space apply_coverage leaves cloudy at each coverage.
+    bake_options options;
+    options.threads = 2;
+    const int size = 64;
+    const std::vector<std::uint8_t> base = bake_base_volume(size, base_volume_default_cells, options);
+    REQUIRE(base.size() == std::size_t(size) * size * size * 4);
+    std::size_t mid = 0, over_half = 0, over_07 = 0;
+    const std::size_t n = base.size() / 4;
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::vec4 t(base[4 * i] / 255.0f, base[4 * i + 1] / 255.0f, base[4 * i + 2] / 255.0f, base[4 * i + 3] / 255.0f);
+        const float b = nubis_base_cloud(t);
+        mid += b >= 0.5f && b <= 0.8f;
+        over_half += apply_coverage(b, 0.5f) > 0.0f;
+        over_07 += apply_coverage(b, 0.3f) > 0.0f;
+    }
+    const double f_mid = double(mid) / double(n), f_half = double(over_half) / double(n), f_03 = double(over_07) / double(n);
+    MESSAGE("base cloud in [0.5, 0.8]: " << f_mid << "; cloudy at coverage 0.5: " << f_half << ", at 0.3: " << f_03);
+    CHECK(f_mid > 0.85);    // the base cloud sits in a narrow band...
+    CHECK(f_half > 0.85);   // ...so coverage 0.5 is overcast,
+    CHECK(f_03 < 0.6);      // and coverage 0.3 leaves about half of it (before the weather map and
+                            // the height profile thin it further: the presets' 0.27-0.33 are scattered)
 }

@@ -18,12 +18,6 @@ using glm::vec2;
 using glm::vec3;
 using glm::vec4;
 
-// OpenGL's GL_REPEAT wrap of an integer texel index.
-int wrap(int i, int size) {
-    const int m = i % size;
-    return m < 0 ? m + size : m;
-}
-
 }  // namespace
 
 float linear_texture::texel(int x, int y, int z, int c) const {
@@ -65,34 +59,19 @@ vec4 linear_texture::sample2(vec2 uv, float lod) const {
     return trilinear(*this, lod, [&](const linear_texture& l) { return l.sample2(uv); });
 }
 
+// GL_LINEAR with GL_REPEAT: cloudmath's texture_trilinear_repeat over this texture's bytes.
+vec4 linear_texture::texel4(int x, int y, int z) const {
+    vec4 v(0.0f);
+    for (int c = 0; c < channels; ++c) v[c] = texel(x, y, z, c);
+    return v;
+}
+
 vec4 linear_texture::sample3(vec3 uvw) const {
-    const vec3 x = uvw * float(size) - 0.5f;
-    const vec3 f0 = glm::floor(x);
-    const vec3 f = x - f0;
-    const int x0 = wrap(int(f0.x), size), y0 = wrap(int(f0.y), size), z0 = wrap(int(f0.z), size);
-    const int x1 = wrap(x0 + 1, size), y1 = wrap(y0 + 1, size), z1 = wrap(z0 + 1, size);
-    vec4 out(0.0f);
-    for (int c = 0; c < channels; ++c) {
-        const float c00 = glm::mix(texel(x0, y0, z0, c), texel(x1, y0, z0, c), f.x);
-        const float c10 = glm::mix(texel(x0, y1, z0, c), texel(x1, y1, z0, c), f.x);
-        const float c01 = glm::mix(texel(x0, y0, z1, c), texel(x1, y0, z1, c), f.x);
-        const float c11 = glm::mix(texel(x0, y1, z1, c), texel(x1, y1, z1, c), f.x);
-        out[c] = glm::mix(glm::mix(c00, c10, f.y), glm::mix(c01, c11, f.y), f.z);
-    }
-    return out;
+    return cm::texture_trilinear_repeat(uvw, glm::ivec3(size), [this](int x, int y, int z) { return texel4(x, y, z); });
 }
 
 vec4 linear_texture::sample2(vec2 uv) const {
-    const vec2 x = uv * float(size) - 0.5f;
-    const vec2 f0 = glm::floor(x);
-    const vec2 f = x - f0;
-    const int x0 = wrap(int(f0.x), size), y0 = wrap(int(f0.y), size);
-    const int x1 = wrap(x0 + 1, size), y1 = wrap(y0 + 1, size);
-    vec4 out(0.0f);
-    for (int c = 0; c < channels; ++c)
-        out[c] = glm::mix(glm::mix(texel(x0, y0, 0, c), texel(x1, y0, 0, c), f.x),
-                          glm::mix(texel(x0, y1, 0, c), texel(x1, y1, 0, c), f.x), f.y);
-    return out;
+    return cm::texture_bilinear_repeat(uv, glm::ivec2(size), [this](int x, int y) { return texel4(x, y, 0); });
 }
 
 namespace {
@@ -110,10 +89,7 @@ cloud_density::cloud_density(const scene& s, const cloud_textures& t)
       weather_wide_{t.weather_wide.data(), t.weather_wide_size, 3, pointers(t.weather_wide_mips)},
       curl_{t.curl.data(), t.curl_size, 3, {}} {}
 
-float cloud_density::altitude(vec3 p) const {
-    const float t = glm::length(p);
-    return t > 0.0f ? cm::altitude_along_ray(s_.camera_altitude, p.y / t, s_.planet_radius, t) : s_.camera_altitude;
-}
+float cloud_density::altitude(vec3 p) const { return cm::point_altitude(p, s_.camera_altitude, s_.planet_radius); }
 
 float cloud_density::base_density(vec3 p, float alt, long* texture_reads, float footprint) const {
     const float h = cm::height_fraction(alt, s_.layer_bottom, s_.layer_top);

@@ -20,8 +20,8 @@
 
 namespace cloud_renderer {
 
-// texture() of a UNORM8 texture with GL_LINEAR filtering and GL_REPEAT: texel centres at
-// (i + 0.5) / size, weights from the fractional part, value byte / 255. Texel layout of
+// texture() of a UNORM8 texture with GL_LINEAR filtering and GL_REPEAT (cloudmath's
+// texture_trilinear_repeat / texture_bilinear_repeat), value byte / 255. Texel layout of
 // textures.hpp (x fastest, channels interleaved); 2D textures are the z = 0 slice.
 struct linear_texture {
     const std::uint8_t* data;
@@ -30,6 +30,7 @@ struct linear_texture {
 
     // Texel (x, y, z) channel c in [0, 1]; indices must be in [0, size).
     float texel(int x, int y, int z, int c) const;
+    glm::vec4 texel4(int x, int y, int z) const;  // every channel, 0 beyond `channels`
     glm::vec4 sample3(glm::vec3 uvw) const;
     glm::vec4 sample2(glm::vec2 uv) const;
     // textureLod() with GL_LINEAR_MIPMAP_LINEAR: levels floor(lod) and floor(lod) + 1 mixed by

@@ -112,6 +112,15 @@ template <class T = float>
     return (T(h & 0xffffU) - T(h >> 16U)) * T(1.0 / 65536.0);
 }
 
+// hash_to_unit(h): the top 24 bits of a hash (noise_hash) as a number in [0, 1): k / 2^24,
+// exact in float, identical in double and bit-identical in GLSL (cm_hash_to_unit). The
+// worley cells place their feature points with it; use it for any random number a shader
+// and the host must agree on.
+template <class T = float>
+[[nodiscard]] constexpr T hash_to_unit(std::uint32_t h) noexcept {
+    return T(h >> 8) * T(1.0 / 16777216.0);
+}
+
 namespace detail {
 
 // i modulo n in [0, n) for any int i and n >= 1, using % on non-negative operands only
@@ -137,11 +146,6 @@ constexpr int grow_period(int period, int factor) noexcept {
     return period > 1073741824 / factor ? 1073741824 : period * factor;
 }
 
-// The top 24 bits of a hash as a float in [0, 1): exact in float and in GLSL.
-template <class T>
-constexpr T hash_to_unit(std::uint32_t h) noexcept {
-    return T(h >> 8) * T(1.0 / 16777216.0);
-}
 
 // Quintic fade 6t^5 - 15t^4 + 10t^3 and its derivative 30t^2 (t - 1)^2 (Perlin 2002).
 template <class T>
@@ -323,9 +327,9 @@ template <class T>
                 const std::uint32_t h = noise_hash(wx[dx + 1] + hyz);  // == noise_hash(x, y, z, seed)
                 const std::uint32_t h2 = noise_hash(h);
                 const std::uint32_t h3 = noise_hash(h2);
-                const T ox = T(dx) + detail::hash_to_unit<T>(h) - x;
-                const T oy = T(dy) + detail::hash_to_unit<T>(h2) - y;
-                const T oz = T(dz) + detail::hash_to_unit<T>(h3) - z;
+                const T ox = T(dx) + hash_to_unit<T>(h) - x;
+                const T oy = T(dy) + hash_to_unit<T>(h2) - y;
+                const T oz = T(dz) + hash_to_unit<T>(h3) - z;
                 const T d2 = ox * ox + oy * oy + oz * oz;
                 best = d2 < best ? d2 : best;
             }

@@ -64,6 +64,7 @@
 #define CLOUDMATH_NOISE_BAKE_HPP
 
 #include <atomic>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -71,6 +72,7 @@
 #include <thread>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -364,6 +366,58 @@ inline std::vector<std::uint8_t> bake_to_vector(int size, int cells, int dimensi
     return detail::bake_to_vector(size, cells, 2, 3, [&](std::uint8_t* out) noexcept {
         return bake_weather_map(out, size, cells, options);
     });
+}
+
+// ---------------------------------------------------------------------------------------
+// Sampling a baked texture on the CPU as the GPU does, for the host side of an engine
+// (density queries for gameplay or audio, tests): texture_trilinear_repeat(uvw, size, fetch)
+// is what texture() returns at mip level 0 for a 3D texture with GL_LINEAR filtering and
+// GL_REPEAT wrapping: texel centres at (i + 0.5) / size, weights from the fractional part,
+// indices wrapped into [0, size) for any uvw (negative and beyond 1 included).
+// texture_bilinear_repeat(uv, size, fetch) is the same in 2D. fetch(i, j, k) (2D: fetch(i,
+// j)) returns texel (i, j, k) as a float or glm vector; for this file's 8-bit layout, the
+// channels' bytes / 255 (see the Layout note above). Domain: every size component >= 1
+// (smaller is taken as 1); a NaN or Inf coordinate gives a NaN result (IEEE builds) and
+// never an index outside [0, size).
+namespace detail {
+
+// floor(x) modulo size in [0, size) and the fraction x - floor(x), without an int
+// conversion of anything outside [0, size - 1] (NaN fails every comparison below: index 0).
+template <class T>
+inline int wrapped_texel(T x, int size, T& fraction) noexcept {
+    const T cell = std::floor(x);
+    fraction = x - cell;
+    const T m = cell - T(size) * std::floor(cell / T(size));  // in [0, size] (rounding)
+    const T top = T(size - 1);
+    return static_cast<int>(m > T(0) ? (m < top ? m : top) : T(0));
+}
+
+}  // namespace detail
+
+template <class T, class Fetch>
+[[nodiscard]] inline auto texture_trilinear_repeat(const glm::vec<3, T>& uvw, const glm::ivec3& size,
+                                                   const Fetch& fetch) {
+    const glm::ivec3 n(size.x > 1 ? size.x : 1, size.y > 1 ? size.y : 1, size.z > 1 ? size.z : 1);
+    T fx, fy, fz;
+    const int x0 = detail::wrapped_texel(uvw.x * T(n.x) - T(0.5), n.x, fx);
+    const int y0 = detail::wrapped_texel(uvw.y * T(n.y) - T(0.5), n.y, fy);
+    const int z0 = detail::wrapped_texel(uvw.z * T(n.z) - T(0.5), n.z, fz);
+    const int x1 = x0 + 1 < n.x ? x0 + 1 : 0, y1 = y0 + 1 < n.y ? y0 + 1 : 0, z1 = z0 + 1 < n.z ? z0 + 1 : 0;
+    const auto c00 = glm::mix(fetch(x0, y0, z0), fetch(x1, y0, z0), fx);
+    const auto c10 = glm::mix(fetch(x0, y1, z0), fetch(x1, y1, z0), fx);
+    const auto c01 = glm::mix(fetch(x0, y0, z1), fetch(x1, y0, z1), fx);
+    const auto c11 = glm::mix(fetch(x0, y1, z1), fetch(x1, y1, z1), fx);
+    return glm::mix(glm::mix(c00, c10, fy), glm::mix(c01, c11, fy), fz);
+}
+
+template <class T, class Fetch>
+[[nodiscard]] inline auto texture_bilinear_repeat(const glm::vec<2, T>& uv, const glm::ivec2& size, const Fetch& fetch) {
+    const glm::ivec2 n(size.x > 1 ? size.x : 1, size.y > 1 ? size.y : 1);
+    T fx, fy;
+    const int x0 = detail::wrapped_texel(uv.x * T(n.x) - T(0.5), n.x, fx);
+    const int y0 = detail::wrapped_texel(uv.y * T(n.y) - T(0.5), n.y, fy);
+    const int x1 = x0 + 1 < n.x ? x0 + 1 : 0, y1 = y0 + 1 < n.y ? y0 + 1 : 0;
+    return glm::mix(glm::mix(fetch(x0, y0), fetch(x1, y0), fx), glm::mix(fetch(x0, y1), fetch(x1, y1), fx), fy);
 }
 
 }  // namespace cloudmath

@@ -1,6 +1,6 @@
 // Smallest real use of an installed cloudmath: the umbrella header compiles and a few
 // functions give the documented values, and the GLSL twins are usable: the embedded copies
-// (cloudmath/glsl_embedded.hpp, generated and installed) and the .glsl files on disk agree.
+// (cloudmath/glsl_embedded.hpp, committed and installed) and the .glsl files on disk agree.
 // Usage: consumer GLSL_DIR, the directory of the .glsl files that belong to the headers in
 // use (<prefix>/include/cloudmath/glsl when installed, the source tree's
 // include/cloudmath/glsl under add_subdirectory). Returns non-zero, with a message, on failure.

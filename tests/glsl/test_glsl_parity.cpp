@@ -19,8 +19,10 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -362,6 +364,13 @@ std::vector<parity_case> make_cases() {
         for (const vec3& d : dirs)
             for (vec4 o : {vec4(0, 0, -5, 1), vec4(0, 0, 0, 2), vec4(0, 0, 5, 1), vec4(0, 2, -5, 1), vec4(0.3f, 0.2f, -1e5f, 1), vec4(3, -1, 2, 10)})
                 in.push_back({o, vec4(d, 0.0f)});
+        // A camera 1.8 m above a 6371 km sphere, the sphere 1500 m above it, rays from the
+        // zenith to the horizon in a slanted plane (the compensated c and discriminant).
+        for (int i = 0; i <= 12; ++i) {
+            const float elevation = 1.5707963f * float(i) / 12.0f;
+            const vec3 up = glm::normalize(vec3(0.3f, 0.9f, -0.2f)), side = glm::normalize(glm::cross(up, vec3(0, 0, 1)));
+            in.push_back({vec4(up * 6371001.8f, 6372500.0f), vec4(up * std::sin(elevation) + side * std::cos(elevation), 0.0f)});
+        }
         add({"cm_ray_sphere_intersect", "vec4(cm_ray_sphere_intersect(a.xyz, b.xyz, vec3(0.0), a.w), 0.0, 0.0)",
              [](vec4 a, vec4 b) { return vec4(cm::ray_sphere_intersect(vec3(a), vec3(b), vec3(0.0f), a.w), 0.0f, 0.0f); }, in, 2, 1.0f});
     }
@@ -386,6 +395,12 @@ std::vector<parity_case> make_cases() {
                 for (float t : {0.0f, 10.0f, 1000.0f, 20000.0f, 100000.0f}) along.push_back({vec4(h, mu, t, 0.0f), vec4(0)});
         add({"cm_altitude_along_ray", "vec4(cm_altitude_along_ray(a.x, a.y, 6371e3, a.z))",
              [R](vec4 a, vec4) { return vec4(cm::altitude_along_ray(a.x, a.y, R, a.z)); }, along, 1, 1.0f});
+        std::vector<std::pair<vec4, vec4>> points;
+        for (float cam : {1.8f, 2700.0f, 7000.0f})
+            for (vec3 p : {vec3(0.0f), vec3(0, 1500, 0), vec3(100000, 0, 0), vec3(-3000, 1200, 40000), vec3(5, -2, -7)})
+                points.push_back({vec4(p, cam), vec4(0)});
+        add({"cm_point_altitude", "vec4(cm_point_altitude(a.xyz, a.w, 6371e3))",
+             [R](vec4 a, vec4) { return vec4(cm::point_altitude(vec3(a), a.w, R)); }, points, 1, 1.0f});
         std::vector<std::pair<vec4, vec4>> hf;
         for (float alt : {-100.0f, 0.0f, 1499.0f, 1500.0f, 2000.0f, 2750.0f, 3999.0f, 4000.0f, 1e9f})
             for (vec2 l : {vec2(1500, 4000), vec2(2000, 2000), vec2(4000, 1500)}) hf.push_back({vec4(alt, l.x, l.y, 0.0f), vec4(0)});
@@ -494,6 +509,9 @@ std::vector<parity_case> make_cases() {
                  const std::uint32_t n = index(a.x, a.y), frame = index(a.z, a.w);
                  return vec4(cm::low_discrepancy_r1(n), cm::low_discrepancy_r2(n), cm::frame_jitter(n, frame)); },
              indices, 4, 1.0f, 0.0});
+        add({"cm_hash_to_unit", "vec4(cm_hash_to_unit((uint(a.x) << 16u) | uint(a.y)), cm_hash_to_unit((uint(a.z) << 16u) | uint(a.w)), 0.0, 0.0)",
+             [index](vec4 a, vec4) { return vec4(cm::hash_to_unit<float>(index(a.x, a.y)), cm::hash_to_unit<float>(index(a.z, a.w)), 0.0f, 0.0f); },
+             indices, 2, 1.0f, 0.0});
         add({"cm_sample_jitter",
              "vec4(cm_sample_jitter((uint(a.x) << 16u) | uint(a.y), (uint(a.z) << 16u) | uint(a.w), (uint(a.y) << 16u) | uint(a.z)), 0.0, 0.0, 0.0)",
              [index](vec4 a, vec4) {
@@ -684,6 +702,8 @@ std::string shader_source(const std::string& defines, const std::vector<parity_c
 
 bool finite(float x) { return std::isfinite(x); }
 
+bool fuzz_mode = false;  // --fuzz: only finiteness is compared (see fuzzed())
+
 struct row {
     std::string function;
     std::size_t evaluations = 0;
@@ -717,9 +737,16 @@ bool evaluate(cm_gl::compute_context& gl, const parity_case& pc, int case_id, st
             const float got = out[k][std::size_t(j)];
             ++it->evaluations;
             if (finite(want[j]) && !finite(got)) {
-                ++it->nonfinite;
+                if (it->nonfinite++ == 0) {
+                    char buf[256];
+                    std::snprintf(buf, sizeof buf, "a=(%g,%g,%g,%g) b=(%g,%g,%g,%g) [%d]: GLSL %g, C++ %.9g", pc.inputs[k].first.x,
+                                  pc.inputs[k].first.y, pc.inputs[k].first.z, pc.inputs[k].first.w, pc.inputs[k].second.x,
+                                  pc.inputs[k].second.y, pc.inputs[k].second.z, pc.inputs[k].second.w, j, double(got), double(want[j]));
+                    it->worst_at = buf;
+                }
                 continue;
             }
+            if (fuzz_mode) continue;
             const double err = std::fabs(double(got) - double(want[j])) / std::max(std::fabs(double(want[j])), double(pc.floor));
             if (err > it->worst) {
                 it->worst = err;
@@ -734,14 +761,64 @@ bool evaluate(cm_gl::compute_context& gl, const parity_case& pc, int case_id, st
     return true;
 }
 
+// --fuzz N: each case's inputs, N times over with every component scaled by 10^U(-3, 3) or
+// 10^U(-38, 38) (signs flipped at random) or replaced by 0, -0, +-FLT_MIN, +-denormal or
+// +-FLT_MAX: finite inputs inside and far outside each function's domain. A failure is a
+// GLSL result that is NaN or Inf where the C++ twin's is finite (the values are not
+// compared: outside the domain only finiteness is promised). Cases that pass an input
+// through int() or uint() (sample counts, octaves, hashes) keep their inputs: a fuzzed loop
+// count would only measure the driver's patience.
+std::vector<parity_case> fuzzed(const std::vector<parity_case>& cases, int n, std::uint32_t seed) {
+    std::vector<parity_case> out;
+    std::uint32_t state = seed;
+    const auto next = [&state]() {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) * (1.0f / 16777216.0f);
+    };
+    const float specials[] = {0.0f, -0.0f, std::numeric_limits<float>::min(), -std::numeric_limits<float>::min(),
+                              std::numeric_limits<float>::denorm_min(), -std::numeric_limits<float>::denorm_min(),
+                              std::numeric_limits<float>::max(), -std::numeric_limits<float>::max()};
+    const auto fuzz = [&](float x) {
+        const float r = next();
+        if (r < 0.1f) return specials[std::min(7, int(next() * 8.0f))];
+        const float sign = next() < 0.25f ? -1.0f : 1.0f;
+        const float base = x != 0.0f ? x : 1.0f;
+        const float exponent = r < 0.55f ? next() * 6.0f - 3.0f : next() * 76.0f - 38.0f;
+        const float v = base * sign * std::pow(10.0f, exponent);
+        return std::isfinite(v) ? v : std::copysign(std::numeric_limits<float>::max(), v);
+    };
+    for (const parity_case& pc : cases) {
+        parity_case f = pc;
+        if (pc.glsl.find("int(") == std::string::npos) {
+            f.inputs.clear();
+            for (int k = 0; k < n; ++k)
+                for (const auto& ab : pc.inputs) {
+                    vec4 a = ab.first, b = ab.second;
+                    for (int j = 0; j < 4; ++j) {
+                        a[j] = fuzz(a[j]);
+                        b[j] = fuzz(b[j]);
+                    }
+                    f.inputs.push_back({a, b});
+                }
+        }
+        out.push_back(std::move(f));
+    }
+    return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     std::string markdown;
+    int fuzz_rounds = 0;
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--markdown") == 0 && i + 1 < argc) markdown = argv[++i];
+        else if (std::strcmp(argv[i], "--fuzz") == 0 && i + 1 < argc) {
+            fuzz_rounds = std::max(1, std::atoi(argv[++i]));
+            fuzz_mode = true;
+        }
         else {
-            std::fprintf(stderr, "usage: %s [--markdown FILE]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--markdown FILE] [--fuzz N]\n", argv[0]);
             return 2;
         }
     }
@@ -759,7 +836,10 @@ int main(int argc, char** argv) {
     // (gallivm's LP_MAX_TGSI_NESTING): the 81st case returned 0 for every input.
     constexpr std::size_t max_cases_per_shader = 64;
     std::vector<program> programs;
-    for (const program& all : {program{"", make_cases()}, program{config_defines, make_config_cases()}})
+    const auto prepare = [fuzz_rounds](std::vector<parity_case> cases) {
+        return fuzz_rounds > 0 ? fuzzed(cases, fuzz_rounds, 12345u) : cases;
+    };
+    for (const program& all : {program{"", prepare(make_cases())}, program{config_defines, prepare(make_config_cases())}})
         for (std::size_t first = 0; first < all.cases.size(); first += max_cases_per_shader) {
             const std::size_t last = std::min(all.cases.size(), first + max_cases_per_shader);
             programs.push_back({all.defines, std::vector<parity_case>(all.cases.begin() + std::ptrdiff_t(first),
@@ -780,9 +860,11 @@ int main(int argc, char** argv) {
         }
     }
 
+    if (fuzz_mode) std::printf("Fuzz: %d rounds of each case's inputs, scaled over 76 decades and signs, and special values; "
+                               "a failure is a NaN/Inf where C++ is finite (max error not compared)\n", fuzz_rounds);
     std::printf("%-42s %8s %12s %9s %5s  %s\n", "function", "values", "max error", "budget", "NaN", "worst case (GLSL vs C++)");
     for (const row& r : rows) {
-        const bool pass = r.worst <= r.budget && r.nonfinite == 0;
+        const bool pass = (fuzz_mode || r.worst <= r.budget) && r.nonfinite == 0;
         ok = ok && pass;
         std::printf("%-42s %8zu %12.3g %9.0e %5d  %s%s\n", r.function.c_str(), r.evaluations, r.worst, r.budget, r.nonfinite,
                     pass ? "" : "FAIL ", r.worst_at.c_str());

@@ -100,10 +100,7 @@ float cr_footprint = 0.0;  // the pixel's width at the current view sample (u_lo
 vec2 cr_band;              // altitudes of the cloud type's band (no density outside), set in main()
 
 // Altitude of a camera-relative point, without |p - centre| - R's cancellation.
-float cr_altitude(vec3 p) {
-    float t = length(p);
-    return t > 0.0 ? cm_altitude_along_ray(u_cam_altitude, p.y / t, u_planet_radius, t) : u_cam_altitude;
-}
+float cr_altitude(vec3 p) { return cm_point_altitude(p, u_cam_altitude, u_planet_radius); }
 
 // The base shape at p: the density before the detail erodes it (an upper bound of
 // cr_density), from the weather map and the base volume only.

@@ -18,14 +18,53 @@ vec2 cmi_stable_quadratic_roots(float b, float c, float disc) {
 // A secant crossing the sphere ahead of the origin (a tangent contact does not count).
 bool cmi_enters_ahead(vec2 roots) { return roots.x >= 0.0 && roots.y > roots.x; }
 
-// Unit dir; Haines et al. 2019 discriminant.
+// Error-free a * b = p + e (returned as vec2(p, e)) and a + b = s + e (Dekker's split,
+// no FMA needed; geometry.hpp's two_product and two_sum).
+vec2 cmi_two_product(float a, float b) {
+    float p = a * b;
+    float as = a * 4097.0, bs = b * 4097.0;
+    float ah = as - (as - a), al = a - ah;
+    float bh = bs - (bs - b), bl = b - bh;
+    return vec2(p, ((ah * bh - p) + ah * bl + al * bh) + al * bl);
+}
+vec2 cmi_two_sum(float a, float b) {
+    float s = a + b;
+    float bb = s - a;
+    return vec2(s, (a - (s - bb)) + (b - bb));
+}
+
+// |f|^2 - r^2 with the rounding errors of its products and sums added back; the plain form
+// when a split overflows.
+float cmi_norm2_minus_square(vec3 f, float r) {
+    vec2 x = cmi_two_product(f.x, f.x);
+    vec2 y = cmi_two_product(f.y, f.y);
+    vec2 z = cmi_two_product(f.z, f.z);
+    vec2 rr = cmi_two_product(r, r);
+    vec2 s = cmi_two_sum(x.x, y.x);
+    float err = x.y + y.y + s.y;
+    s = cmi_two_sum(s.x, z.x);
+    err += z.y + s.y;
+    s = cmi_two_sum(s.x, -rr.x);
+    err += s.y - rr.y;
+    float c = s.x + err;
+    return abs(c) <= 3.402823466e38 ? c : dot(f, f) - r * r;
+}
+
+// Unit dir; c compensated, the discriminant b^2 - c near the sphere and Haines et al.'s
+// r^2 - |f - (f.d) d|^2 far from it (geometry.hpp).
 vec2 cm_ray_sphere_intersect(vec3 origin, vec3 dir, vec3 center, float radius) {
     vec3 f = origin - center;
     float b = dot(f, dir);
-    vec3 perp = f - b * dir;
-    float disc = radius * radius - dot(perp, perp);
+    float c = cmi_norm2_minus_square(f, radius);
+    float disc;
+    if (abs(c) < radius * radius) {
+        vec2 bb = cmi_two_product(b, b);
+        disc = (bb.x - c) + bb.y;
+    } else {
+        vec3 perp = f - b * dir;
+        disc = radius * radius - dot(perp, perp);
+    }
     if (disc < 0.0) return vec2(-1.0);
-    float c = dot(f, f) - radius * radius;
     return cmi_stable_quadratic_roots(b, c, disc);
 }
 
@@ -79,6 +118,12 @@ float cm_altitude_along_ray(float altitude, float cos_zenith, float planet_radiu
     float excess = altitude * (2.0 * R + altitude) + t * (2.0 * r * mu + t);
     float radius = sqrt(max(R * R + excess, 0.0));
     return excess / (radius + R);
+}
+
+// Altitude of p given relative to the camera (+y up at the camera); the camera at p = 0.
+float cm_point_altitude(vec3 p, float camera_altitude, float planet_radius) {
+    float t = length(p);
+    return t > 0.0 ? cm_altitude_along_ray(camera_altitude, p.y / t, planet_radius, t) : camera_altitude;
 }
 
 float cm_height_fraction(float altitude, float layer_bottom, float layer_top) {

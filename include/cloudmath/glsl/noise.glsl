@@ -40,7 +40,8 @@ int cmi_wrap_cell(int i, int n) { return i >= 0 ? i % n : n - 1 - ((-(i + 1)) % 
 // overflow for coordinates or octave counts outside the documented domain.
 ivec3 cmi_floor_to_cell(vec3 p) { return ivec3(clamp(floor(p), vec3(-1073741824.0), vec3(1073741824.0))); }
 int cmi_grow_period(int period, int factor) { return period > 1073741824 / factor ? 1073741824 : period * factor; }
-float cmi_hash_to_unit(uint h) { return float(h >> 8u) * (1.0 / 16777216.0); }
+// The top 24 bits of a hash in [0, 1), exact (noise.hpp's hash_to_unit).
+float cm_hash_to_unit(uint h) { return float(h >> 8u) * (1.0 / 16777216.0); }
 float cmi_fade(float t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 float cmi_fade_derivative(float t) { return 30.0 * t * t * (t - 1.0) * (t - 1.0); }
 
@@ -148,9 +149,9 @@ float cm_worley_f1(vec3 p, int period, uint seed) {
                                        uint(cmi_wrap_cell(i.z + dz, n)), seed);
                 uint h2 = cm_noise_hash(h);
                 uint h3 = cm_noise_hash(h2);
-                float ox = float(dx) + cmi_hash_to_unit(h) - q.x;
-                float oy = float(dy) + cmi_hash_to_unit(h2) - q.y;
-                float oz = float(dz) + cmi_hash_to_unit(h3) - q.z;
+                float ox = float(dx) + cm_hash_to_unit(h) - q.x;
+                float oy = float(dy) + cm_hash_to_unit(h2) - q.y;
+                float oz = float(dz) + cm_hash_to_unit(h3) - q.z;
                 float d2 = ox * ox + oy * oy + oz * oz;
                 best = d2 < best ? d2 : best;
             }
