@@ -11,6 +11,7 @@
 #include <bitset>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 #include <set>
 #include <vector>
 
@@ -413,5 +414,47 @@ TEST_CASE("triangular_dither: the closed form, triangular moments, quantisation 
         for (int i = 0; i < n; ++i) stored += std::floor((v + triangular_dither<double>(noise_hash(std::uint32_t(i) + 77U)) / 255.0) * 255.0 + 0.5);
         CHECK(stored / n / 255.0 == doctest::Approx(v).epsilon(1e-5));
         CHECK(std::floor(v * 255.0 + 0.5) / 255.0 != doctest::Approx(v).epsilon(1e-4));  // without dither: biased
+    }
+}
+
+// Regression (fuzzing): gain had no documented range; gain -1 with an even octave count made
+// the sum of amplitudes 0 (sum / 0: Inf or NaN), and large gains overflowed the amplitudes.
+// Documented now: gain is clamped to [0, 1]. References from the definition over the base
+// noise functions in long double: gain <= 0 is the first octave alone, gain >= 1 the plain
+// mean of the octaves.
+TEST_CASE_TEMPLATE("fBm: gain clamped to [0, 1]; negative, zero and huge gains give defined values in range", T, float, double) {
+    cm_test::rng r(31);
+    const T huge = std::numeric_limits<T>::max();
+    for (int i = 0; i < 50; ++i) {
+        const glm::vec<3, T> p = random_point<T>(r, T(4));
+        const glm::vec<2, T> p2(p.x, p.y);
+        ld mean3 = 0, mean2 = 0, meanw = 0;
+        for (int o = 0; o < 4; ++o) {
+            const T f = T(1 << o);
+            mean3 += ld(perlin_noise(p * f, 4 << o, 8U + std::uint32_t(o))) / 4;
+            mean2 += ld(perlin_noise(p2 * f, 4 << o, 8U + std::uint32_t(o))) / 4;
+            meanw += ld(worley_noise(p * f, 4 << o, 8U + std::uint32_t(o))) / 4;
+        }
+        for (T gain : {T(-1), T(-0.5), T(-1e30), -huge, T(0)}) {
+            INFO("gain = " << gain);
+            CHECK(perlin_fbm(p, 4, 4, 2, gain, 8U) == perlin_noise(p, 4, 8U));
+            CHECK(perlin_fbm(p2, 4, 4, 2, gain, 8U) == perlin_noise(p2, 4, 8U));
+            CHECK(worley_fbm(p, 4, 4, 2, gain, 8U) == worley_noise(p, 4, 8U));
+        }
+        for (T gain : {T(1), T(1.5), T(2), T(1e30), huge}) {
+            INFO("gain = " << gain);
+            CHECK(std::fabs(ld(perlin_fbm(p, 4, 4, 2, gain, 8U)) - mean3) < 8 * cm_test::eps<T>());
+            CHECK(std::fabs(ld(perlin_fbm(p2, 4, 4, 2, gain, 8U)) - mean2) < 8 * cm_test::eps<T>());
+            CHECK(std::fabs(ld(worley_fbm(p, 4, 4, 2, gain, 8U)) - meanw) < 8 * cm_test::eps<T>());
+        }
+    }
+    // Many octaves at the clamp ends: finite and in range (amplitudes never grow). 100
+    // octaves of lacunarity 2 keep the frequency 2^99 finite in float (documented limit).
+    const glm::vec<3, T> p(T(0.3), T(0.6), T(0.9));
+    for (T gain : {T(-1), T(0), T(1), T(3), huge}) {
+        const T v = perlin_fbm(p, 8, 100, 2, gain);
+        CHECK(cm_test::finite_bits(v));
+        CHECK(v >= T(-1));
+        CHECK(v <= T(1));
     }
 }
