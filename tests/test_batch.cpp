@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -140,4 +141,63 @@ TEST_CASE("batch dispatch: the instruction set follows the CPU and restrict_to_b
     CHECK(std::string(batch::isa_name(batch::isa::baseline)) == "baseline");
     CHECK(std::string(batch::isa_name(batch::isa::avx2_fma)) == "avx2+fma");
     MESSAGE("batch functions run with " << std::string(batch::isa_name(batch::active_isa())));
+}
+
+// Regression (fuzzing): batch::beer_powder was NaN for tau > FLT_MAX / 2 (DBL_MAX / 2): 2 tau
+// overflowed and Inf * 0 followed; under -ffast-math from tau = FLT_MAX / 2 itself. The
+// scalar beer_powder returns 0 there. Every batch function over huge optical depths, with
+// both policies and instruction sets, against the closed forms in long double (their limits:
+// everything here is exp(-huge) = 0 to within the smallest normal number).
+TEST_CASE_TEMPLATE("batch functions at huge optical depths: finite, at the closed forms' limits", T, float, double) {
+    const T big = std::numeric_limits<T>::max();
+    std::vector<T> tau = {big / 2, std::nextafter(big / 2, big), big * T(0.75), big, T(1e30), T(std::is_same_v<T, float> ? 1.7e38 : 1e300),
+                          T(1e4), T(745), T(103), T(30)};
+    if constexpr (cm_test::ieee_build) tau.push_back(cm_test::make_inf<T>());
+    const std::size_t n = tau.size();
+    const std::vector<T> mu(n, T(0.3)), S(n, T(0.37));
+    const ld pi = 3.141592653589793238462643383279502884L;
+    auto hg = [pi](ld m, ld g) { return (1 - g * g) / (4 * pi * std::pow(1 + g * g - 2 * g * m, 1.5L)); };
+    auto e = [](ld t) { return std::exp(-t); };
+    auto check = [&](const char* what, const std::vector<T>& got, auto ref, ld rel) {
+        for (std::size_t i = 0; i < n; ++i) {
+            INFO(what << " at tau = " << tau[i]);
+            REQUIRE(cm_test::finite_bits(got[i]));
+            const ld want = ref(ld(tau[i]));
+            CHECK(std::fabs(ld(got[i]) - want) <= rel * want + ld(std::numeric_limits<T>::min()));
+        }
+    };
+    for_each_isa([&] {
+        // exact_math: a few ulp (IEEE) or the -ffast-math budget of batch.hpp; fast_math: 1e-4.
+        const ld exact = cm_test::ieee_build ? 16 * ld(cm_test::eps<T>()) : 1e-4L, fast = 1e-4L;
+        std::vector<T> out(n);
+        batch::beer_powder(tau.data(), n, out.data());
+        check("beer_powder", out, [&](ld t) { return 2 * e(t) * -std::expm1(-2 * t); }, exact);
+        batch::beer_powder<fast_math>(tau.data(), n, out.data());
+        check("beer_powder<fast_math>", out, [&](ld t) { return 2 * e(t) * -std::expm1(-2 * t); }, fast);
+        batch::beer_lambert(tau.data(), n, out.data());
+        check("beer_lambert", out, e, exact);
+        batch::beer_lambert<fast_math>(tau.data(), n, out.data());
+        check("beer_lambert<fast_math>", out, e, fast);
+        batch::nubis_attenuation(tau.data(), n, out.data());
+        check("nubis_attenuation", out, [&](ld t) { return std::fmax(e(t), 0.7L * e(0.25L * t)); }, exact);
+        batch::nubis_attenuation<fast_math>(tau.data(), n, out.data());
+        check("nubis_attenuation<fast_math>", out, [&](ld t) { return std::fmax(e(t), 0.7L * e(0.25L * t)); }, fast);
+        // sigma_t = tau, ds = 2: S (1 - e^-2tau) / tau, at most 0.37 / FLT_MAX.
+        batch::integrate_scattering(S.data(), tau.data(), n, T(2), out.data());
+        check("integrate_scattering", out, [&](ld t) { return 0.37L * -std::expm1(-2 * t) / t; }, exact);
+        auto ms = [&](ld t) {
+            ld s = 0, ai = 1, bi = 1, ci = 1;
+            for (int o = 0; o < 3; ++o, ai *= 0.5L, bi *= 0.5L, ci *= 0.5L) s += bi * hg(0.3L, ci * 0.8L) * e(ai * t);
+            return s;
+        };
+        batch::multiple_scattering(tau.data(), mu.data(), n, T(0.8), T(0.5), T(0.5), T(0.5), 3, out.data());
+        check("multiple_scattering", out, ms, exact);
+        batch::multiple_scattering<fast_math>(tau.data(), mu.data(), n, T(0.8), T(0.5), T(0.5), T(0.5), 3, out.data());
+        check("multiple_scattering<fast_math>", out, ms, 5.3e-3L);
+    });
+    // The scalar forms agree: 0 (exp(-tau) underflows from tau = 1e4 on), and powder 1.
+    for (T t : tau) {
+        if (t >= T(1e4)) CHECK(beer_powder(t) == T(0));
+        CHECK(powder(t, T(1e10)) == T(1));
+    }
 }

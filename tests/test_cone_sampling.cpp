@@ -6,7 +6,9 @@
 
 #include <glm/geometric.hpp>
 #include <initializer_list>
+#include <limits>
 #include <set>
+#include <type_traits>
 #include <utility>
 
 #include "test_support.hpp"
@@ -129,3 +131,40 @@ TEST_CASE_TEMPLATE("cone_optical_depth equals the sum over cone_sample_position 
     }
 }
 
+
+// Regression (fuzzing, UBSan): the wrap ((i % n) + n) % n overflowed int, undefined
+// behaviour, for n > INT_MAX / 2 and 0 < i % n (the sanitize build aborts on it). The
+// reference is the closed form: k = i mod n, radius sqrt((k + 1/2) / n), angle k times the
+// golden angle, in long double.
+TEST_CASE_TEMPLATE("cone_kernel_offset: every int index and count, no overflow; strictly inside up to the documented n", T, float, double) {
+    const int int_max = std::numeric_limits<int>::max(), int_min = std::numeric_limits<int>::min();
+    const ld golden = 2.399963229728653322231555506633613853L;
+    for (int n : {int_max, int_max - 1, (1 << 30) + 1, 1 << 30, 1 << 23, 3})
+        for (int i : {0, 1, 5, 7, -1, -2, int_max, int_max - 1, int_min, int_min + 1}) {
+            INFO("i = " << i << ", n = " << n);
+            const long long kk = ((static_cast<long long>(i) % n) + n) % n;  // wide: no overflow
+            const glm::vec<2, T> k = cone_kernel_offset<T>(i, n);
+            REQUIRE(cm_test::finite_bits(k.x));
+            REQUIRE(cm_test::finite_bits(k.y));
+            const ld r = std::hypot(ld(k.x), ld(k.y));
+            CHECK(r <= 1 + 4 * ld(cm_test::eps<T>()));  // radius <= 1; cos and sin round
+            // Strictly inside: documented for n <= 2^23 in float and every n in double.
+            if (std::is_same_v<T, double> || n <= (1 << 23)) CHECK(r < 1);
+            CHECK(cm_test::rel_err(r, std::sqrt((ld(kk) + 0.5L) / ld(n))) <= 8 * cm_test::eps<T>());
+            // The angle of a small index is exact to rounding (a large one carries the rounding
+            // of T(k) * golden angle, up to half an ulp of the angle).
+            if (kk < 8) {
+                CHECK(std::fabs(ld(k.x) - std::sqrt((ld(kk) + 0.5L) / ld(n)) * std::cos(ld(kk) * golden)) <= 32 * cm_test::eps<T>());
+                CHECK(std::fabs(ld(k.y) - std::sqrt((ld(kk) + 0.5L) / ld(n)) * std::sin(ld(kk) * golden)) <= 32 * cm_test::eps<T>());
+            }
+        }
+    // Through the sample positions: a config with the largest sample count.
+    const cone_light_config<T> cfg{int_max, T(50), T(0.4), T(800), T(100)};
+    const glm::vec<3, T> origin(T(1), T(2), T(3)), up(T(0), T(1), T(0));
+    for (int i : {0, 3, int_max - 2, int_max - 1}) {
+        const glm::vec<3, T> p = cone_sample_position(origin, up, cfg, i);
+        CHECK(cm_test::finite_bits(p.x));
+        CHECK(cm_test::finite_bits(p.y));
+        CHECK(cm_test::finite_bits(p.z));
+    }
+}

@@ -164,3 +164,51 @@ TEST_CASE("one_minus_exp_neg_over_x against the textbook quotient in float (the 
     CHECK(cm_test::rel_err(one_minus_exp_neg_over_x(1e-7f), ref_one_minus_exp_neg_over_x(ld(1e-7f))) <= 2 * cm_test::eps<float>());
     CHECK(cm_test::rel_err(one_minus_exp_neg_over_x(1e-5f), ref_one_minus_exp_neg_over_x(ld(1e-5f))) <= 2 * cm_test::eps<float>());
 }
+
+// Regression (fuzzing): the blend (1 - t) new_min + t new_max landed one ulp outside the new
+// range (always possible when new_min == new_max), and huge finite inputs gave
+// Inf / Inf = NaN. The reference is the same closed form in long double, clamped, which has
+// the exponent range to hold every difference of two floats or doubles.
+TEST_CASE_TEMPLATE("remap_clamped: never outside the new range, finite and right for huge finite inputs", T, float, double) {
+    auto ref = [](T x, T a, T b, T c, T d) {
+        const ld t = std::fmin(std::fmax((ld(x) - ld(a)) / (ld(b) - ld(a)), 0.0L), 1.0L);
+        return std::fmin(std::fmax((1 - t) * ld(c) + t * ld(d), std::fmin(ld(c), ld(d))), std::fmax(ld(c), ld(d)));
+    };
+    // The first case the fuzzer reported (float: 0.920364916 for the range [0.920364857, same]).
+    CHECK(remap_clamped(T(-0.125486612f), T(-0.0317127705f), T(-1.16267025f), T(0.920364857f), T(0.920364857f)) ==
+          T(0.920364857f));
+    // Dense random sweep: the result is inside the new range, bit for bit.
+    cm_test::rng r(71);
+    long outside = 0;
+    for (int i = 0; i < 300000; ++i) {
+        const T x = T(4 * r.uniform() - 2), a = T(4 * r.uniform() - 2), b = T(4 * r.uniform() - 2);
+        const T c = T(4 * r.uniform() - 2), d = i % 3 == 0 ? c : T(4 * r.uniform() - 2);
+        const T v = remap_clamped(x, a, b, c, d);
+        if (v < std::min(c, d) || v > std::max(c, d)) ++outside;
+    }
+    CHECK(outside == 0);
+    // Huge finite inputs: every difference would overflow in T.
+    const T big = std::numeric_limits<T>::max();
+    const T xs[] = {big, -big, big / 2, big * T(0.75), T(0.3) * big, -T(0.6) * big, T(1), T(0)};
+    const T olds[][2] = {{-big, big}, {big, -big}, {-big / 2, big}, {T(0), big}, {-big, T(0)}, {T(-1), big}, {-big * T(0.9), big * T(0.8)}};
+    const T news[][2] = {{T(0), T(1)}, {T(1), T(0)}, {-big, big}, {big, big}, {big / 2, big}, {-big, -big * T(0.3)}, {T(-5), T(5)}};
+    for (T x : xs)
+        for (const auto& o : olds)
+            for (const auto& n : news) {
+                const T v = remap_clamped(x, o[0], o[1], n[0], n[1]);
+                INFO("x = " << x << ", old = (" << o[0] << ", " << o[1] << "), new = (" << n[0] << ", " << n[1] << ")");
+                REQUIRE(cm_test::finite_bits(v));
+                CHECK(v >= std::min(n[0], n[1]));
+                CHECK(v <= std::max(n[0], n[1]));
+                // 4 eps of the new range's magnitude: two roundings of t, two of the blend.
+                CHECK(std::fabs(ld(v) - ref(x, o[0], o[1], n[0], n[1])) <=
+                      4 * cm_test::eps<T>() * std::fmax(std::fabs(ld(n[0])), std::fabs(ld(n[1]))));
+            }
+    // The reported case in exact terms: the middle of (-3e38, 3e38) maps to the middle.
+    CHECK(remap_clamped(T(0), -big, big, T(0), T(1)) == T(0.5));
+    CHECK(remap_clamped(big, -big, big, T(0), T(1)) == T(1));
+    CHECK(remap_clamped(-big, -big, big, T(0), T(1)) == T(0));
+    // smoothstep_safe shares the clamped coordinate: finite across the whole range too.
+    CHECK(smoothstep_safe(-big, big, T(0)) == T(0.5));
+    CHECK(smoothstep_safe(big, -big, big) == T(0));
+}

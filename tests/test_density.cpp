@@ -338,3 +338,40 @@ TEST_CASE_TEMPLATE("cloud_top_fraction and cloud_shape_density: per-cloud type, 
     if constexpr (cm_test::ieee_build)
         CHECK(cloud_shape_density(full, w, cm_test::make_nan<T>(), T(0.5), T(1), T(0.5), T(0.6)) == T(0));
 }
+
+// Regression (fuzzing): below the layer the rise was clamped to 0 but exp(-b h) overflowed,
+// and 0 * Inf gave NaN: float from h = -22.2 (b = 4), double from h = -177.5. The documented
+// density below the layer is 0; closed form (1 - e^-ah) e^-bh in long double above it.
+TEST_CASE_TEMPLATE("height_gradient_exponential: exactly 0 below the layer, finite in [0, 1] for every finite input", T, float, double) {
+    const T big = std::numeric_limits<T>::max();
+    for (T h : {T(-23), T(-22.2), T(-177.5), T(-178), T(-1e4), T(-1e30), -big, T(-1), T(-1e-30), T(-0.0), T(0)}) {
+        INFO("h = " << h);
+        CHECK(height_gradient_exponential(h, T(50), T(4)) == T(0));
+        CHECK(height_gradient_exponential(h, T(1e3), T(1e3)) == T(0));
+    }
+    // Above the layer bottom, far up: the decay wins (0), and nothing overflows.
+    for (T h : {T(10), T(30), T(200), T(1e4), T(1e30), big}) {
+        INFO("h = " << h);
+        const T v = height_gradient_exponential(h, T(50), T(4));
+        REQUIRE(cm_test::finite_bits(v));
+        CHECK(cm_test::close_ulps(v, -std::expm1(-50 * ld(h)) * std::exp(-4 * ld(h)), 8));
+    }
+    // Huge a and b: a h overflows to Inf (rise 1), b h too (decay 0): 0, not NaN.
+    CHECK(height_gradient_exponential(T(1e30), big, big) == T(0));
+    CHECK(height_gradient_exponential(T(0.5), big, T(0)) == T(1));
+    // Negative a or b act as 0: no rise (0 everywhere), or no decay (the rise alone).
+    CHECK(height_gradient_exponential(T(0.5), T(-50), T(4)) == T(0));
+    CHECK(height_gradient_exponential(T(-0.5), T(-50), T(-4)) == T(0));
+    CHECK(cm_test::close_ulps(height_gradient_exponential(T(0.05), T(50), T(-4)), -std::expm1(-50 * ld(T(0.05))), 4));
+    // A sweep across every scale of h, both signs: always in [0, 1].
+    for (int e = -30; e <= 30; ++e)
+        for (int s : {-1, 1}) {
+            const T h = T(s) * static_cast<T>(std::pow(10.0L, e));
+            const T v = height_gradient_exponential(h, T(50), T(4));
+            INFO("h = " << h);
+            REQUIRE(cm_test::finite_bits(v));
+            CHECK(v >= T(0));
+            CHECK(v <= T(1));
+            if (s < 0) CHECK(v == T(0));
+        }
+}

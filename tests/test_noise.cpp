@@ -11,6 +11,7 @@
 #include <bitset>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 #include <set>
 #include <vector>
 
@@ -425,5 +426,44 @@ TEST_CASE("hash_to_unit: k / 2^24 from the top 24 bits, in [0, 1), exact in floa
     for (std::uint32_t h : {1U, 12345U, 0x80000000U, 0xdeadbeefU, noise_hash(9U)}) {
         CHECK(double(hash_to_unit<float>(h)) == hash_to_unit<double>(h));
         CHECK(hash_to_unit<double>(h) == double(h >> 8) / 16777216.0);
+// Regression (fuzzing): gain had no documented range; gain -1 with an even octave count made
+// the sum of amplitudes 0 (sum / 0: Inf or NaN), and large gains overflowed the amplitudes.
+// Documented now: gain is clamped to [0, 1]. References from the definition over the base
+// noise functions in long double: gain <= 0 is the first octave alone, gain >= 1 the plain
+// mean of the octaves.
+TEST_CASE_TEMPLATE("fBm: gain clamped to [0, 1]; negative, zero and huge gains give defined values in range", T, float, double) {
+    cm_test::rng r(31);
+    const T huge = std::numeric_limits<T>::max();
+    for (int i = 0; i < 50; ++i) {
+        const glm::vec<3, T> p = random_point<T>(r, T(4));
+        const glm::vec<2, T> p2(p.x, p.y);
+        ld mean3 = 0, mean2 = 0, meanw = 0;
+        for (int o = 0; o < 4; ++o) {
+            const T f = T(1 << o);
+            mean3 += ld(perlin_noise(p * f, 4 << o, 8U + std::uint32_t(o))) / 4;
+            mean2 += ld(perlin_noise(p2 * f, 4 << o, 8U + std::uint32_t(o))) / 4;
+            meanw += ld(worley_noise(p * f, 4 << o, 8U + std::uint32_t(o))) / 4;
+        }
+        for (T gain : {T(-1), T(-0.5), T(-1e30), -huge, T(0)}) {
+            INFO("gain = " << gain);
+            CHECK(perlin_fbm(p, 4, 4, 2, gain, 8U) == perlin_noise(p, 4, 8U));
+            CHECK(perlin_fbm(p2, 4, 4, 2, gain, 8U) == perlin_noise(p2, 4, 8U));
+            CHECK(worley_fbm(p, 4, 4, 2, gain, 8U) == worley_noise(p, 4, 8U));
+        }
+        for (T gain : {T(1), T(1.5), T(2), T(1e30), huge}) {
+            INFO("gain = " << gain);
+            CHECK(std::fabs(ld(perlin_fbm(p, 4, 4, 2, gain, 8U)) - mean3) < 8 * cm_test::eps<T>());
+            CHECK(std::fabs(ld(perlin_fbm(p2, 4, 4, 2, gain, 8U)) - mean2) < 8 * cm_test::eps<T>());
+            CHECK(std::fabs(ld(worley_fbm(p, 4, 4, 2, gain, 8U)) - meanw) < 8 * cm_test::eps<T>());
+        }
+    }
+    // Many octaves at the clamp ends: finite and in range (amplitudes never grow). 100
+    // octaves of lacunarity 2 keep the frequency 2^99 finite in float (documented limit).
+    const glm::vec<3, T> p(T(0.3), T(0.6), T(0.9));
+    for (T gain : {T(-1), T(0), T(1), T(3), huge}) {
+        const T v = perlin_fbm(p, 8, 100, 2, gain);
+        CHECK(cm_test::finite_bits(v));
+        CHECK(v >= T(-1));
+        CHECK(v <= T(1));
     }
 }

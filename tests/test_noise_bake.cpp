@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <functional>
 #include <initializer_list>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -638,4 +639,43 @@ TEST_CASE("the default base volume and coverage: what coverage 0.5 covers (docs/
     CHECK(f_half > 0.85);   // ...so coverage 0.5 is overcast,
     CHECK(f_03 < 0.6);      // and coverage 0.3 leaves about half of it (before the weather map and
                             // the height profile thin it further: the presets' 0.27-0.33 are scattered)
+// Regression (fuzzing, UBSan): the texel functions multiplied cells by 2, 4 and 8 in int,
+// signed overflow (undefined behaviour) from cells = 2^28 (base) and 2^29 (detail); the
+// sanitize build aborts on it. Now cells < 1 acts as 1 and the periods saturate at 2^30:
+// every int gives values in [0, 1].
+TEST_CASE("noise_bake: texel functions for every int cells: no overflow, values in [0, 1], cells < 1 acts as 1") {
+    const int int_max = std::numeric_limits<int>::max(), int_min = std::numeric_limits<int>::min();
+    const glm::vec3 p(0.37f, 1.61f, 2.9f);
+    const glm::dvec3 pd(0.37, 1.61, 2.9);
+    for (int cells : {1 << 25, 1 << 27, 1 << 28, (1 << 28) + 1, 1 << 29, 1 << 30, int_max, 0, -1, -(1 << 28) - 1, -(1 << 29) - 1, int_min}) {
+        INFO("cells = " << cells);
+        const glm::vec4 b = bake_base_texel(p, cells, 7U);
+        const glm::vec3 d = bake_detail_texel(p, cells, 7U);
+        const glm::dvec4 bd = bake_base_texel(pd, cells, 7U);
+        const glm::dvec3 dd = bake_detail_texel(pd, cells, 7U);
+        for (int c = 0; c < 4; ++c) {
+            CHECK(b[c] >= 0.0f);
+            CHECK(b[c] <= 1.0f);
+            CHECK(bd[c] >= 0.0);
+            CHECK(bd[c] <= 1.0);
+        }
+        for (int c = 0; c < 3; ++c) {
+            CHECK(d[c] >= 0.0f);
+            CHECK(d[c] <= 1.0f);
+            CHECK(dd[c] >= 0.0);
+            CHECK(dd[c] <= 1.0);
+        }
+        if (cells < 1) {  // documented: treated as 1
+            CHECK(b == bake_base_texel(p, 1, 7U));
+            CHECK(d == bake_detail_texel(p, 1, 7U));
+        }
+    }
+    // Up to the documented limit (2^25 base, 2^26 detail) the channels are the noise at 2, 4
+    // and 8 times cells exactly, as for the bake sizes.
+    for (int cells : {4, 1 << 25}) {
+        const glm::vec4 b = bake_base_texel(p, cells, 7U);
+        CHECK(b.w == worley_fbm_nubis(p * 8.0f, 8 * cells, bake_channel_seed(7U, bake_channel::base_a)));
+        const glm::vec3 d = bake_detail_texel(p, 2 * cells, 7U);
+        CHECK(d.z == worley_fbm_nubis(p * 4.0f, 8 * cells, bake_channel_seed(7U, bake_channel::detail_b)));
+    }
 }

@@ -245,14 +245,20 @@ void beer_lambert(const T* tau, std::size_t n, T* out) noexcept {
     });
 }
 
-// out[i] = beer_powder(tau[i]).
+// out[i] = beer_powder(tau[i]). Domain: every finite tau (and +Inf in IEEE builds); the
+// result is in [0, 0.7698] and 0 for tau beyond the exponential's range. tau is clamped to
+// [0, -exp_constants<T>::min_x] (103 in float, 745 in double), where the kernel's exp(-tau)
+// is already exactly 0, so the clamp changes no result and keeps 2 tau finite: for
+// tau > FLT_MAX / 2 (DBL_MAX / 2) 2 tau overflowed, and Inf * 0 made the result NaN.
 template <class Policy = exact_math, class T>
 void beer_powder(const T* tau, std::size_t n, T* out) noexcept {
     detail::dispatch([&]() CLOUDMATH_LAMBDA_INLINE {
         const detail::policy_exp<Policy, T> ex(T(0));
         const T zero = detail::runtime_constant(T(0)), split = detail::runtime_constant(T(0.5));
+        const T tau_max = detail::runtime_constant(-detail::exp_constants<T>::min_x);
         for (std::size_t i = 0; i < n; ++i) {
-            const T t = tau[i] > zero ? tau[i] : zero;
+            T t = tau[i] > zero ? tau[i] : zero;
+            t = t < tau_max ? t : tau_max;
             const T e = ex(-t);
             if constexpr (std::is_same_v<Policy, fast_math>) {
                 out[i] = T(2) * e * (T(1) - e * e);

@@ -71,12 +71,17 @@ inline void orthonormal_basis(const glm::vec<3, T, Q>& n, glm::vec<3, T, Q>& u,
 }  // namespace detail
 
 // Point i of n of the Vogel spiral in the unit disc: radius sqrt((i + 1/2) / n), angle
-// i times the golden angle pi (3 - sqrt 5). Every point lies strictly inside the disc.
-// i is taken modulo n; n < 1 is treated as 1.
+// i times the golden angle pi (3 - sqrt 5).
+// Domain: every int i and n. i is taken modulo n (into [0, n), negative i included);
+// n < 1 is treated as 1. The wrap uses % on non-negative operands only and never adds to
+// a value near INT_MAX (the former ((i % n) + n) % n overflowed, undefined behaviour, for
+// n > INT_MAX / 2). Every point lies strictly inside the disc for n <= 2^23 in float and
+// for every n in double; above 2^23 float rounding can put the last points on the circle
+// (radius 1). The angle of a large index carries the rounding of float(k) * golden angle.
 template <class T>
 [[nodiscard]] inline glm::vec<2, T> cone_kernel_offset(int i, int n) noexcept {
     const int count = n > 0 ? n : 1;
-    const int k = ((i % count) + count) % count;
+    const int k = i >= 0 ? i % count : count - 1 - (-(i + 1)) % count;
     const T golden_angle = detail::golden_angle_v<T>;
     const T radius = std::sqrt((T(k) + T(0.5)) / T(count));
     const T angle = T(k) * golden_angle;

@@ -94,6 +94,11 @@ constexpr bool exactly_equal(T a, T b) noexcept {
 #pragma GCC diagnostic pop
 #endif
 
+// The next wider floating-point type: where a difference of two T cannot overflow.
+template <class T> struct wider { using type = long double; };
+template <> struct wider<float> { using type = double; };
+template <class T> using wider_t = typename wider<T>::type;
+
 }  // namespace detail
 
 // ---------------------------------------------------------------------------------------
@@ -124,17 +129,53 @@ template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
     return new_min + (x - old_min) / (old_max - old_min) * (new_max - new_min);
 }
 
+namespace detail {
+
+// t = saturate((x - old_min) / (old_max - old_min)), the degenerate range as remap's step (0
+// below old_min, 1 at and above): remap_clamped to [0, 1], which smoothstep_safe, erode,
+// apply_coverage and height_fraction use directly (the same bits as remap_clamped(..., 0, 1)).
+template <class T>
+constexpr T remap_unit(T x, T old_min, T old_max) noexcept {
+    if (detail::exactly_equal(old_max, old_min)) return x < old_min ? T(0) : T(1);
+    const T big = std::numeric_limits<T>::max() / T(4);
+    if (max(max(abs(x), abs(old_min)), abs(old_max)) > big) {
+        using W = wider_t<T>;
+        if constexpr (std::numeric_limits<W>::max_exponent > std::numeric_limits<T>::max_exponent) {
+            return static_cast<T>(saturate((W(x) - W(old_min)) / (W(old_max) - W(old_min))));
+        } else {
+            const T h = T(0.5);  // exact for the inputs > max / 4 that matter here
+            return saturate((x * h - old_min * h) / (old_max * h - old_min * h));
+        }
+    }
+    return saturate((x - old_min) / (old_max - old_min));
+}
+
+}  // namespace detail
+
 // remap_clamped: remap with the result clamped to the new range (either orientation).
-// Always finite for finite input: the normalised coordinate t is clamped to [0, 1] before
-// it is scaled, so a tiny old range gives t = +-Inf -> 0 or 1, never Inf * 0. The end
-// points are exact: x <= old_min gives new_min, x >= old_max gives new_max bit for bit.
-// Degenerate range: the same step as remap.
+// Domain: every finite input (and +-Inf for x). For finite input the result is finite and
+// lies in [min(new_min, new_max), max(new_min, new_max)], bit for bit:
+// - t = (x - old_min) / (old_max - old_min) is clamped to [0, 1] before it is scaled, so a
+//   tiny old range gives t = +-Inf -> 0 or 1, never Inf * 0;
+// - when |x|, |old_min| or |old_max| exceeds a quarter of the type's largest value, t is
+//   computed in a wider type (detail::wider_t: double for float, long double for double
+//   where it has the wider exponent range, as on x86-64 Linux), where neither difference
+//   can overflow: remap_clamped(3e38f, -3e38f, 3e38f, 0, 1) was Inf / Inf = NaN. Halving
+//   the inputs would do in IEEE builds, but -ffast-math factors the halving back out,
+//   (x/2 - m/2) -> (x - m)/2, and overflows again; a conversion it cannot undo. Where long
+//   double is no wider (MSVC, Apple arm64) double inputs take the halved form, which then
+//   holds in IEEE builds only.
+// - the blend (1 - t) new_min + t new_max can round one ulp past an end (for example
+//   new_min == new_max = 0.920364857f gave 0.920364916f), so it is clamped to the range.
+// The end points are exact: x <= old_min gives new_min, x >= old_max gives new_max bit for
+// bit. Inputs up to a quarter of the largest value take the plain form in T.
+// Degenerate range: the same step as remap. NaN input gives NaN (IEEE builds).
 template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
 [[nodiscard]] constexpr T remap_clamped(T x, T old_min, T old_max, T new_min,
                                         T new_max) noexcept {
-    if (detail::exactly_equal(old_max, old_min)) return x < old_min ? new_min : new_max;
-    const T t = saturate((x - old_min) / (old_max - old_min));
-    return (T(1) - t) * new_min + t * new_max;  // exact at t = 0 and t = 1
+    const T t = detail::remap_unit(x, old_min, old_max);
+    const T r = (T(1) - t) * new_min + t * new_max;  // exact at t = 0 and t = 1
+    return new_min < new_max ? detail::clamp(r, new_min, new_max) : detail::clamp(r, new_max, new_min);
 }
 
 // smoothstep_safe(edge0, edge1, x): GLSL smoothstep, t^2 (3 - 2 t) with
@@ -142,10 +183,11 @@ template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
 // GLSL leaves edge0 >= edge1 undefined; here edge0 == edge1 is a step at edge0
 // (0 below, 1 at and above) and edge0 > edge1 gives the mirrored (decreasing) curve.
 // Named _safe so that `using namespace glm;` beside `using namespace cloudmath;` stays
-// unambiguous.
+// unambiguous. Domain: every finite input (t as in remap_clamped: no overflow for huge
+// edges); the result is in [0, 1].
 template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
 [[nodiscard]] constexpr T smoothstep_safe(T edge0, T edge1, T x) noexcept {
-    const T t = remap_clamped(x, edge0, edge1, T(0), T(1));
+    const T t = detail::remap_unit(x, edge0, edge1);  // remap_clamped(x, edge0, edge1, 0, 1)
     return t * t * (T(3) - T(2) * t);
 }
 

@@ -80,29 +80,36 @@ template <class T>
 
 // height_gradient_exponential(h, a, b) = (1 - exp(-a h)) exp(-b h) (Olajos 2016, with
 // a = 50, b = 4): a fast rise above the layer bottom and a slow exponential decay.
-// The rise uses -expm1 so small a h keeps full precision. Domain h >= 0, a, b >= 0;
-// negative a h is clamped to 0 (density 0 below the layer).
+// The rise uses -expm1 so small a h keeps full precision.
+// Domain: every finite h, a and b; the result is in [0, 1]. h <= 0 (below the layer) gives
+// exactly 0; a < 0 and b < 0 act as 0 (no rise: 0 everywhere; no decay). h is clamped to
+// >= 0 before it enters either exponential: with the clamp on a h alone, exp(-b h) still
+// overflowed below the layer and 0 * Inf gave NaN (float from h = -22.2 with b = 4,
+// double from h = -177.5).
 template <class T>
 [[nodiscard]] inline T height_gradient_exponential(T h, T a, T b) noexcept {
-    return one_minus_exp_neg(detail::max(a * h, T(0))) * std::exp(-b * h);
+    const T height = detail::max(h, T(0));
+    return one_minus_exp_neg(detail::max(a, T(0)) * height) * std::exp(-detail::max(b, T(0)) * height);
 }
 
 // apply_coverage(base, coverage) = remap_clamped(base, 1 - coverage, 1, 0, 1) * coverage
 // (Schneider 2016 with the GPU Pro 7 text's inversion fixed): for base in [0, 1] this is
 // max(0, base + coverage - 1), increasing in both base and coverage. coverage is clamped
-// to [0, 1]; coverage 0 gives 0 and coverage 1 gives base.
+// to [0, 1]; coverage 0 gives 0 and coverage 1 gives base. Domain: every finite input
+// (the remap is remap_clamped's, finite for huge inputs).
 template <class T>
 [[nodiscard]] constexpr T apply_coverage(T base, T coverage) noexcept {
     const T c = saturate(coverage);
-    return remap_clamped(base, T(1) - c, T(1), T(0), T(1)) * c;
+    return detail::remap_unit(base, T(1) - c, T(1)) * c;  // remap_clamped(..., 0, 1)
 }
 
 // erode(base, erosion) = remap_clamped(base, erosion, 1, 0, 1): removes density below
 // `erosion` and stretches the rest back to [0, 1] (detail-noise erosion of Nubis).
-// erosion = 1 is the degenerate step: only base >= 1 survives.
+// erosion = 1 is the degenerate step: only base >= 1 survives. Domain: every finite input;
+// the result is in [0, 1].
 template <class T>
 [[nodiscard]] constexpr T erode(T base, T erosion) noexcept {
-    return remap_clamped(base, erosion, T(1), T(0), T(1));
+    return detail::remap_unit(base, erosion, T(1));  // remap_clamped(base, erosion, 1, 0, 1)
 }
 
 // ---------------------------------------------------------------------------------------

@@ -197,7 +197,16 @@ template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
 }
 
 // 1/sqrt(x) by the exponent-halving bit trick and one Newton step: maximum relative error
-// 1.8e-3 for normal positive x (float and double). x <= 0 or denormal: unspecified.
+// 1.8e-3 (measured 1.752e-3, float and double).
+// Domain: x in [2^-125, 2^124] in float (about 2.35e-38 to 2.13e37) and [2^-1021, 2^1020] in
+// double (about 4.45e-308 to 1.12e307), in every build. In that range each partial product
+// of the Newton step, 0.5 x y y with y ~ x^-1/2 (0.5 x, x y, y y, 0.5 y y, ...), is a normal
+// number, whichever order -ffast-math's re-association picks. Outside it one of them can be
+// a denormal, which -ffast-math's flush-to-zero makes 0, and the error reaches 55% (measured
+// at x = 2.2e38 and in the lowest normal binade, with GCC 12). With IEEE arithmetic (no
+// flush to zero) the 1.8e-3 also holds over the rest of the normal range. x <= 0, denormal
+// x and Inf: unspecified. The library's callers (fast::phase_hg, the batch HG kernels)
+// pass x in [1e-8, 4].
 template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
 [[nodiscard]] inline T rsqrt(T x) noexcept {
     using C = detail::exp_constants<T>;

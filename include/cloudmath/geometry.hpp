@@ -243,10 +243,11 @@ template <class T, glm::qualifier Q>
 
 // height_fraction(altitude, layer_bottom, layer_top) = saturate((altitude - bottom) /
 // (top - bottom)): 0 at the bottom of the layer, 1 at the top. A layer of zero thickness
-// gives the step of remap_clamped (0 below, 1 at and above).
+// gives the step of remap_clamped (0 below, 1 at and above). Domain: every finite input
+// (no overflow for huge altitudes, as remap_clamped); the result is in [0, 1].
 template <class T>
 [[nodiscard]] constexpr T height_fraction(T altitude, T layer_bottom, T layer_top) noexcept {
-    return remap_clamped(altitude, layer_bottom, layer_top, T(0), T(1));
+    return detail::remap_unit(altitude, layer_bottom, layer_top);  // remap_clamped(..., 0, 1)
 }
 
 }  // namespace cloudmath

@@ -66,11 +66,12 @@ int cmi_cone_near_count(CmConeLightConfig cfg) {
     return max(cmi_cone_has_far(cfg) ? cfg.sample_count - 1 : cfg.sample_count, 0);
 }
 
-// Point i of n of the Vogel spiral in the unit disc; i modulo n, n < 1 treated as 1.
-// (GLSL leaves % of negative operands undefined, hence the explicit wrap.)
+// Point i of n of the Vogel spiral in the unit disc; i modulo n, n < 1 treated as 1; every
+// int i and n (GLSL leaves % of negative operands undefined, hence the explicit wrap, which
+// never overflows: -(i + 1) >= 0 for every negative i).
 vec2 cm_cone_kernel_offset(int i, int n) {
     int count = max(n, 1);
-    int k = i >= 0 ? i % count : count - 1 - ((-i - 1) % count);
+    int k = i >= 0 ? i % count : count - 1 - (-(i + 1)) % count;
     float radius = sqrt((float(k) + 0.5) / float(count));
     float angle = float(k) * 2.39996322972865;
     return radius * vec2(cos(angle), sin(angle));
@@ -96,9 +97,9 @@ void cmi_orthonormal_basis(vec3 n, out vec3 u, out vec3 v) {
     v = vec3(b, s + n.y * n.y * a, -n.y);
 }
 
-vec3 cm_cone_sample_position(vec3 origin, vec3 light_dir, CmConeLightConfig cfg, int i) {
 )cm_glsl"
-     R"cm_glsl(    float d = cm_cone_sample_distance(cfg, i);
+     R"cm_glsl(vec3 cm_cone_sample_position(vec3 origin, vec3 light_dir, CmConeLightConfig cfg, int i) {
+    float d = cm_cone_sample_distance(cfg, i);
     int n_near = cmi_cone_near_count(cfg);
     if (cmi_cone_has_far(cfg) && i >= n_near) return origin + light_dir * d;
     vec3 u, v;
@@ -156,16 +157,28 @@ float cm_remap(float x, float old_min, float old_max, float new_min, float new_m
     return new_min + (x - old_min) / (old_max - old_min) * (new_max - new_min);
 }
 
-// Remap clamped to the new range; t is clamped before scaling, end points exact.
+// saturate((x - old_min) / (old_max - old_min)), a degenerate range as cm_remap's step:
+// cm_remap_clamped to [0, 1] (core.hpp's detail::remap_unit). When an input exceeds
+// FLT_MAX / 4 the halved inputs are used, so the differences cannot overflow to Inf / Inf
+// (the C++ uses double there). A driver that re-associated x/2 - m/2 into (x - m)/2 would
+// lose that (Mesa keeps it: the parity cases with inputs up to FLT_MAX).
+float cmi_remap_unit(float x, float old_min, float old_max) {
+    if (old_max == old_min) return x < old_min ? 0.0 : 1.0;
+    float s = max(max(abs(x), abs(old_min)), abs(old_max)) > 8.50705917e37 ? 0.5 : 1.0;
+    return cm_saturate((x * s - old_min * s) / (old_max * s - old_min * s));
+}
+
+// Remap clamped to the new range; t is clamped before scaling, end points exact. Finite
+// and inside [min(new_min, new_max), max(new_min, new_max)] for every finite input: the
+// blend, which can round an ulp past an end, is clamped (core.hpp).
 float cm_remap_clamped(float x, float old_min, float old_max, float new_min, float new_max) {
-    if (old_max == old_min) return x < old_min ? new_min : new_max;
-    float t = cm_saturate((x - old_min) / (old_max - old_min));
-    return (1.0 - t) * new_min + t * new_max;
+    float t = cmi_remap_unit(x, old_min, old_max);
+    return clamp((1.0 - t) * new_min + t * new_max, min(new_min, new_max), max(new_min, new_max));
 }
 
 // GLSL smoothstep defined for every pair of edges (GLSL leaves edge0 >= edge1 undefined).
 float cm_smoothstep_safe(float edge0, float edge1, float x) {
-    float t = cm_remap_clamped(x, edge0, edge1, 0.0, 1.0);
+    float t = cmi_remap_unit(x, edge0, edge1);  // cm_remap_clamped(x, edge0, edge1, 0.0, 1.0)
     return t * t * (3.0 - 2.0 * t);
 }
 
@@ -174,22 +187,33 @@ float cm_smoothstep_safe(float edge0, float edge1, float x) {
 // errors up to 1e23). Below |x| = 0.25 the degree-6 Taylor polynomial in Horner form
 // (truncation error below 1.6e-9); above, the quotient, whose cancellation is then at most
 // a factor 4.5. Agrees with the C++ expm1 form to about 1e-7.
+float cmi_one_minus_exp_neg_over_x_taylor(float x) {
+)cm_glsl"
+     R"cm_glsl(    return 1.0 + x * (-1.0 / 2.0 + x * (1.0 / 6.0 + x * (-1.0 / 24.0 + x * (1.0 / 120.0 +
+           x * (-1.0 / 720.0 + x * (1.0 / 5040.0))))));
+}
 float cm_one_minus_exp_neg_over_x(float x) {
-    if (abs(x) < 0.25) {
-        return 1.0 + x * (-1.0 / 2.0 + x * (1.0 / 6.0 + x * (-1.0 / 24.0 + x * (1.0 / 120.0 +
-               x * (-1.0 / 720.0 + x * (1.0 / 5040.0))))));
-    }
-    return (1.0 - exp(-x)) / x;
+    return abs(x) < 0.25 ? cmi_one_minus_exp_neg_over_x_taylor(x) : (1.0 - exp(-x)) / x;
 }
 vec3 cm_one_minus_exp_neg_over_x(vec3 x) {
     return vec3(cm_one_minus_exp_neg_over_x(x.x), cm_one_minus_exp_neg_over_x(x.y),
                 cm_one_minus_exp_neg_over_x(x.z));
 }
 
-// 1 - exp(-x) with full relative precision for tiny x: x (1 - exp(-x)) / x.
-)cm_glsl"
-     R"cm_glsl(float cm_one_minus_exp_neg(float x) { return x * cm_one_minus_exp_neg_over_x(x); }
-vec3 cm_one_minus_exp_neg(vec3 x) { return x * cm_one_minus_exp_neg_over_x(x); }
+// 1 - exp(-x) with full relative precision for tiny x: below |x| = 0.25, x times the Taylor
+// polynomial above; from there, 1 - exp(-x) itself (its cancellation is at most a factor
+// 3.5). Not x * cm_one_minus_exp_neg_over_x(x) for all x: above 8.5e37 the quotient's 1/x
+// is a denormal that GPUs flush to 0 (result 0), and at x = Inf, where 2 tau or k tau
+// overflowed, it is Inf * 0 = NaN (cm_beer_powder from tau = 1.7e38, cm_powder(1e30,
+// 1e10)); this form gives 1 there, as the C++ does.
+// Domain: every finite x (1 for x >= 17; below x = -88.7 exp(-x) overflows and the result
+// is -Inf, as the C++ -expm1 gives).
+float cm_one_minus_exp_neg(float x) {
+    return abs(x) < 0.25 ? x * cmi_one_minus_exp_neg_over_x_taylor(x) : 1.0 - exp(-x);
+}
+vec3 cm_one_minus_exp_neg(vec3 x) {
+    return vec3(cm_one_minus_exp_neg(x.x), cm_one_minus_exp_neg(x.y), cm_one_minus_exp_neg(x.z));
+}
 
 #endif  // CM_CORE_GLSL
 )cm_glsl"},
@@ -230,18 +254,20 @@ vec2 cm_height_range_for_type(float cloud_type) {
     return vec2(p.x, p.w);
 }
 
-// (1 - exp(-a h)) exp(-b h) (Olajos 2016: a = 50, b = 4).
+// (1 - exp(-a h)) exp(-b h) (Olajos 2016: a = 50, b = 4), in [0, 1] for every finite input:
+// h <= 0 gives 0, a < 0 and b < 0 act as 0 (h clamped before either exponential: no 0 * Inf).
 float cm_height_gradient_exponential(float h, float a, float b) {
-    return cm_one_minus_exp_neg(max(a * h, 0.0)) * exp(-b * h);
+    float height = max(h, 0.0);
+    return cm_one_minus_exp_neg(max(a, 0.0) * height) * exp(-max(b, 0.0) * height);
 }
 
 // max(0, base + coverage - 1): monotonic in coverage; coverage clamped to [0, 1].
 float cm_apply_coverage(float base, float coverage) {
     float c = cm_saturate(coverage);
-    return cm_remap_clamped(base, 1.0 - c, 1.0, 0.0, 1.0) * c;
+    return cmi_remap_unit(base, 1.0 - c, 1.0) * c;  // cm_remap_clamped(..., 0.0, 1.0)
 }
 
-float cm_erode(float base, float erosion) { return cm_remap_clamped(base, erosion, 1.0, 0.0, 1.0); }
+float cm_erode(float base, float erosion) { return cmi_remap_unit(base, erosion, 1.0); }  // cm_remap_clamped(..., 0, 1)
 
 float cm_height_fog_density(float altitude, float density_at_zero, float falloff) {
     return density_at_zero * exp(-falloff * altitude);
@@ -252,10 +278,10 @@ float cm_height_fog_optical_depth(float altitude, float cos_zenith, float distan
                                   float density_at_zero, float falloff) {
     float mu = clamp(cos_zenith, -1.0, 1.0);
     float rise = mu * distance;
-    float h_low = rise < 0.0 ? altitude + rise : altitude;
-    return density_at_zero * distance * exp(-falloff * h_low) *
 )cm_glsl"
-     R"cm_glsl(           cm_one_minus_exp_neg_over_x(falloff * abs(rise));
+     R"cm_glsl(    float h_low = rise < 0.0 ? altitude + rise : altitude;
+    return density_at_zero * distance * exp(-falloff * h_low) *
+           cm_one_minus_exp_neg_over_x(falloff * abs(rise));
 }
 
 // Clear air's optical depth (r, g, b): Rayleigh (5.802, 13.558, 33.1) 1e-6 /m, scale height
@@ -685,7 +711,7 @@ float cm_point_altitude(vec3 p, float camera_altitude, float planet_radius) {
 }
 
 float cm_height_fraction(float altitude, float layer_bottom, float layer_top) {
-    return cm_remap_clamped(altitude, layer_bottom, layer_top, 0.0, 1.0);
+    return cmi_remap_unit(altitude, layer_bottom, layer_top);  // cm_remap_clamped(..., 0.0, 1.0)
 }
 
 #endif  // CM_GEOMETRY_GLSL
@@ -1026,20 +1052,23 @@ float cm_worley_noise(vec3 p, int period, uint seed) {
 float cm_worley_noise(vec3 p, int period) { return cm_worley_noise(p, period, 0u); }
 
 // fBm: octave i has amplitude gain^i, frequency and period times lacunarity^i, seed + i;
-// divided by the sum of amplitudes. octaves and lacunarity below 1 are treated as 1.
+// divided by the sum of amplitudes. octaves and lacunarity below 1 are treated as 1; gain is
+// clamped to [0, 1], so the sum of amplitudes is at least 1 (no division by 0 for negative
+// gains, no overflow for large ones) and the result stays in the base noise's range.
 // One loop for the three fBm twins (GLSL has no callables): kind 0 is 3D Perlin, 1 is 2D
 // Perlin on p.xy, 2 is Worley; the callers pass constants, which drivers fold.
 float cmi_fbm(vec3 p, int period, int octaves, int lacunarity, float gain, uint seed, int kind) {
     int count = max(octaves, 1), lac = max(lacunarity, 1), per = max(period, 1);
+    float g = clamp(gain, 0.0, 1.0);
     float sum = 0.0, norm = 0.0, amplitude = 1.0, frequency = 1.0;
     for (int i = 0; i < count; ++i) {
         vec3 q = p * frequency;
         uint s = seed + uint(i);
-        float octave = kind == 0 ? cm_perlin_noise(q, per, s) : (kind == 1 ? cm_perlin_noise(q.xy, per, s) : cm_worley_noise(q, per, s));
+)cm_glsl"
+     R"cm_glsl(        float octave = kind == 0 ? cm_perlin_noise(q, per, s) : (kind == 1 ? cm_perlin_noise(q.xy, per, s) : cm_worley_noise(q, per, s));
         sum += amplitude * octave;
         norm += amplitude;
-)cm_glsl"
-     R"cm_glsl(        amplitude *= gain;
+        amplitude *= g;
         frequency *= float(lac);
         per = cmi_grow_period(per, lac);
     }
@@ -1073,7 +1102,7 @@ float cm_worley_fbm_nubis(vec3 p, int period) { return cm_worley_fbm_nubis(p, pe
 float cm_perlin_worley(vec3 p, int period, uint seed) {
     float perlin = cm_perlin_fbm(p, period, 3, 2, 0.5, seed) * 0.5 + 0.5;
     float worley = cm_worley_fbm_nubis(p, period, seed + 101u);
-    return cm_remap_clamped(perlin, worley - 1.0, 1.0, 0.0, 1.0);
+    return cmi_remap_unit(perlin, worley - 1.0, 1.0);  // cm_remap_clamped(..., 0.0, 1.0)
 }
 float cm_perlin_worley(vec3 p, int period) { return cm_perlin_worley(p, period, 0u); }
 
@@ -1226,7 +1255,9 @@ float cm_phase_hg_schlick(float mu, float g) {
 }
 
 // mu distributed as HG(mu, g) for u uniform in [0, 1): the inverse CDF of phase.hpp,
-// 1 - mu = (1-g)^2 (1-u) (1+g+t) / t^2 with t = (1-g) + 2 g u, mirrored for g < 0.
+// 1 - mu = (1-g)^2 (1-u) (1+g+t) / t^2 with t = (1-g) + 2 g u, mirrored for g < 0, written
+// as (1 - u) (w (w (1+g) + (1-g))) with w = (1-g) / t: every factor shrinks as u grows, so
+// mu is monotonic in u (with correctly rounded arithmetic; phase.hpp).
 float cm_sample_phase_hg(float g, float u) {
     g = cmi_clamp_g(g);
     u = cm_saturate(u);
@@ -1234,8 +1265,9 @@ float cm_sample_phase_hg(float g, float u) {
     float v = g >= 0.0 ? u : 1.0 - u;
     float one_minus_v = g >= 0.0 ? 1.0 - u : u;
     float t = (1.0 - a) + 2.0 * a * v;
-    float one_minus_m = (1.0 - a) * (1.0 - a) * one_minus_v * (1.0 + a + t) / (t * t);
-    float m = clamp(1.0 - one_minus_m, -1.0, 1.0);
+    float w = (1.0 - a) / t;
+    float one_minus_m = one_minus_v * (w * (w * (1.0 + a) + (1.0 - a)));
+    float m = v <= 0.0 ? -1.0 : clamp(1.0 - one_minus_m, -1.0, 1.0);
     return g >= 0.0 ? m : -m;
 }
 
@@ -1411,11 +1443,13 @@ float cm_texture_lod(float footprint, float texel_size) {
 float cm_beer_lambert(float optical_depth) { return exp(-max(optical_depth, 0.0)); }
 vec3 cm_beer_lambert(vec3 optical_depth) { return exp(-max(optical_depth, vec3(0.0))); }
 
-// 1 - exp(-k tau) (Schneider 2015), full precision for tiny tau.
+// 1 - exp(-k tau) (Schneider 2015), full precision for tiny tau; every finite input, 1 where
+// k tau overflows (cm_one_minus_exp_neg of Inf is 1).
 float cm_powder(float optical_depth, float k) { return cm_one_minus_exp_neg(max(k * optical_depth, 0.0)); }
 vec3 cm_powder(vec3 optical_depth, float k) { return cm_one_minus_exp_neg(max(k * optical_depth, vec3(0.0))); }
 
-// 2 exp(-tau) (1 - exp(-2 tau)) (Schneider, GPU Pro 7): peak 0.7698 at ln(3)/2.
+// 2 exp(-tau) (1 - exp(-2 tau)) (Schneider, GPU Pro 7): peak 0.7698 at ln(3)/2; every
+// finite tau, 0 for huge tau (also where 2 tau overflows, from 1.7e38).
 float cm_beer_powder(float optical_depth) {
     float tau = max(optical_depth, 0.0);
     return 2.0 * exp(-tau) * cm_one_minus_exp_neg(2.0 * tau);

@@ -347,15 +347,25 @@ template <class T>
 // ---------------------------------------------------------------------------------------
 // fBm. Octave i: amplitude gain^i, frequency and period times lacunarity^i, seed + i; the sum
 // is divided by the sum of the amplitudes, so the range of the base noise is kept.
-// octaves < 1 is treated as 1, lacunarity < 1 as 1 (integer so that tiling holds).
+// Domain: every int period and lacunarity, every finite gain, and octaves as long as the last
+// octave's coordinate p lacunarity^(octaves - 1) stays finite in T (at lacunarity 2 in float,
+// up to about 127 - log2 |p| octaves; beyond, that coordinate is Inf and the result NaN; the
+// GLSL twin alike). octaves < 1 is treated as 1,
+// lacunarity < 1 as 1 (integer so that tiling holds). gain is clamped to
+// [0, 1]: the amplitudes are then non-negative and never grow, so the sum of amplitudes is
+// at least 1 and the result is a weighted mean of the octaves, in the base noise's range.
+// gain 0 is the first octave alone, gain 1 the plain mean of the octaves. Unclamped, a
+// negative gain made the amplitudes cancel (gain -1 with an even octave count: sum / 0 =
+// Inf or NaN), and a gain above 1 overflowed them for long octave counts.
 
 namespace detail {
 
 template <class T, class Noise>
-inline T fbm(const glm::vec<3, T>& p, int period, int octaves, int lacunarity, T gain,
+inline T fbm(const glm::vec<3, T>& p, int period, int octaves, int lacunarity, T gain_in,
              std::uint32_t seed, Noise noise) noexcept {
     const int count = octaves < 1 ? 1 : octaves;
     const int lac = lacunarity < 1 ? 1 : lacunarity;
+    const T gain = clamp(gain_in, T(0), T(1));
     T sum = T(0), norm = T(0), amplitude = T(1), frequency = T(1);
     int octave_period = detail::clamp_period(period);
     for (int i = 0; i < count; ++i) {
@@ -370,7 +380,7 @@ inline T fbm(const glm::vec<3, T>& p, int period, int octaves, int lacunarity, T
 
 }  // namespace detail
 
-// perlin_fbm: fBm of 3D Perlin noise, in [-1, 1].
+// perlin_fbm: fBm of 3D Perlin noise, in [-1, 1]; gain clamped to [0, 1] (see fBm above).
 template <class T>
 [[nodiscard]] inline T perlin_fbm(const glm::vec<3, T>& p, int period, int octaves, int lacunarity = 2,
                                   T gain = T(0.5), std::uint32_t seed = 0) noexcept {
@@ -378,7 +388,7 @@ template <class T>
                [](const glm::vec<3, T>& q, int per, std::uint32_t s) { return perlin_noise(q, per, s); });
 }
 
-// perlin_fbm for 2D (weather maps), in [-1, 1].
+// perlin_fbm for 2D (weather maps), in [-1, 1]; gain clamped to [0, 1].
 template <class T>
 [[nodiscard]] inline T perlin_fbm(const glm::vec<2, T>& p, int period, int octaves, int lacunarity = 2,
                                   T gain = T(0.5), std::uint32_t seed = 0) noexcept {
@@ -388,7 +398,7 @@ template <class T>
                });
 }
 
-// worley_fbm: fBm of the cloud Worley noise, in [0, 1].
+// worley_fbm: fBm of the cloud Worley noise, in [0, 1]; gain clamped to [0, 1].
 template <class T>
 [[nodiscard]] inline T worley_fbm(const glm::vec<3, T>& p, int period, int octaves, int lacunarity = 2,
                                   T gain = T(0.5), std::uint32_t seed = 0) noexcept {
@@ -412,7 +422,7 @@ template <class T>
 [[nodiscard]] inline T perlin_worley(const glm::vec<3, T>& p, int period, std::uint32_t seed = 0) noexcept {
     const T perlin = perlin_fbm(p, period, 3, 2, T(0.5), seed) * T(0.5) + T(0.5);
     const T worley = worley_fbm_nubis(p, period, seed + 101U);
-    return remap_clamped(perlin, worley - T(1), T(1), T(0), T(1));
+    return detail::remap_unit(perlin, worley - T(1), T(1));  // remap_clamped(..., 0, 1)
 }
 
 // ---------------------------------------------------------------------------------------

@@ -159,25 +159,36 @@ template <class T>
 // ---------------------------------------------------------------------------------------
 // One texel's values (before quantisation) at noise coordinate p, for the same `cells` and
 // seed (options.seed) as the bake. Periodic in every coordinate of p with period `cells`.
+// Domain of `cells` for the texel functions: every int. The bakes accept [1, bake_max_cells];
+// the texel functions treat cells < 1 as 1 (as the noise functions treat their period) and
+// are periodic with period `cells` (up to the rounding of p) for cells up to 2^25 (base:
+// its finest octave, the 4p octave of worley_fbm_nubis at 8 cells, has period 32 cells,
+// which must stay within the noise functions' 2^30 limit) and 2^26 (detail: 16 cells).
+// Above that the periods of the finer octaves saturate at 2^30 (detail::grow_period):
+// values stay defined and in [0, 1], but no longer tile. The periods 2, 4 and 8 times
+// cells were plain int products before: signed overflow (undefined behaviour) from
+// cells = 2^28 (base) and 2^29 (detail), and below -2^28 (base) and -2^29 (detail).
 
 // Base volume RGBA: perlin_worley(p, cells), worley_fbm_nubis(2p, 2 cells), (4p, 4 cells),
 // (8p, 8 cells), each with its channel's seed. All in [0, 1].
 template <class T>
 [[nodiscard]] inline glm::vec<4, T> bake_base_texel(const glm::vec<3, T>& p, int cells,
                                                     std::uint32_t seed = 0) noexcept {
-    return glm::vec<4, T>(perlin_worley(p, cells, bake_channel_seed(seed, bake_channel::base_r)),
-                          worley_fbm_nubis(p * T(2), 2 * cells, bake_channel_seed(seed, bake_channel::base_g)),
-                          worley_fbm_nubis(p * T(4), 4 * cells, bake_channel_seed(seed, bake_channel::base_b)),
-                          worley_fbm_nubis(p * T(8), 8 * cells, bake_channel_seed(seed, bake_channel::base_a)));
+    const int n = detail::clamp_period(cells);
+    return glm::vec<4, T>(perlin_worley(p, n, bake_channel_seed(seed, bake_channel::base_r)),
+                          worley_fbm_nubis(p * T(2), detail::grow_period(n, 2), bake_channel_seed(seed, bake_channel::base_g)),
+                          worley_fbm_nubis(p * T(4), detail::grow_period(n, 4), bake_channel_seed(seed, bake_channel::base_b)),
+                          worley_fbm_nubis(p * T(8), detail::grow_period(n, 8), bake_channel_seed(seed, bake_channel::base_a)));
 }
 
 // Detail volume RGB: worley_fbm_nubis at (p, cells), (2p, 2 cells), (4p, 4 cells). In [0, 1].
 template <class T>
 [[nodiscard]] inline glm::vec<3, T> bake_detail_texel(const glm::vec<3, T>& p, int cells,
                                                       std::uint32_t seed = 0) noexcept {
-    return glm::vec<3, T>(worley_fbm_nubis(p, cells, bake_channel_seed(seed, bake_channel::detail_r)),
-                          worley_fbm_nubis(p * T(2), 2 * cells, bake_channel_seed(seed, bake_channel::detail_g)),
-                          worley_fbm_nubis(p * T(4), 4 * cells, bake_channel_seed(seed, bake_channel::detail_b)));
+    const int n = detail::clamp_period(cells);
+    return glm::vec<3, T>(worley_fbm_nubis(p, n, bake_channel_seed(seed, bake_channel::detail_r)),
+                          worley_fbm_nubis(p * T(2), detail::grow_period(n, 2), bake_channel_seed(seed, bake_channel::detail_g)),
+                          worley_fbm_nubis(p * T(4), detail::grow_period(n, 4), bake_channel_seed(seed, bake_channel::detail_b)));
 }
 
 // Curl texture RGB: curl_bake_encode of each component of curl_noise((p, 0), cells). In [0, 1].

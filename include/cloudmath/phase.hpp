@@ -237,10 +237,19 @@ template <class T>
 // |g| < 1e-3 branch). For g >= 0, with t = (1 - g) + 2 g u:
 //   1 - mu = (1 - g)^2 (1 - u) (1 + g + t) / t^2,
 // a product of non-negative terms, accurate in the forward peak. For g < 0 the mirror
-// identity HG(mu, g) = HG(-mu, -g) is used with u -> 1 - u, which keeps mu monotonic
-// increasing in u (stratified and low-discrepancy u stay stratified).
-// u is clamped to [0, 1]; u = 0 gives mu = -1 and u = 1 gives mu = 1. The pdf of the
-// sampled mu, per steradian, is phase_hg(mu, g).
+// identity HG(mu, g) = HG(-mu, -g) is used with u -> 1 - u.
+// Domain: every finite g and u. g is clamped to [-phase_g_max, phase_g_max], u to [0, 1];
+// u = 0 gives mu = -1 and u = 1 gives mu = 1 exactly. NaN u gives NaN (IEEE builds).
+// Monotonic: mu is non-decreasing in u for every g, bit for bit with IEEE arithmetic (with
+// or without FMA contraction), so stratified and low-discrepancy u stay stratified. The
+// formula is written so that every rounded step moves the same way as u grows: with
+// w = (1 - g) / t (non-increasing in u),
+//   1 - mu = (1 - u) * (w * (w (1 + g) + (1 - g))),
+// a product of non-negative factors that all shrink as u grows. The form above,
+// (1 - u) (1 + g + t) / t^2, multiplied a growing factor into a shrinking one, and its
+// roundings went backwards by an ulp (3884 times over 2^24 + 1 evenly spaced u at g = 0.3 in
+// float). Measured by tests/test_phase.cpp on dense sweeps of u.
+// The pdf of the sampled mu, per steradian, is phase_hg(mu, g).
 template <class T>
 [[nodiscard]] inline T sample_phase_hg(T g, T u) noexcept {
     g = detail::clamp_g(g);
@@ -249,9 +258,11 @@ template <class T>
     // Sample the mirrored lobe for g < 0 with v = 1 - u; 1 - v is then u itself, exact.
     const T v = g >= T(0) ? u : T(1) - u;
     const T one_minus_v = g >= T(0) ? T(1) - u : u;
-    const T t = (T(1) - a) + T(2) * a * v;  // >= 1 - a > 0
-    const T one_minus_m = (T(1) - a) * (T(1) - a) * one_minus_v * (T(1) + a + t) / (t * t);
-    const T m = detail::clamp(T(1) - one_minus_m, T(-1), T(1));
+    const T t = (T(1) - a) + T(2) * a * v;  // >= 1 - a > 0, non-decreasing in v
+    const T w = (T(1) - a) / t;              // in (0, 1], non-increasing in v; 1 at v = 0
+    const T one_minus_m = one_minus_v * (w * (w * (T(1) + a) + (T(1) - a)));
+    // v = 0 is the far end exactly (the rounded 1 - mu there is 2 only to an ulp).
+    const T m = v <= T(0) ? T(-1) : detail::clamp(T(1) - one_minus_m, T(-1), T(1));
     return g >= T(0) ? m : -m;
 }
 

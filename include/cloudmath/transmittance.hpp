@@ -33,6 +33,8 @@ template <glm::length_t L, class T, glm::qualifier Q>
 // Powder effect (Schneider 2015, GPU Pro 7 2016): 1 - exp(-k tau), the darkening of cloud
 // edges seen with the sun behind the viewer. k > 0 sets how fast it saturates (Schneider
 // uses 2). k * tau < 0 is clamped to 0. Result in [0, 1].
+// Domain: every finite tau and k; a product k tau that overflows gives 1 (powder(1e30f,
+// 1e10f) == 1, in the GLSL twin too).
 template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
 [[nodiscard]] inline T powder(T optical_depth, T k) noexcept {
     return one_minus_exp_neg(detail::max(k * optical_depth, T(0)));
@@ -47,7 +49,9 @@ template <glm::length_t L, class T, glm::qualifier Q>
 //   E = 2 exp(-tau) (1 - exp(-2 tau)).
 // Peak 4 / (3 sqrt 3) = 0.7698 at tau = ln(3)/2 = 0.5493; it exceeds plain Beer-Lambert for
 // tau > ln(2)/2 = 0.3466, so it is an artistic term, not an energy-bounded transmittance.
-// Result in [0, 0.7698].
+// Result in [0, 0.7698]. Domain: every finite tau (negative acts as 0); 0 once exp(-tau)
+// underflows, also where 2 tau overflows (tau > FLT_MAX / 2): -expm1(-Inf) is 1, not NaN.
+// batch::beer_powder and the GLSL twin give the same 0 there.
 template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
 [[nodiscard]] inline T beer_powder(T optical_depth) noexcept {
     const T tau = detail::max(optical_depth, T(0));

@@ -174,6 +174,28 @@ std::vector<parity_case> make_cases() {
         add({"cm_one_minus_exp_neg", "vec4(cm_one_minus_exp_neg(a.x), cm_one_minus_exp_neg(a.yzw))", [](vec4 a, vec4) {
                  const vec3 v = cm::one_minus_exp_neg(vec3(a.y, a.z, a.w));
                  return vec4(cm::one_minus_exp_neg(a.x), v); }, in, 4});
+        // Huge x (regression): x * cm_one_minus_exp_neg_over_x(x) was Inf * 0 = NaN; 1 - exp(-x) = 1.
+        std::vector<std::pair<vec4, vec4>> huge;
+        for (float x : {17.0f, 88.0f, 100.0f, 1e4f, 1e30f, 1e38f, 1.7e38f, 3.4028235e38f})
+            huge.push_back({vec4(x, x * 0.5f, x * 1e-10f, std::min(x * 2.0f, 3.4028235e38f)), vec4(0)});
+        add({"cm_one_minus_exp_neg", "vec4(cm_one_minus_exp_neg(a.x), cm_one_minus_exp_neg(a.yzw))", [](vec4 a, vec4) {
+                 const vec3 v = cm::one_minus_exp_neg(vec3(a.y, a.z, a.w));
+                 return vec4(cm::one_minus_exp_neg(a.x), v); }, huge, 4});
+    }
+    {
+        // remap_clamped with huge finite inputs (regression: Inf / Inf = NaN) and equal new
+        // ends (the blend rounded an ulp outside them); compared on the new range's scale.
+        std::vector<std::pair<vec4, vec4>> in;
+        const float big = 3.4028235e38f;
+        for (float x : {big, -big, 3e38f, -3e38f, 1e38f, 2.5e38f, 1.0f, 0.0f})
+            for (vec2 r : {vec2(-big, big), vec2(big, -big), vec2(-3e38f, 3e38f), vec2(0.0f, big), vec2(-1.0f, 3e38f)}) {
+                in.push_back({vec4(x, r.x, r.y, 0.0f), vec4(0.0f, 1.0f, 0.0f, 0.0f)});
+                in.push_back({vec4(x, r.x, r.y, 0.0f), vec4(0.920364857f, 0.920364857f, 0.0f, 0.0f)});
+                in.push_back({vec4(x, r.x, r.y, 0.0f), vec4(5.0f, -5.0f, 0.0f, 0.0f)});
+            }
+        in.push_back({vec4(-0.125486612f, -0.0317127705f, -1.16267025f, 0.0f), vec4(0.920364857f, 0.920364857f, 0.0f, 0.0f)});
+        in.push_back({vec4(0.285094023f, -0.252416611f, 1.121454f, 0.0f), vec4(-1.56015718f, -1.56015718f, 0.0f, 0.0f)});
+        add({"cm_remap_clamped", "vec4(cm_remap_clamped(a.x, a.y, a.z, b.x, b.y))", [](vec4 a, vec4 b) { return vec4(cm::remap_clamped(a.x, a.y, a.z, b.x, b.y)); }, in, 1, 1.0f});
     }
 
     // phase
@@ -208,8 +230,10 @@ std::vector<parity_case> make_cases() {
     }
     {
         std::vector<std::pair<vec4, vec4>> in;
-        for (float g : g_values())
+        for (float g : g_values()) {
             for (int i = 0; i <= 64; ++i) in.push_back({vec4(g, float(i) / 64.0f, 0.0f, 0.0f), vec4(0)});
+            for (float u : {1e-7f, 1e-4f, 0.9999f, 0.99999994f, -0.5f, 1.5f}) in.push_back({vec4(g, u, 0.0f, 0.0f), vec4(0)});
+        }
         // Sampled mu is compared absolutely (it lives in [-1, 1] and crosses 0).
         add({"cm_sample_phase_hg", "vec4(cm_sample_phase_hg(a.x, a.y))", [](vec4 a, vec4) { return vec4(cm::sample_phase_hg(a.x, a.y)); }, in, 1, 1.0f});
     }
@@ -226,6 +250,15 @@ std::vector<parity_case> make_cases() {
         for (float g : {0.0f, 0.8f, 0.99f, 1.0f, -1.0f})
             add({"cm_diffuse_transmittance", "vec4(cm_diffuse_transmittance(a.x, " + std::to_string(g) + "), cm_diffuse_transmittance(a.yzw, " + std::to_string(g) + "))",
                  [g](vec4 a, vec4) { return vec4(cm::diffuse_transmittance(a.x, g), cm::diffuse_transmittance(vec3(a.y, a.z, a.w), g)); }, in, 4});
+        // Huge optical depths (regression: cm_beer_powder was NaN from tau = 1.7e38, where 2 tau
+        // overflows, and cm_powder(1e30, 1e10) where k tau does): the limits 0 and 1.
+        std::vector<std::pair<vec4, vec4>> huge;
+        for (float t : {1e10f, 1e30f, 1e38f, 1.7e38f, 2e38f, 3.4028235e38f}) huge.push_back({vec4(t, t * 0.5f, t * 0.9f, t), vec4(0)});
+        add({"cm_beer_lambert", "vec4(cm_beer_lambert(a.x), cm_beer_lambert(a.yzw))", [](vec4 a, vec4) { return vec4(cm::beer_lambert(a.x), cm::beer_lambert(vec3(a.y, a.z, a.w))); }, huge, 4, 1e-30f});
+        add({"cm_powder", "vec4(cm_powder(a.x, 1e10), cm_powder(a.yzw, 1e10))", [](vec4 a, vec4) { return vec4(cm::powder(a.x, 1e10f), cm::powder(vec3(a.y, a.z, a.w), 1e10f)); }, huge, 4});
+        add({"cm_powder", "vec4(cm_powder(a.x, 2.0), cm_powder(a.yzw, 2.0))", [](vec4 a, vec4) { return vec4(cm::powder(a.x, 2.0f), cm::powder(vec3(a.y, a.z, a.w), 2.0f)); }, huge, 4});
+        add({"cm_beer_powder", "vec4(cm_beer_powder(a.x), cm_beer_powder(a.yzw))", [](vec4 a, vec4) { return vec4(cm::beer_powder(a.x), cm::beer_powder(vec3(a.y, a.z, a.w))); }, huge, 4, 1e-30f});
+        add({"cm_nubis_attenuation", "vec4(cm_nubis_attenuation(a.x), cm_nubis_attenuation(a.yzw))", [](vec4 a, vec4) { return vec4(cm::nubis_attenuation(a.x), cm::nubis_attenuation(vec3(a.y, a.z, a.w))); }, huge, 4, 1e-30f});
     }
 
     // integration
@@ -346,6 +379,13 @@ std::vector<parity_case> make_cases() {
         auto dir_cpp = [dirs](vec4 b) { return dirs[int(b.x)]; };
         add({"cm_cone_kernel_offset", "vec4(cm_cone_kernel_offset(int(a.w), int(b.w)), cm_cone_kernel_offset(int(a.w), 5))",
              [](vec4 a, vec4 b) { return vec4(cm::cone_kernel_offset<float>(int(a.w), int(b.w)), cm::cone_kernel_offset<float>(int(a.w), 5)); }, in2, 4, 1.0f});
+        // Large counts (regression: the C++ wrap overflowed int for n > INT_MAX / 2); small
+        // indices, whose angles both sides round alike.
+        std::vector<std::pair<vec4, vec4>> big_n;
+        for (float n : {1073741824.0f, 2147483520.0f, 8388608.0f})
+            for (int i = 0; i <= 7; ++i) big_n.push_back({vec4(0.0f, 0.0f, 0.0f, float(i)), vec4(0.0f, 0.0f, 0.0f, n)});
+        add({"cm_cone_kernel_offset", "vec4(cm_cone_kernel_offset(int(a.w), int(b.w)), cm_cone_kernel_offset(int(a.w) - int(b.w), int(b.w)))",
+             [](vec4 a, vec4 b) { return vec4(cm::cone_kernel_offset<float>(int(a.w), int(b.w)), cm::cone_kernel_offset<float>(int(a.w) - int(b.w), int(b.w))); }, big_n, 4, 1.0f});
         add({"cm_cone_sample_distance", "vec4(cm_cone_sample_distance(" + cfg + ", int(a.w)), cm_cone_sample_length(" + cfg + ", int(a.w)), 0.0, 0.0)",
              [cfg_of](vec4 a, vec4 b) { return vec4(cm::cone_sample_distance(cfg_of(b), int(a.w)), cm::cone_sample_length(cfg_of(b), int(a.w)), 0.0f, 0.0f); }, in2, 2, 1.0f});
         add({"cm_cone_sample_length", "vec4(cm_cone_sample_length(" + cfg + ", int(a.w)))",
@@ -425,6 +465,14 @@ std::vector<parity_case> make_cases() {
         add({"cm_height_gradient_for_type", "vec4(cm_height_gradient_for_type(a.x, a.y))", [](vec4 a, vec4) { return vec4(cm::height_gradient_for_type(a.x, a.y)); }, in, 1, 1.0f});
         add({"cm_height_gradient_exponential", "vec4(cm_height_gradient_exponential(a.x, 50.0, 4.0), cm_height_gradient_exponential(a.x * 1e-6, 50.0, 4.0), 0.0, 0.0)",
              [](vec4 a, vec4) { return vec4(cm::height_gradient_exponential(a.x, 50.0f, 4.0f), cm::height_gradient_exponential(a.x * 1e-6f, 50.0f, 4.0f), 0.0f, 0.0f); }, in, 2, 1e-30f});
+        // Below the layer and far above it (regression: 0 * exp(92) = NaN at h = -23, and
+        // Inf * 0 from cm_one_minus_exp_neg at h = FLT_MAX); negative a and b act as 0.
+        std::vector<std::pair<vec4, vec4>> far;
+        for (float h : {-3.4028235e38f, -1e30f, -177.5f, -23.0f, -22.2f, -1.0f, 0.0f, 0.05f, 30.0f, 1e30f, 3.4028235e38f})
+            far.push_back({vec4(h, 0.0f, 0.0f, 0.0f), vec4(0)});
+        add({"cm_height_gradient_exponential", "vec4(cm_height_gradient_exponential(a.x, 50.0, 4.0), cm_height_gradient_exponential(a.x, -50.0, 4.0), cm_height_gradient_exponential(a.x, 50.0, -4.0), cm_height_gradient_exponential(a.x, 1e30, 1e30))",
+             [](vec4 a, vec4) { return vec4(cm::height_gradient_exponential(a.x, 50.0f, 4.0f), cm::height_gradient_exponential(a.x, -50.0f, 4.0f),
+                                            cm::height_gradient_exponential(a.x, 50.0f, -4.0f), cm::height_gradient_exponential(a.x, 1e30f, 1e30f)); }, far, 4, 1e-30f});
         std::vector<std::pair<vec4, vec4>> cov;
         for (int b = 0; b <= 20; ++b)
             for (int c = -2; c <= 22; ++c) cov.push_back({vec4(float(b) / 20.0f, float(c) / 20.0f, 0.0f, 0.0f), vec4(0)});
@@ -538,6 +586,13 @@ std::vector<parity_case> make_cases() {
                                               cm::perlin_fbm(vec2(a), int(a.w), 5, 2, 0.5f, std::uint32_t(b.x)), cm::perlin_fbm(vec2(a), int(a.w), 3)); }, pts, 4, 1.0f});
         add({"cm_worley_fbm", "vec4(cm_worley_fbm(a.xyz, int(a.w), 3, 2, 0.5, uint(b.x)), cm_worley_fbm(a.xyz, int(a.w), 3), 0.0, 0.0)",
              [](vec4 a, vec4 b) { return vec4(cm::worley_fbm(vec3(a), int(a.w), 3, 2, 0.5f, std::uint32_t(b.x)), cm::worley_fbm(vec3(a), int(a.w), 3), 0.0f, 0.0f); }, pts, 2, 1.0f});
+        // gain outside [0, 1] is clamped (regression: gain -1 with 4 octaves divided by 0).
+        add({"cm_perlin_fbm", "vec4(cm_perlin_fbm(a.xyz, int(a.w), 4, 2, -1.0, uint(b.x)), cm_perlin_fbm(a.xyz, int(a.w), 3, 2, 2.5, uint(b.x)), cm_perlin_fbm(a.xy, int(a.w), 4, 2, -0.5, uint(b.x)), cm_perlin_fbm(a.xy, int(a.w), 4, 2, 1e30, uint(b.x)))",
+             [](vec4 a, vec4 b) { return vec4(cm::perlin_fbm(vec3(a), int(a.w), 4, 2, -1.0f, std::uint32_t(b.x)), cm::perlin_fbm(vec3(a), int(a.w), 3, 2, 2.5f, std::uint32_t(b.x)),
+                                              cm::perlin_fbm(vec2(a), int(a.w), 4, 2, -0.5f, std::uint32_t(b.x)), cm::perlin_fbm(vec2(a), int(a.w), 4, 2, 1e30f, std::uint32_t(b.x))); }, pts, 4, 1.0f});
+        add({"cm_worley_fbm", "vec4(cm_worley_fbm(a.xyz, int(a.w), 4, 2, -1.0, uint(b.x)), cm_worley_fbm(a.xyz, int(a.w), 3, 2, 0.0, uint(b.x)), cm_worley_fbm(a.xyz, int(a.w), 3, 2, 3.0, uint(b.x)), 0.0)",
+             [](vec4 a, vec4 b) { return vec4(cm::worley_fbm(vec3(a), int(a.w), 4, 2, -1.0f, std::uint32_t(b.x)), cm::worley_fbm(vec3(a), int(a.w), 3, 2, 0.0f, std::uint32_t(b.x)),
+                                              cm::worley_fbm(vec3(a), int(a.w), 3, 2, 3.0f, std::uint32_t(b.x)), 0.0f); }, pts, 3, 1.0f});
         add({"cm_worley_fbm_nubis", "vec4(cm_worley_fbm_nubis(a.xyz, int(a.w), uint(b.x)), cm_worley_fbm_nubis(a.xyz, int(a.w)), 0.0, 0.0)",
              [](vec4 a, vec4 b) { return vec4(cm::worley_fbm_nubis(vec3(a), int(a.w), std::uint32_t(b.x)), cm::worley_fbm_nubis(vec3(a), int(a.w)), 0.0f, 0.0f); }, pts, 2, 1.0f});
         add({"cm_perlin_worley", "vec4(cm_perlin_worley(a.xyz, int(a.w), uint(b.x)), cm_perlin_worley(a.xyz, int(a.w)), 0.0, 0.0)",

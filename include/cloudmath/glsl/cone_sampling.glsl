@@ -27,11 +27,12 @@ int cmi_cone_near_count(CmConeLightConfig cfg) {
     return max(cmi_cone_has_far(cfg) ? cfg.sample_count - 1 : cfg.sample_count, 0);
 }
 
-// Point i of n of the Vogel spiral in the unit disc; i modulo n, n < 1 treated as 1.
-// (GLSL leaves % of negative operands undefined, hence the explicit wrap.)
+// Point i of n of the Vogel spiral in the unit disc; i modulo n, n < 1 treated as 1; every
+// int i and n (GLSL leaves % of negative operands undefined, hence the explicit wrap, which
+// never overflows: -(i + 1) >= 0 for every negative i).
 vec2 cm_cone_kernel_offset(int i, int n) {
     int count = max(n, 1);
-    int k = i >= 0 ? i % count : count - 1 - ((-i - 1) % count);
+    int k = i >= 0 ? i % count : count - 1 - (-(i + 1)) % count;
     float radius = sqrt((float(k) + 0.5) / float(count));
     float angle = float(k) * 2.39996322972865;
     return radius * vec2(cos(angle), sin(angle));

@@ -27,16 +27,28 @@ float cm_remap(float x, float old_min, float old_max, float new_min, float new_m
     return new_min + (x - old_min) / (old_max - old_min) * (new_max - new_min);
 }
 
-// Remap clamped to the new range; t is clamped before scaling, end points exact.
+// saturate((x - old_min) / (old_max - old_min)), a degenerate range as cm_remap's step:
+// cm_remap_clamped to [0, 1] (core.hpp's detail::remap_unit). When an input exceeds
+// FLT_MAX / 4 the halved inputs are used, so the differences cannot overflow to Inf / Inf
+// (the C++ uses double there). A driver that re-associated x/2 - m/2 into (x - m)/2 would
+// lose that (Mesa keeps it: the parity cases with inputs up to FLT_MAX).
+float cmi_remap_unit(float x, float old_min, float old_max) {
+    if (old_max == old_min) return x < old_min ? 0.0 : 1.0;
+    float s = max(max(abs(x), abs(old_min)), abs(old_max)) > 8.50705917e37 ? 0.5 : 1.0;
+    return cm_saturate((x * s - old_min * s) / (old_max * s - old_min * s));
+}
+
+// Remap clamped to the new range; t is clamped before scaling, end points exact. Finite
+// and inside [min(new_min, new_max), max(new_min, new_max)] for every finite input: the
+// blend, which can round an ulp past an end, is clamped (core.hpp).
 float cm_remap_clamped(float x, float old_min, float old_max, float new_min, float new_max) {
-    if (old_max == old_min) return x < old_min ? new_min : new_max;
-    float t = cm_saturate((x - old_min) / (old_max - old_min));
-    return (1.0 - t) * new_min + t * new_max;
+    float t = cmi_remap_unit(x, old_min, old_max);
+    return clamp((1.0 - t) * new_min + t * new_max, min(new_min, new_max), max(new_min, new_max));
 }
 
 // GLSL smoothstep defined for every pair of edges (GLSL leaves edge0 >= edge1 undefined).
 float cm_smoothstep_safe(float edge0, float edge1, float x) {
-    float t = cm_remap_clamped(x, edge0, edge1, 0.0, 1.0);
+    float t = cmi_remap_unit(x, edge0, edge1);  // cm_remap_clamped(x, edge0, edge1, 0.0, 1.0)
     return t * t * (3.0 - 2.0 * t);
 }
 
@@ -45,20 +57,31 @@ float cm_smoothstep_safe(float edge0, float edge1, float x) {
 // errors up to 1e23). Below |x| = 0.25 the degree-6 Taylor polynomial in Horner form
 // (truncation error below 1.6e-9); above, the quotient, whose cancellation is then at most
 // a factor 4.5. Agrees with the C++ expm1 form to about 1e-7.
+float cmi_one_minus_exp_neg_over_x_taylor(float x) {
+    return 1.0 + x * (-1.0 / 2.0 + x * (1.0 / 6.0 + x * (-1.0 / 24.0 + x * (1.0 / 120.0 +
+           x * (-1.0 / 720.0 + x * (1.0 / 5040.0))))));
+}
 float cm_one_minus_exp_neg_over_x(float x) {
-    if (abs(x) < 0.25) {
-        return 1.0 + x * (-1.0 / 2.0 + x * (1.0 / 6.0 + x * (-1.0 / 24.0 + x * (1.0 / 120.0 +
-               x * (-1.0 / 720.0 + x * (1.0 / 5040.0))))));
-    }
-    return (1.0 - exp(-x)) / x;
+    return abs(x) < 0.25 ? cmi_one_minus_exp_neg_over_x_taylor(x) : (1.0 - exp(-x)) / x;
 }
 vec3 cm_one_minus_exp_neg_over_x(vec3 x) {
     return vec3(cm_one_minus_exp_neg_over_x(x.x), cm_one_minus_exp_neg_over_x(x.y),
                 cm_one_minus_exp_neg_over_x(x.z));
 }
 
-// 1 - exp(-x) with full relative precision for tiny x: x (1 - exp(-x)) / x.
-float cm_one_minus_exp_neg(float x) { return x * cm_one_minus_exp_neg_over_x(x); }
-vec3 cm_one_minus_exp_neg(vec3 x) { return x * cm_one_minus_exp_neg_over_x(x); }
+// 1 - exp(-x) with full relative precision for tiny x: below |x| = 0.25, x times the Taylor
+// polynomial above; from there, 1 - exp(-x) itself (its cancellation is at most a factor
+// 3.5). Not x * cm_one_minus_exp_neg_over_x(x) for all x: above 8.5e37 the quotient's 1/x
+// is a denormal that GPUs flush to 0 (result 0), and at x = Inf, where 2 tau or k tau
+// overflowed, it is Inf * 0 = NaN (cm_beer_powder from tau = 1.7e38, cm_powder(1e30,
+// 1e10)); this form gives 1 there, as the C++ does.
+// Domain: every finite x (1 for x >= 17; below x = -88.7 exp(-x) overflows and the result
+// is -Inf, as the C++ -expm1 gives).
+float cm_one_minus_exp_neg(float x) {
+    return abs(x) < 0.25 ? x * cmi_one_minus_exp_neg_over_x_taylor(x) : 1.0 - exp(-x);
+}
+vec3 cm_one_minus_exp_neg(vec3 x) {
+    return vec3(cm_one_minus_exp_neg(x.x), cm_one_minus_exp_neg(x.y), cm_one_minus_exp_neg(x.z));
+}
 
 #endif  // CM_CORE_GLSL

@@ -34,18 +34,20 @@ vec2 cm_height_range_for_type(float cloud_type) {
     return vec2(p.x, p.w);
 }
 
-// (1 - exp(-a h)) exp(-b h) (Olajos 2016: a = 50, b = 4).
+// (1 - exp(-a h)) exp(-b h) (Olajos 2016: a = 50, b = 4), in [0, 1] for every finite input:
+// h <= 0 gives 0, a < 0 and b < 0 act as 0 (h clamped before either exponential: no 0 * Inf).
 float cm_height_gradient_exponential(float h, float a, float b) {
-    return cm_one_minus_exp_neg(max(a * h, 0.0)) * exp(-b * h);
+    float height = max(h, 0.0);
+    return cm_one_minus_exp_neg(max(a, 0.0) * height) * exp(-max(b, 0.0) * height);
 }
 
 // max(0, base + coverage - 1): monotonic in coverage; coverage clamped to [0, 1].
 float cm_apply_coverage(float base, float coverage) {
     float c = cm_saturate(coverage);
-    return cm_remap_clamped(base, 1.0 - c, 1.0, 0.0, 1.0) * c;
+    return cmi_remap_unit(base, 1.0 - c, 1.0) * c;  // cm_remap_clamped(..., 0.0, 1.0)
 }
 
-float cm_erode(float base, float erosion) { return cm_remap_clamped(base, erosion, 1.0, 0.0, 1.0); }
+float cm_erode(float base, float erosion) { return cmi_remap_unit(base, erosion, 1.0); }  // cm_remap_clamped(..., 0, 1)
 
 float cm_height_fog_density(float altitude, float density_at_zero, float falloff) {
     return density_at_zero * exp(-falloff * altitude);

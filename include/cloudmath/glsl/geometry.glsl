@@ -127,7 +127,7 @@ float cm_point_altitude(vec3 p, float camera_altitude, float planet_radius) {
 }
 
 float cm_height_fraction(float altitude, float layer_bottom, float layer_top) {
-    return cm_remap_clamped(altitude, layer_bottom, layer_top, 0.0, 1.0);
+    return cmi_remap_unit(altitude, layer_bottom, layer_top);  // cm_remap_clamped(..., 0.0, 1.0)
 }
 
 #endif  // CM_GEOMETRY_GLSL

@@ -166,11 +166,14 @@ float cm_worley_noise(vec3 p, int period, uint seed) {
 float cm_worley_noise(vec3 p, int period) { return cm_worley_noise(p, period, 0u); }
 
 // fBm: octave i has amplitude gain^i, frequency and period times lacunarity^i, seed + i;
-// divided by the sum of amplitudes. octaves and lacunarity below 1 are treated as 1.
+// divided by the sum of amplitudes. octaves and lacunarity below 1 are treated as 1; gain is
+// clamped to [0, 1], so the sum of amplitudes is at least 1 (no division by 0 for negative
+// gains, no overflow for large ones) and the result stays in the base noise's range.
 // One loop for the three fBm twins (GLSL has no callables): kind 0 is 3D Perlin, 1 is 2D
 // Perlin on p.xy, 2 is Worley; the callers pass constants, which drivers fold.
 float cmi_fbm(vec3 p, int period, int octaves, int lacunarity, float gain, uint seed, int kind) {
     int count = max(octaves, 1), lac = max(lacunarity, 1), per = max(period, 1);
+    float g = clamp(gain, 0.0, 1.0);
     float sum = 0.0, norm = 0.0, amplitude = 1.0, frequency = 1.0;
     for (int i = 0; i < count; ++i) {
         vec3 q = p * frequency;
@@ -178,7 +181,7 @@ float cmi_fbm(vec3 p, int period, int octaves, int lacunarity, float gain, uint 
         float octave = kind == 0 ? cm_perlin_noise(q, per, s) : (kind == 1 ? cm_perlin_noise(q.xy, per, s) : cm_worley_noise(q, per, s));
         sum += amplitude * octave;
         norm += amplitude;
-        amplitude *= gain;
+        amplitude *= g;
         frequency *= float(lac);
         per = cmi_grow_period(per, lac);
     }
@@ -212,7 +215,7 @@ float cm_worley_fbm_nubis(vec3 p, int period) { return cm_worley_fbm_nubis(p, pe
 float cm_perlin_worley(vec3 p, int period, uint seed) {
     float perlin = cm_perlin_fbm(p, period, 3, 2, 0.5, seed) * 0.5 + 0.5;
     float worley = cm_worley_fbm_nubis(p, period, seed + 101u);
-    return cm_remap_clamped(perlin, worley - 1.0, 1.0, 0.0, 1.0);
+    return cmi_remap_unit(perlin, worley - 1.0, 1.0);  // cm_remap_clamped(..., 0.0, 1.0)
 }
 float cm_perlin_worley(vec3 p, int period) { return cm_perlin_worley(p, period, 0u); }
 

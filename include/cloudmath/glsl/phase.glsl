@@ -127,7 +127,9 @@ float cm_phase_hg_schlick(float mu, float g) {
 }
 
 // mu distributed as HG(mu, g) for u uniform in [0, 1): the inverse CDF of phase.hpp,
-// 1 - mu = (1-g)^2 (1-u) (1+g+t) / t^2 with t = (1-g) + 2 g u, mirrored for g < 0.
+// 1 - mu = (1-g)^2 (1-u) (1+g+t) / t^2 with t = (1-g) + 2 g u, mirrored for g < 0, written
+// as (1 - u) (w (w (1+g) + (1-g))) with w = (1-g) / t: every factor shrinks as u grows, so
+// mu is monotonic in u (with correctly rounded arithmetic; phase.hpp).
 float cm_sample_phase_hg(float g, float u) {
     g = cmi_clamp_g(g);
     u = cm_saturate(u);
@@ -135,8 +137,9 @@ float cm_sample_phase_hg(float g, float u) {
     float v = g >= 0.0 ? u : 1.0 - u;
     float one_minus_v = g >= 0.0 ? 1.0 - u : u;
     float t = (1.0 - a) + 2.0 * a * v;
-    float one_minus_m = (1.0 - a) * (1.0 - a) * one_minus_v * (1.0 + a + t) / (t * t);
-    float m = clamp(1.0 - one_minus_m, -1.0, 1.0);
+    float w = (1.0 - a) / t;
+    float one_minus_m = one_minus_v * (w * (w * (1.0 + a) + (1.0 - a)));
+    float m = v <= 0.0 ? -1.0 : clamp(1.0 - one_minus_m, -1.0, 1.0);
     return g >= 0.0 ? m : -m;
 }
 

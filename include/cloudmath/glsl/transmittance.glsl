@@ -9,11 +9,13 @@
 float cm_beer_lambert(float optical_depth) { return exp(-max(optical_depth, 0.0)); }
 vec3 cm_beer_lambert(vec3 optical_depth) { return exp(-max(optical_depth, vec3(0.0))); }
 
-// 1 - exp(-k tau) (Schneider 2015), full precision for tiny tau.
+// 1 - exp(-k tau) (Schneider 2015), full precision for tiny tau; every finite input, 1 where
+// k tau overflows (cm_one_minus_exp_neg of Inf is 1).
 float cm_powder(float optical_depth, float k) { return cm_one_minus_exp_neg(max(k * optical_depth, 0.0)); }
 vec3 cm_powder(vec3 optical_depth, float k) { return cm_one_minus_exp_neg(max(k * optical_depth, vec3(0.0))); }
 
-// 2 exp(-tau) (1 - exp(-2 tau)) (Schneider, GPU Pro 7): peak 0.7698 at ln(3)/2.
+// 2 exp(-tau) (1 - exp(-2 tau)) (Schneider, GPU Pro 7): peak 0.7698 at ln(3)/2; every
+// finite tau, 0 for huge tau (also where 2 tau overflows, from 1.7e38).
 float cm_beer_powder(float optical_depth) {
     float tau = max(optical_depth, 0.0);
     return 2.0 * exp(-tau) * cm_one_minus_exp_neg(2.0 * tau);
