@@ -142,8 +142,14 @@ TEST_CASE("ray_sphere_intersect: float at Earth radius, within 1 m of the exact 
         }
     MESSAGE("worst distance error " << double(worst) << " m; the textbook quadratic " << double(worst_textbook)
                                      << " m; Haines' discriminant alone " << double(worst_haines) << " m");
-    CHECK(worst <= 1.0L);
-    CHECK(worst_textbook > 4.0L * worst);
+    // -ffast-math may simplify the exact-product error terms away (documented): then the
+    // result is the plain quadratic's, which only the IEEE builds improve on.
+    if constexpr (cm_test::ieee_build) {
+        CHECK(worst <= 1.0L);
+        CHECK(worst_textbook > 4.0L * worst);
+    } else {
+        CHECK(worst <= 2.0L * worst_textbook);
+    }
 }
 
 TEST_CASE("ray_sphere_intersect_altitude: float accuracy at Earth radius against the textbook forms") {

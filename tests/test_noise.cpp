@@ -426,6 +426,9 @@ TEST_CASE("hash_to_unit: k / 2^24 from the top 24 bits, in [0, 1), exact in floa
     for (std::uint32_t h : {1U, 12345U, 0x80000000U, 0xdeadbeefU, noise_hash(9U)}) {
         CHECK(double(hash_to_unit<float>(h)) == hash_to_unit<double>(h));
         CHECK(hash_to_unit<double>(h) == double(h >> 8) / 16777216.0);
+    }
+}
+
 // Regression (fuzzing): gain had no documented range; gain -1 with an even octave count made
 // the sum of amplitudes 0 (sum / 0: Inf or NaN), and large gains overflowed the amplitudes.
 // Documented now: gain is clamped to [0, 1]. References from the definition over the base

@@ -639,6 +639,8 @@ TEST_CASE("the default base volume and coverage: what coverage 0.5 covers (docs/
     CHECK(f_half > 0.85);   // ...so coverage 0.5 is overcast,
     CHECK(f_03 < 0.6);      // and coverage 0.3 leaves about half of it (before the weather map and
                             // the height profile thin it further: the presets' 0.27-0.33 are scattered)
+}
+
 // Regression (fuzzing, UBSan): the texel functions multiplied cells by 2, 4 and 8 in int,
 // signed overflow (undefined behaviour) from cells = 2^28 (base) and 2^29 (detail); the
 // sanitize build aborts on it. Now cells < 1 acts as 1 and the periods saturate at 2^30:

@@ -269,18 +269,21 @@ float cm_apply_coverage(float base, float coverage) {
 
 float cm_erode(float base, float erosion) { return cmi_remap_unit(base, erosion, 1.0); }  // cm_remap_clamped(..., 0, 1)
 
+// The exponent is floored at -104 (exp gives 0 there in float, as in C++) before exp: a driver
+// that folds exp's log2(e) into the product would otherwise compute (-falloff log2 e) *
+// altitude, which is Inf * 0 = NaN for a huge falloff at altitude 0 (glsl.fuzz found it).
 float cm_height_fog_density(float altitude, float density_at_zero, float falloff) {
-    return density_at_zero * exp(-falloff * altitude);
+    return density_at_zero * exp(max(-falloff * altitude, -104.0));
 }
 
 // rho0 L exp(-k h_low) (1 - exp(-x)) / x, x = k |mu| L, from the lower end of the ray.
 float cm_height_fog_optical_depth(float altitude, float cos_zenith, float distance,
-                                  float density_at_zero, float falloff) {
+)cm_glsl"
+     R"cm_glsl(                                  float density_at_zero, float falloff) {
     float mu = clamp(cos_zenith, -1.0, 1.0);
     float rise = mu * distance;
-)cm_glsl"
-     R"cm_glsl(    float h_low = rise < 0.0 ? altitude + rise : altitude;
-    return density_at_zero * distance * exp(-falloff * h_low) *
+    float h_low = rise < 0.0 ? altitude + rise : altitude;
+    return density_at_zero * distance * exp(max(-falloff * h_low, -104.0)) *  // floored: see above
            cm_one_minus_exp_neg_over_x(falloff * abs(rise));
 }
 
