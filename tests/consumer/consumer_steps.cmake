@@ -23,3 +23,14 @@ function(consumer_configure_args out)
   endif()
   set(${out} ${args} PARENT_SCOPE)
 endfunction()
+
+# consumer_install(<prefix>): installs the main build tree (MAIN_BUILD_DIR, for CONFIG when
+# set) into <prefix>, the first step of every test that consumes an install.
+function(consumer_install prefix)
+  set(config_args "")
+  if(CONFIG)
+    set(config_args --config "${CONFIG}")
+  endif()
+  consumer_step("install into ${prefix}"
+    "${CMAKE_COMMAND}" --install "${MAIN_BUILD_DIR}" --prefix "${prefix}" ${config_args})
+endfunction()

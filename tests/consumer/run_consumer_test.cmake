@@ -8,12 +8,7 @@ include("${CMAKE_CURRENT_LIST_DIR}/consumer_steps.cmake")
 set(prefix "${SCRATCH_DIR}/prefix")
 file(REMOVE_RECURSE "${SCRATCH_DIR}")
 
-set(config_args "")
-if(CONFIG)
-  set(config_args --config "${CONFIG}")
-endif()
-consumer_step("install into ${prefix}"
-  "${CMAKE_COMMAND}" --install "${MAIN_BUILD_DIR}" --prefix "${prefix}" ${config_args})
+consumer_install("${prefix}")
 
 foreach(file
     include/cloudmath/cloudmath.hpp

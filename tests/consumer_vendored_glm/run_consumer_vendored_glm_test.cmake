@@ -23,10 +23,5 @@ build_and_run(add_subdirectory "${SCRATCH_DIR}/subdir" "-DCLOUDMATH_SOURCE_DIR=$
 
 # (2) find_package of an install.
 set(prefix "${SCRATCH_DIR}/prefix")
-set(config_args "")
-if(CONFIG)
-  set(config_args --config "${CONFIG}")
-endif()
-consumer_step("install into ${prefix}"
-  "${CMAKE_COMMAND}" --install "${MAIN_BUILD_DIR}" --prefix "${prefix}" ${config_args})
+consumer_install("${prefix}")
 build_and_run(find_package "${SCRATCH_DIR}/find_package" "-DCLOUDMATH_PREFIX=${prefix}")

@@ -18,12 +18,7 @@ math(EXPR next_minor "${minor} + 1")
 math(EXPR previous_minor "${minor} - 1")
 
 set(prefix "${SCRATCH_DIR}/prefix")
-set(config_args "")
-if(CONFIG)
-  set(config_args --config "${CONFIG}")
-endif()
-consumer_step("install into ${prefix}"
-  "${CMAKE_COMMAND}" --install "${MAIN_BUILD_DIR}" --prefix "${prefix}" ${config_args})
+consumer_install("${prefix}")
 
 set(generator_args -G "${GENERATOR}")
 if(MAKE_PROGRAM)
