@@ -13,7 +13,7 @@ packages=(
   libstb-dev                                     # tools/: stb_image_write for PNG output
   libegl-dev libgl-dev libopengl-dev             # GLSL tests: EGL + GL headers, libOpenGL
   libegl-mesa0 libgl1-mesa-dri                   # GLSL tests: Mesa EGL, llvmpipe (no GPU)
-  glslang-tools spirv-tools                      # GLSL tests: glslangValidator, spirv-val
+  glslang-tools spirv-tools spirv-cross          # GLSL and HLSL tests: glslangValidator, spirv-val, spirv-cross
   libglfw3-dev                                   # examples/cloud_renderer: the window mode
   xvfb xauth                                     # its test: the window on a virtual X server
   chromium                                       # web/: the WebGL2 page's browser test

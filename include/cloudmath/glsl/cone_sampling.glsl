@@ -74,10 +74,11 @@ float cm_cone_optical_depth(vec3 origin, vec3 light_dir, CmConeLightConfig cfg) 
     float tau = 0.0;
 #ifdef CM_CONE_SAMPLES
     cfg.sample_count = CM_CONE_SAMPLES;  // one count for the loop and the sample layout
-    for (int i = 0; i < CM_CONE_SAMPLES; ++i) {
+    const int count = CM_CONE_SAMPLES;   // a constant loop bound: the driver can unroll
 #else
-    for (int i = 0; i < cfg.sample_count; ++i) {
+    int count = cfg.sample_count;
 #endif
+    for (int i = 0; i < count; ++i) {
         vec3 p = cm_cone_sample_position(origin, light_dir, cfg, i);
         tau += CM_CONE_EXTINCTION(p, i) * cm_cone_sample_length(cfg, i);
     }

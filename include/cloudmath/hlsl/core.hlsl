@@ -1,0 +1,90 @@
+// cloudmath/hlsl/core.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
+// Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
+// HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+//
+// cloudmath/hlsl/core.hlsl: GLSL twin of cloudmath/core.hpp (constants, saturate, remap,
+// smoothstep_safe, stable exponential helpers).
+//
+// Use:      #include "cloudmath/hlsl/core.hlsl"   (GL_GOOGLE_include_directive, shaderc,
+//           GL_ARB_shading_language_include), or cloudmath::glsl_source("core") for raw GL.
+// Targets:  function bodies valid in GLSL 3.30 core, GLSL ES 3.00 and Vulkan GLSL 4.50;
+//           float only. Same names as the C++ with the cm_ prefix, same argument order.
+// Bad input: handled with comparisons, as in C++; nothing relies on NaN or Inf behaviour,
+//           which differs between drivers.
+#ifndef CM_CORE_HLSL
+#define CM_CORE_HLSL
+
+#define CM_PI 3.14159265358979
+#define CM_TWO_PI 6.28318530717959
+#define CM_FOUR_PI 12.5663706143592
+#define CM_INV_PI 0.318309886183791
+#define CM_INV_FOUR_PI 0.0795774715459477
+
+float cm_saturate(float x) { return clamp(x, 0.0, 1.0); }
+float2 cm_saturate(float2 x) { return clamp(x, 0.0, 1.0); }
+float3 cm_saturate(float3 x) { return clamp(x, 0.0, 1.0); }
+float4 cm_saturate(float4 x) { return clamp(x, 0.0, 1.0); }
+
+// Unclamped remap; a degenerate old range is the step of the clamped remap (finite).
+float cm_remap(float x, float old_min, float old_max, float new_min, float new_max) {
+    if (old_max == old_min) return x < old_min ? new_min : new_max;
+    return new_min + (x - old_min) / (old_max - old_min) * (new_max - new_min);
+}
+
+// saturate((x - old_min) / (old_max - old_min)), a degenerate range as cm_remap's step:
+// cm_remap_clamped to [0, 1] (core.hpp's detail::remap_unit). When an input exceeds
+// FLT_MAX / 4 the halved inputs are used, so the differences cannot overflow to Inf / Inf
+// (the C++ uses double there). A driver that re-associated x/2 - m/2 into (x - m)/2 would
+// lose that (Mesa keeps it: the parity cases with inputs up to FLT_MAX).
+float cmi_remap_unit(float x, float old_min, float old_max) {
+    if (old_max == old_min) return x < old_min ? 0.0 : 1.0;
+    float s = max(max(abs(x), abs(old_min)), abs(old_max)) > 8.50705917e37 ? 0.5 : 1.0;
+    return cm_saturate((x * s - old_min * s) / (old_max * s - old_min * s));
+}
+
+// Remap clamped to the new range; t is clamped before scaling, end points exact. Finite
+// and inside [min(new_min, new_max), max(new_min, new_max)] for every finite input: the
+// blend, which can round an ulp past an end, is clamped (core.hpp).
+float cm_remap_clamped(float x, float old_min, float old_max, float new_min, float new_max) {
+    float t = cmi_remap_unit(x, old_min, old_max);
+    return clamp((1.0 - t) * new_min + t * new_max, min(new_min, new_max), max(new_min, new_max));
+}
+
+// GLSL smoothstep defined for every pair of edges (GLSL leaves edge0 >= edge1 undefined).
+float cm_smoothstep_safe(float edge0, float edge1, float x) {
+    float t = cmi_remap_unit(x, edge0, edge1); // cm_remap_clamped(x, edge0, edge1, 0.0, 1.0)
+    return t * t * (3.0 - 2.0 * t);
+}
+
+// (1 - exp(-x)) / x, 1 at x = 0. GLSL has no expm1, and the u = exp(-x); (u - 1) / log(u)
+// trick fails where exp and log are approximations near 0 and 1 (measured on Mesa llvmpipe:
+// errors up to 1e23). Below |x| = 0.25 the degree-6 Taylor polynomial in Horner form
+// (truncation error below 1.6e-9); above, the quotient, whose cancellation is then at most
+// a factor 4.5. Agrees with the C++ expm1 form to about 1e-7.
+float cmi_one_minus_exp_neg_over_x_taylor(float x) {
+    return 1.0 + x * (-1.0 / 2.0 + x * (1.0 / 6.0 + x * (-1.0 / 24.0 + x * (1.0 / 120.0 + x * (-1.0 / 720.0 + x * (1.0 / 5040.0))))));
+}
+float cm_one_minus_exp_neg_over_x(float x) {
+    return abs(x) < 0.25 ? cmi_one_minus_exp_neg_over_x_taylor(x) : (1.0 - exp(-x)) / x;
+}
+float3 cm_one_minus_exp_neg_over_x(float3 x) {
+    return float3(cm_one_minus_exp_neg_over_x(x.x), cm_one_minus_exp_neg_over_x(x.y), cm_one_minus_exp_neg_over_x(x.z));
+}
+
+// 1 - exp(-x) with full relative precision for tiny x: below |x| = 0.25, x times the Taylor
+// polynomial above; from there, 1 - exp(-x) itself (its cancellation is at most a factor
+// 3.5). Not x * cm_one_minus_exp_neg_over_x(x) for all x: above 8.5e37 the quotient's 1/x
+// is a denormal that GPUs flush to 0 (result 0), and at x = Inf, where 2 tau or k tau
+// overflowed, it is Inf * 0 = NaN (cm_beer_powder from tau = 1.7e38, cm_powder(1e30,
+// 1e10)); this form gives 1 there, as the C++ does.
+// Domain: every finite x (1 for x >= 17; below x = -88.7 exp(-x) overflows and the result
+// is -Inf, as the C++ -expm1 gives).
+float cm_one_minus_exp_neg(float x) {
+    return abs(x) < 0.25 ? x * cmi_one_minus_exp_neg_over_x_taylor(x) : 1.0 - exp(-x);
+}
+float3 cm_one_minus_exp_neg(float3 x) {
+    return float3(cm_one_minus_exp_neg(x.x), cm_one_minus_exp_neg(x.y), cm_one_minus_exp_neg(x.z));
+}
+
+#endif // CM_CORE_GLSL

@@ -1,0 +1,68 @@
+// cloudmath/hlsl/shadow_map.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
+// Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
+// HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+//
+// cloudmath/hlsl/shadow_map.hlsl: GLSL twin of cloudmath/shadow_map.hpp: the Beer shadow map's
+// texel built by a march along the sunlight, the optical depth and transmittance it gives at a
+// depth, and the projection of a point into the sun-aligned map.
+// Use: CmBeerShadowAccumulator acc = cm_beer_shadow_accumulator();
+//      cm_beer_shadow_add_step(acc, t, ds, sigma_t);  ...  out_texel = cm_beer_shadow_texel(acc);
+//      vec3 uvd = cm_shadow_map_project(p, origin, right, up, toward_sun, half_extent);
+//      float T = cm_beer_shadow_transmittance(texture(shadow_map, uvd.xy).xyz, uvd.z);
+#ifndef CM_SHADOW_MAP_HLSL
+#define CM_SHADOW_MAP_HLSL
+
+#include "core.hlsl"
+
+// front > back while the march has met no extinction.
+struct CmBeerShadowAccumulator {
+    float front;
+    float back;
+    float optical_depth;
+};
+// CmBeerShadowAccumulator(...) of the GLSL: HLSL has no struct constructors.
+CmBeerShadowAccumulator cm_make_CmBeerShadowAccumulator(float front, float back, float optical_depth) {
+    CmBeerShadowAccumulator r;
+    r.front = front;
+    r.back = back;
+    r.optical_depth = optical_depth;
+    return r;
+}
+
+CmBeerShadowAccumulator cm_beer_shadow_accumulator() { return cm_make_CmBeerShadowAccumulator(1.0, 0.0, 0.0); }
+
+// Adds the step [t, t + ds) of extinction sigma_t; steps without extinction change nothing.
+void cm_beer_shadow_add_step(inout CmBeerShadowAccumulator acc, float t, float ds, float sigma_t) {
+    if (!(sigma_t > 0.0) || !(ds > 0.0)) return;
+    if (acc.front > acc.back) acc.front = t;
+    acc.back = t + ds;
+    acc.optical_depth += sigma_t * ds;
+}
+
+// (front depth, mean extinction over back - front, total optical depth); empty: 0.
+float3 cm_beer_shadow_texel(CmBeerShadowAccumulator acc) {
+    if (acc.front > acc.back) return float3(0.0, 0.0, 0.0);
+    return float3(acc.front, acc.optical_depth / (acc.back - acc.front), acc.optical_depth);
+}
+
+// min(max(depth - front, 0) mean_extinction, total).
+float cm_beer_shadow_optical_depth(float3 texel, float depth) {
+    float d = depth - texel.x;
+    if (d != d) return d;
+    float tau = max(d, 0.0) * texel.y;
+    return tau < texel.z ? tau : texel.z;
+}
+
+float cm_beer_shadow_transmittance(float3 texel, float depth) {
+    return exp(-cm_beer_shadow_optical_depth(texel, depth));
+}
+
+// (u, v) across the 2 half_extent square around origin, depth along the light from the plane.
+float3 cm_shadow_map_project(float3 p, float3 origin, float3 right, float3 up, float3 toward_sun, float half_extent) {
+    float3 q = p - origin;
+    float s = 0.5 / half_extent;
+    return float3(0.5 + dot(q, right) * s, 0.5 + dot(q, up) * s, -dot(q, toward_sun));
+}
+
+#endif // CM_SHADOW_MAP_GLSL

@@ -1,0 +1,154 @@
+// Unit tests of the GLSL -> HLSL / WGSL translator (ctest shaders.translator):
+//   node --test tools/shader_translate/translate.test.mjs
+// Each test states the exact text a construct must become; the parity tests (hlsl.parity,
+// web.wgsl_parity) prove that the translated library computes what the C++ does.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { moduleFiles, preprocessWgsl, translateUnit, TranslateError } from './translate.mjs';
+
+const hlsl = (src, opts = {}) => translateUnit([{ name: 'a.glsl', text: src }], { target: 'hlsl', ...opts }).text;
+const wgsl = (src, opts = {}) => translateUnit([{ name: 'a.glsl', text: src }], { target: 'wgsl', ...opts });
+const has = (text, part) => assert.ok(text.includes(part), `expected\n${part}\nin\n${text}`);
+const lacks = (text, part) => assert.ok(!text.includes(part), `did not expect\n${part}\nin\n${text}`);
+
+test('types and vector constructors', () => {
+  const src = 'vec3 f(vec4 v, float s, ivec2 i) { vec3 a = vec3(s); vec3 b = vec3(0.0); vec3 c = vec3(v); vec2 d = vec2(i); return a + b + c + vec3(d, s); }';
+  const h = hlsl(src);
+  has(h, 'float3 f(float4 v, float s, int2 i)');
+  has(h, 'float3 a = float3(s, s, s);');
+  has(h, 'float3 b = float3(0.0, 0.0, 0.0);');
+  has(h, 'float3 c = v.xyz;');
+  has(h, 'float2 d = float2(i);');
+  const w = wgsl(src).text;
+  has(w, 'fn f(v: vec4f, s: f32, i: vec2i) -> vec3f');
+  has(w, 'let a: vec3f = vec3f(s);');
+  has(w, 'let c: vec3f = v.xyz;');
+  has(w, 'let d: vec2f = vec2f(i);');
+});
+
+test('a complex scalar splat is a cast in HLSL', () => {
+  has(hlsl('vec3 f(float s) { return vec3(s * 2.0); }'), 'return ((float3)(s * 2.0));');
+});
+
+test('overloads: WGSL names, HLSL keeps them', () => {
+  const src = 'float g(float x) { return x; }\nvec3 g(vec3 x) { return x; }\nvec3 g(vec3 x, int n, uint s) { return x; }\n' +
+    'vec3 h(vec3 v) { return g(v) + g(v, 1, 0u) + vec3(g(1.0)); }';
+  const w = wgsl(src).text;
+  has(w, 'fn g(x: f32) -> f32');
+  has(w, 'fn g_v3(x: vec3f) -> vec3f');
+  has(w, 'fn g_v3iu(x: vec3f, n: i32, s: u32) -> vec3f');
+  has(w, 'return g_v3(v) + g_v3iu(v, 1, 0u) + vec3f(g(1.0));');
+  has(hlsl(src), 'return g(v) + g(v, 1, 0u) + float3(g(1.0), g(1.0), g(1.0));'.replace('float3(g(1.0), g(1.0), g(1.0))', '((float3)(g(1.0)))'));
+});
+
+test('a call no overload takes is an error naming the line', () => {
+  assert.throws(() => hlsl('float g(float x) { return x; }\nfloat h() {\n  return g(1);\n}'), (e) => e instanceof TranslateError && /:3: no overload of g takes \(int\)/.test(e.message));
+});
+
+test('out and inout parameters become pointers in WGSL', () => {
+  const src = 'struct S { float a; };\nvoid add(inout S s, float x, out float y) { s.a += x; y = s.a; }\n' +
+    'float f() { S s = S(1.0); float y; add(s, 2.0, y); return y; }';
+  const w = wgsl(src).text;
+  has(w, 'fn add(s: ptr<function, S>, x: f32, y: ptr<function, f32>)');
+  has(w, '(*s).a += x;');
+  has(w, '(*y) = (*s).a;');
+  has(w, 'var s: S = S(1.0);');
+  has(w, 'add(&s, 2.0, &y);');
+  const h = hlsl(src);
+  has(h, 'void add(inout S s, float x, out float y)');
+  has(h, 'S s = cm_make_S(1.0);');
+  has(h, 'S cm_make_S(float a) {');
+});
+
+test('an assigned parameter gets a local copy in WGSL', () => {
+  const w = wgsl('float f(float x) { x = x * 2.0; return x; }').text;
+  has(w, 'fn f(x_in: f32) -> f32 {\n    var x: f32 = x_in;');
+});
+
+test('ternaries: select, or if/else when a branch calls a function', () => {
+  const src = 'float g(float x) { return x; }\nfloat f(float x, int k) { float a = x > 0.0 ? 1.0 : 2.0; float b = k == 0 ? g(x) : (k == 1 ? g(2.0) : 3.0); return k > 2 ? g(a) : b; }';
+  const w = wgsl(src).text;
+  has(w, 'let a: f32 = select(2.0, 1.0, x > 0.0);');
+  has(w, 'var b: f32;\n    if (k == 0) {\n        b = g(x);\n    } else if (k == 1) {\n        b = g(2.0);\n    } else {\n        b = 3.0;\n    }');
+  has(w, 'if (k > 2) {\n        return g(a);\n    }\n    return b;');
+  has(hlsl(src), 'float a = x > 0.0 ? 1.0 : 2.0;');
+});
+
+test('built-ins: splats, renames and comparisons', () => {
+  const src = 'vec3 f(vec3 v, vec3 u, float s) { bool e = v == u; bvec3 l = lessThan(v, u); return mix(v, u, s) + max(v, 0.0) + clamp(v, 0.0, s) + fract(v) + inversesqrt(v) + vec3(atan(s, 1.0)); }';
+  const h = hlsl(src);
+  has(h, 'bool e = all(v == u);');
+  has(h, 'bool3 l = (v < u);');
+  has(h, 'lerp(v, u, s) + max(v, 0.0) + clamp(v, 0.0, s) + frac(v) + rsqrt(v) + ((float3)(atan2(s, 1.0)))');
+  const w = wgsl(src).text;
+  has(w, 'let e: bool = all(v == u);');
+  has(w, 'let l: vec3<bool> = (v < u);');
+  has(w, 'mix(v, u, s) + max(v, vec3f(0.0)) + clamp(v, vec3f(0.0), vec3f(s)) + fract(v) + inverseSqrt(v) + vec3f(atan2(s, 1.0))');
+  assert.throws(() => hlsl('float f(float x) { return mod(x, 2.0); }'), /mod\(\) has no HLSL twin/);
+});
+
+test('bit operations: WGSL parentheses and u32 shift counts', () => {
+  const w = wgsl('uint f(uint x, int n) { return x >> 16u ^ x << n & 255u; }').text;
+  has(w, 'return (x >> 16u) ^ ((x << u32(n)) & 255u);');
+});
+
+test('globals: static const in HLSL, const in WGSL, brace initialisers', () => {
+  const src = 'struct P { float a; int n; float t[2]; };\nconst P Q = P(0.5, 3, float[2](1.0, 2.0));\nconst vec2 G[2] = vec2[2](vec2(1.0, 0.0), vec2(0.0, 1.0));\nfloat f(int i) { return Q.t[i] + G[i].x; }';
+  const h = hlsl(src);
+  has(h, 'static const P Q = {0.5, 3, {1.0, 2.0}};');
+  has(h, 'static const float2 G[2] = {float2(1.0, 0.0), float2(0.0, 1.0)};');
+  const w = wgsl(src).text;
+  has(w, 'struct P {\n    a: f32,\n    n: i32,\n    t: array<f32, 2>,\n}');
+  has(w, 'const Q: P = P(0.5, 3, array<f32, 2>(1.0, 2.0));');
+  has(w, 'const G: array<vec2f, 2> = array<vec2f, 2>(vec2f(1.0, 0.0), vec2f(0.0, 1.0));');
+});
+
+test('preprocessor: HLSL keeps it, WGSL evaluates it', () => {
+  const src = '#ifndef CM_A_GLSL\n#define CM_A_GLSL\n#include "b.glsl"\n#define PI 3.14159\n#ifndef N\n#define N 3\n#endif\n' +
+    '#ifdef HOOK\nfloat h(float x) { return HOOK(x); }\n#endif\n#ifdef OPT\nfloat o() { return 1.0; }\n#else\nfloat o() { return 2.0; }\n#endif\nfloat f() { return PI * float(N); }\n#endif\n';
+  const hooks = { HOOK: { fn: 'cm_hook', ret: 'float', params: [['float', 'x']] } };
+  const h = translateUnit([{ name: 'b.glsl', text: '' }, { name: 'a.glsl', text: src }], { target: 'hlsl', emit: ['a.glsl'], hooks }).text;
+  has(h, '#ifndef CM_A_HLSL\n#define CM_A_HLSL\n#include "b.hlsl"\n#define PI 3.14159');
+  has(h, '#ifdef HOOK\nfloat h(float x) { return HOOK(x); }\n#endif');
+  const w = translateUnit([{ name: 'a.glsl', text: src }], { target: 'wgsl', hooks });
+  has(w.text, 'const PI = 3.14159;');
+  has(w.text, 'override N: i32 = 3;');
+  has(w.text, 'fn o() -> f32 { return 2.0; }');
+  lacks(w.text, 'fn h(');
+  lacks(w.text, 'return 1.0');
+  has(w.hooked, 'fn h(x: f32) -> f32 { return cm_hook(x); }');
+  const d = translateUnit([{ name: 'a.glsl', text: src }], { target: 'wgsl', hooks, defines: { OPT: '1', N: '5' } }).text;
+  has(d, 'fn o() -> f32 { return 1.0; }');
+  has(d, 'const N = 5;');
+  lacks(d, 'override N');
+});
+
+test('the preprocessor refuses what WGSL cannot express', () => {
+  assert.throws(() => preprocessWgsl('#if X > 1\n#endif\n'), /#if is not supported/);
+  assert.throws(() => preprocessWgsl('#define F(x) (x)\n'), /function-like macros/);
+  assert.throws(() => preprocessWgsl('#ifdef X\n'), /without #endif/);
+});
+
+test('unsupported syntax is an error with its line', () => {
+  assert.throws(() => hlsl('float f(float x) {\n  switch (1) { }\n}'), /:2: 'switch' is not supported/);
+  assert.throws(() => hlsl('float f(float x) { return x, x; }'), /comma operator/);
+  assert.throws(() => wgsl('float f(float x) { float y = x++; return y; }'), /\+\+\/-- inside an expression/);
+  assert.throws(() => hlsl('uniform float u;'), /uniform declarations are not supported/);
+});
+
+test('keywords of the target language are renamed', () => {
+  has(hlsl('float f(float sample, float line) { return sample + line; }'), 'float f(float sample_, float line_) { return sample_ + line_; }');
+  has(wgsl('float f(float ref, float type) { return ref + type; }').text, 'fn f(ref_: f32, type_: f32) -> f32 { return ref_ + type_; }');
+});
+
+test('comments and blank lines are kept', () => {
+  const w = wgsl('// lead\nfloat f(float x) {\n    // inside\n    return x; // trailing\n}\n\n// next\nfloat g() { return 1.0; }\n').text;
+  assert.equal(w, '// lead\nfn f(x: f32) -> f32 {\n    // inside\n    return x; // trailing\n}\n\n// next\nfn g() -> f32 { return 1.0; }\n');
+});
+
+test('module files: dependencies first, each once, cycles refused', () => {
+  const src = { 'a.glsl': '#include "b.glsl"\n#include "c.glsl"\n', 'b.glsl': '#include "c.glsl"\n', 'c.glsl': '' };
+  assert.deepEqual(moduleFiles('a.glsl', src).map((f) => f.name), ['c.glsl', 'b.glsl', 'a.glsl']);
+  assert.throws(() => moduleFiles('a.glsl', { 'a.glsl': '#include "b.glsl"\n', 'b.glsl': '#include "a.glsl"\n' }), /cycle/);
+  assert.throws(() => moduleFiles('a.glsl', { 'a.glsl': '#include "x.glsl"\n' }), /no such file/);
+});
