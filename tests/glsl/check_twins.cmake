@@ -1,7 +1,7 @@
 # C++/GLSL twin manifest check. Run as:
 #   cmake -DHEADER_DIR=<dir with *.hpp> -DGLSL_DIR=<dir with *.glsl> -DTWINS=<twins.txt>
 #         -DPARITY=<test_glsl_parity.cpp> [-DCALLS=<calls.txt>] [-DMIN_PUBLIC=<n>]
-#         [-DMIN_GLSL=<n>] -P check_twins.cmake
+#         [-DMIN_GLSL=<n>] [-DHLSL_DIR=<dir>] [-DWGSL_DIR=<dir>] -P check_twins.cmake
 #
 # twins.txt has one line per C++ public function (blank lines and "#" comments ignored):
 #   <cpp_name>: <cm_name> [<cm_name> ...]      its GLSL twin(s)
@@ -19,6 +19,8 @@
 #   (is_opaque -> cm_march_is_opaque);
 # - every cm_ name of twins.txt (that the GLSL defines) has a parity case: it occurs
 #   followed by "(" in PARITY (comments removed);
+# - with HLSL_DIR / WGSL_DIR: every twin is defined in the HLSL / WGSL twins too, with as
+#   many overloads (a C++ function whose twin is missing in any language fails);
 # - with CALLS: calls.txt has exactly one line per GLSL overload (as many lines naming a
 #   function as it has definitions), and only names the GLSL defines.
 # MIN_PUBLIC / MIN_GLSL (default 5) guard against a parse that silently finds nothing.
@@ -154,6 +156,54 @@ foreach(name IN LISTS glsl_functions)
   endif()
 endforeach()
 
+# --- HLSL and WGSL twins (generated from the GLSL by tools/shader_translate) ------------------
+# With HLSL_DIR: every twin of the manifest is defined there as often as in the GLSL (HLSL
+# keeps the GLSL overloads). With WGSL_DIR: `fn cm_name(` once and `fn cm_name_<types>(` for
+# each further overload (WGSL has none; <types> are the parameter codes f i u b v3 iv2 ...).
+set(language_count 0)
+if(DEFINED HLSL_DIR AND NOT HLSL_DIR STREQUAL "")
+  math(EXPR language_count "${language_count} + 1")
+  file(GLOB hlsl_files "${HLSL_DIR}/*.hlsl")
+  set(hlsl_text "")
+  foreach(f IN LISTS hlsl_files)
+    file(READ "${f}" t)
+    string(APPEND hlsl_text "\n${t}")
+  endforeach()
+  foreach(name IN LISTS manifest_cm)
+    if(NOT name IN_LIST glsl_functions)
+      continue()
+    endif()
+    string(REGEX MATCHALL "\n[A-Za-z_][A-Za-z0-9_]*[ \t]+${name}[ \t]*\\(" defs "${hlsl_text}")
+    list(LENGTH defs n)
+    if(NOT n EQUAL overloads_${name})
+      problem("HLSL: ${name} has ${n} definition(s) in ${HLSL_DIR}/*.hlsl, the GLSL ${overloads_${name}}")
+    endif()
+  endforeach()
+endif()
+if(DEFINED WGSL_DIR AND NOT WGSL_DIR STREQUAL "")
+  math(EXPR language_count "${language_count} + 1")
+  file(GLOB wgsl_files "${WGSL_DIR}/*.wgsl")
+  list(FILTER wgsl_files EXCLUDE REGEX "/cloudmath\\.wgsl$")  # the modules concatenated
+  set(wgsl_text "")
+  foreach(f IN LISTS wgsl_files)
+    file(READ "${f}" t)
+    string(APPEND wgsl_text "\n${t}")
+  endforeach()
+  foreach(name IN LISTS manifest_cm)
+    if(NOT name IN_LIST glsl_functions)
+      continue()
+    endif()
+    string(REGEX MATCHALL "\nfn ${name}[ \t]*\\(" plain "${wgsl_text}")
+    string(REGEX MATCHALL "\nfn ${name}_(f|i|u|b|[iub]?v[234]|[A-Z][A-Za-z0-9]*)+[ \t]*\\(" suffixed "${wgsl_text}")
+    list(LENGTH plain n_plain)
+    list(LENGTH suffixed n_suffixed)
+    math(EXPR n "${n_plain} + ${n_suffixed}")
+    if(NOT n_plain EQUAL 1 OR NOT n EQUAL overloads_${name})
+      problem("WGSL: ${name} has ${n_plain} plain and ${n_suffixed} suffixed definition(s) in ${WGSL_DIR}/*.wgsl, the GLSL ${overloads_${name}} overload(s)")
+    endif()
+  endforeach()
+endif()
+
 # --- parity cases ---------------------------------------------------------------------------------
 if(NOT EXISTS "${PARITY}")
   problem("${PARITY} does not exist (yet): no cm_ function has a parity case (each twin must be called there as `cm_name(`)")
@@ -203,4 +253,5 @@ if(problems)
   message(FATAL_ERROR "check_twins: ${problem_count} problem(s) (manifest ${TWINS}):\n  ${listing}")
 endif()
 message(STATUS "check_twins: ${cpp_count} C++ public functions and ${glsl_count} GLSL functions "
-  "(${twin_count} twins) are all in ${TWINS}, each twin with a parity case")
+  "(${twin_count} twins) are all in ${TWINS}, each twin with a parity case"
+  " and defined in ${language_count} more shading language(s)")
