@@ -147,6 +147,15 @@ float cm_cone_optical_depth(vec3 origin, vec3 light_dir, CmConeLightConfig cfg) 
 #define CM_INV_PI 0.318309886183791
 #define CM_INV_FOUR_PI 0.0795774715459477
 
+// CM_PRECISE qualifies the few values that must be rounded exactly as written: the
+// error-free products of geometry.glsl, which a fused multiply-add would spoil. GLSL 3.30 and
+// ES 3.00 have no `precise`, so it is empty by default; on GLSL 4.00+ or ES 3.20 drivers that
+// fuse (most GPUs may), `#define CM_PRECISE precise` before the include. The HLSL twin
+// defines it as precise.
+#ifndef CM_PRECISE
+#define CM_PRECISE
+#endif
+
 float cm_saturate(float x) { return clamp(x, 0.0, 1.0); }
 vec2 cm_saturate(vec2 x) { return clamp(x, 0.0, 1.0); }
 vec3 cm_saturate(vec3 x) { return clamp(x, 0.0, 1.0); }
@@ -180,7 +189,8 @@ float cm_remap_clamped(float x, float old_min, float old_max, float new_min, flo
 // GLSL smoothstep defined for every pair of edges (GLSL leaves edge0 >= edge1 undefined).
 float cm_smoothstep_safe(float edge0, float edge1, float x) {
     float t = cmi_remap_unit(x, edge0, edge1);  // cm_remap_clamped(x, edge0, edge1, 0.0, 1.0)
-    return t * t * (3.0 - 2.0 * t);
+)cm_glsl"
+     R"cm_glsl(    return t * t * (3.0 - 2.0 * t);
 }
 
 // (1 - exp(-x)) / x, 1 at x = 0. GLSL has no expm1, and the u = exp(-x); (u - 1) / log(u)
@@ -189,8 +199,7 @@ float cm_smoothstep_safe(float edge0, float edge1, float x) {
 // (truncation error below 1.6e-9); above, the quotient, whose cancellation is then at most
 // a factor 4.5. Agrees with the C++ expm1 form to about 1e-7.
 float cmi_one_minus_exp_neg_over_x_taylor(float x) {
-)cm_glsl"
-     R"cm_glsl(    return 1.0 + x * (-1.0 / 2.0 + x * (1.0 / 6.0 + x * (-1.0 / 24.0 + x * (1.0 / 120.0 +
+    return 1.0 + x * (-1.0 / 2.0 + x * (1.0 / 6.0 + x * (-1.0 / 24.0 + x * (1.0 / 120.0 +
            x * (-1.0 / 720.0 + x * (1.0 / 5040.0))))));
 }
 float cm_one_minus_exp_neg_over_x(float x) {
@@ -605,18 +614,23 @@ vec2 cmi_stable_quadratic_roots(float b, float c, float disc) {
 bool cmi_enters_ahead(vec2 roots) { return roots.x >= 0.0 && roots.y > roots.x; }
 
 // Error-free a * b = p + e (returned as vec2(p, e)) and a + b = s + e (Dekker's split,
-// no FMA needed; geometry.hpp's two_product and two_sum).
+// no FMA needed; geometry.hpp's two_product and two_sum). The split needs a * 4097 rounded
+// before the subtraction: a compiler that fuses as - (as - a) into fma(a, 4097, -...) loses
+// the exactness (measured: the HLSL twin through spirv-opt, 1.4e-5 off). CM_PRECISE (core.glsl)
+// forbids that where the language can: `precise` in HLSL, and in GLSL 4.00+ if you define it so.
 vec2 cmi_two_product(float a, float b) {
-    float p = a * b;
-    float as = a * 4097.0, bs = b * 4097.0;
-    float ah = as - (as - a), al = a - ah;
-    float bh = bs - (bs - b), bl = b - bh;
-    return vec2(p, ((ah * bh - p) + ah * bl + al * bh) + al * bl);
+    CM_PRECISE float p = a * b;
+    CM_PRECISE float as = a * 4097.0, bs = b * 4097.0;
+    CM_PRECISE float ah = as - (as - a), al = a - ah;
+    CM_PRECISE float bh = bs - (bs - b), bl = b - bh;
+    CM_PRECISE float e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    return vec2(p, e);
 }
 vec2 cmi_two_sum(float a, float b) {
-    float s = a + b;
-    float bb = s - a;
-    return vec2(s, (a - (s - bb)) + (b - bb));
+    CM_PRECISE float s = a + b;
+    CM_PRECISE float bb = s - a;
+    CM_PRECISE float e = (a - (s - bb)) + (b - bb);
+    return vec2(s, e);
 }
 
 // |f|^2 - r^2 with the rounding errors of its products and sums added back; the plain form
@@ -639,13 +653,13 @@ float cmi_norm2_minus_square(vec3 f, float r) {
 // Unit dir; c compensated, the discriminant b^2 - c near the sphere and Haines et al.'s
 // r^2 - |f - (f.d) d|^2 far from it (geometry.hpp).
 vec2 cm_ray_sphere_intersect(vec3 origin, vec3 dir, vec3 center, float radius) {
-    vec3 f = origin - center;
+)cm_glsl"
+     R"cm_glsl(    vec3 f = origin - center;
     float b = dot(f, dir);
     float c = cmi_norm2_minus_square(f, radius);
     float disc;
     if (abs(c) < radius * radius) {
-)cm_glsl"
-     R"cm_glsl(        vec2 bb = cmi_two_product(b, b);
+        vec2 bb = cmi_two_product(b, b);
         disc = (bb.x - c) + bb.y;
     } else {
         vec3 perp = f - b * dir;
@@ -700,13 +714,13 @@ vec2 cm_cloud_layer_segment(float altitude, float cos_zenith, float planet_radiu
 
 float cm_altitude_along_ray(float altitude, float cos_zenith, float planet_radius, float t) {
     float mu = clamp(cos_zenith, -1.0, 1.0);
-    float R = planet_radius;
+)cm_glsl"
+     R"cm_glsl(    float R = planet_radius;
     float r = R + altitude;
     float excess = altitude * (2.0 * R + altitude) + t * (2.0 * r * mu + t);
     float radius = sqrt(max(R * R + excess, 0.0));
     return excess / (radius + R);
-)cm_glsl"
-     R"cm_glsl(}
+}
 
 // Altitude of p given relative to the camera (+y up at the camera); the camera at p = 0.
 float cm_point_altitude(vec3 p, float camera_altitude, float planet_radius) {

@@ -10,8 +10,17 @@
 // Inputs avoid NaN, Inf and denormals: GPUs flush denormals and drivers differ on NaN,
 // which the library never relies on (documented in core.hpp).
 //
-// Usage: test_glsl_parity [--markdown FILE]
-// Exit:  0 all within budget; 1 failure; 77 no OpenGL context outside CI (skipped), 1 in CI.
+// Usage: test_glsl_parity [--markdown FILE] [--fuzz N]
+//        test_glsl_parity --dump-cases FILE
+//        test_glsl_parity --program MAIN.comp... --config-program CONFIG.comp... [--language NAME]
+// --dump-cases writes every case as JSON (inputs and the C++ outputs; see dump_cases()) for
+// the HLSL/WGSL twins' generators, and needs no OpenGL context. --program / --config-program
+// run the cases on complete GLSL compute sources made elsewhere (e.g. from the HLSL twins by
+// tests/hlsl/hlsl_parity.cmake) instead of the GLSL twins: one file per program of at most
+// 64 cases, in the order of the dump's "program" field (main programs, then config ones).
+// --language names those twins in the table and the markdown.
+// Exit:  0 all within budget (or dumped); 1 failure; 2 usage; 77 no OpenGL context outside
+//        CI (skipped), 1 in CI.
 #include <cloudmath/cloudmath.hpp>
 #include <cloudmath/glsl.hpp>
 
@@ -758,6 +767,7 @@ std::string shader_source(const std::string& defines, const std::vector<parity_c
 bool finite(float x) { return std::isfinite(x); }
 
 bool fuzz_mode = false;  // --fuzz: only finiteness is compared (see fuzzed())
+std::string language = "GLSL";  // --language: whose twins the programs hold (for the messages)
 
 struct row {
     std::string function;
@@ -794,9 +804,10 @@ bool evaluate(cm_gl::compute_context& gl, const parity_case& pc, int case_id, st
             if (finite(want[j]) && !finite(got)) {
                 if (it->nonfinite++ == 0) {
                     char buf[256];
-                    std::snprintf(buf, sizeof buf, "a=(%g,%g,%g,%g) b=(%g,%g,%g,%g) [%d]: GLSL %g, C++ %.9g", pc.inputs[k].first.x,
+                    std::snprintf(buf, sizeof buf, "a=(%g,%g,%g,%g) b=(%g,%g,%g,%g) [%d]: %s %g, C++ %.9g", pc.inputs[k].first.x,
                                   pc.inputs[k].first.y, pc.inputs[k].first.z, pc.inputs[k].first.w, pc.inputs[k].second.x,
-                                  pc.inputs[k].second.y, pc.inputs[k].second.z, pc.inputs[k].second.w, j, double(got), double(want[j]));
+                                  pc.inputs[k].second.y, pc.inputs[k].second.z, pc.inputs[k].second.w, j, language.c_str(), double(got),
+                                  double(want[j]));
                     it->worst_at = buf;
                 }
                 continue;
@@ -861,10 +872,141 @@ std::vector<parity_case> fuzzed(const std::vector<parity_case>& cases, int n, st
     return out;
 }
 
+// The shaders that run the cases: the main cases, then the config cases (compiled with
+// config_defines), each split into programs of at most 64 cases. Each case is one
+// `if (c == i) return` of cm_test_case, and Mesa's llvmpipe nests those ifs and mis-runs
+// control flow nested past 80 levels (gallivm's LP_MAX_TGSI_NESTING): the 81st case
+// returned 0 for every input.
+struct program {
+    std::string defines;
+    bool config = false;
+    std::vector<parity_case> cases;
+};
+constexpr std::size_t max_cases_per_shader = 64;
+std::vector<program> make_programs(int fuzz_rounds) {
+    const auto prepare = [fuzz_rounds](std::vector<parity_case> cases) {
+        return fuzz_rounds > 0 ? fuzzed(cases, fuzz_rounds, 12345u) : cases;
+    };
+    std::vector<program> programs;
+    for (const program& all : {program{"", false, prepare(make_cases())}, program{config_defines, true, prepare(make_config_cases())}})
+        for (std::size_t first = 0; first < all.cases.size(); first += max_cases_per_shader) {
+            const std::size_t last = std::min(all.cases.size(), first + max_cases_per_shader);
+            programs.push_back({all.defines, all.config, std::vector<parity_case>(all.cases.begin() + std::ptrdiff_t(first),
+                                                                                  all.cases.begin() + std::ptrdiff_t(last))});
+        }
+    return programs;
+}
+
+void json_string(std::ostream& o, const std::string& text) {
+    o << '"';
+    for (const char ch : text) {
+        const auto u = static_cast<unsigned char>(ch);
+        if (ch == '"' || ch == '\\') o << '\\' << ch;
+        else if (ch == '\n') o << "\\n";
+        else if (ch == '\t') o << "\\t";
+        else if (u < 0x20) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\u%04x", unsigned(u));
+            o << buf;
+        } else o << ch;
+    }
+    o << '"';
+}
+void json_number(std::ostream& o, double x) {  // %.9g round-trips a float; JSON has no Inf/NaN
+    if (!std::isfinite(x)) {
+        o << "null";
+        return;
+    }
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", x);
+    o << buf;
+}
+
+// --dump-cases: everything a generator of twins in another language needs to build the
+// programs that --program runs, and the C++ results to check them by itself. "program" is
+// the index into make_programs() (main programs first), "index" the case's u_case there.
+std::string dump_cases(const std::vector<program>& programs) {
+    std::ostringstream o;
+    o << "{\n  \"prelude\": ";
+    json_string(o, glsl_prelude);
+    o << ",\n  \"after\": ";
+    json_string(o, std::string(glsl_after) + glsl_directions);
+    o << ",\n  \"config_defines\": ";
+    json_string(o, config_defines);
+    o << ",\n  \"max_cases_per_program\": " << max_cases_per_shader << ",\n  \"programs\": [";
+    for (std::size_t p = 0; p < programs.size(); ++p)
+        o << (p == 0 ? "" : ", ") << "{\"config\": " << (programs[p].config ? "true" : "false") << ", \"cases\": " << programs[p].cases.size() << "}";
+    o << "],\n  \"cases\": [";
+    const char* case_separator = "\n";
+    for (std::size_t p = 0; p < programs.size(); ++p)
+        for (std::size_t c = 0; c < programs[p].cases.size(); ++c) {
+            const parity_case& pc = programs[p].cases[c];
+            o << case_separator << "    {\"function\": ";
+            json_string(o, pc.function);
+            o << ", \"glsl\": ";
+            json_string(o, pc.glsl);
+            o << ", \"components\": " << pc.components << ", \"floor\": ";
+            json_number(o, double(pc.floor));
+            o << ", \"budget\": ";
+            json_number(o, pc.budget);
+            o << ", \"config\": " << (programs[p].config ? "true" : "false") << ", \"program\": " << p << ", \"index\": " << c
+              << ",\n     \"inputs\": [";
+            for (std::size_t k = 0; k < pc.inputs.size(); ++k) {
+                o << (k == 0 ? "[" : ", [");
+                for (int j = 0; j < 8; ++j) {
+                    if (j > 0) o << ',';
+                    json_number(o, double(j < 4 ? pc.inputs[k].first[j] : pc.inputs[k].second[j - 4]));
+                }
+                o << ']';
+            }
+            o << "],\n     \"expected\": [";
+            for (std::size_t k = 0; k < pc.inputs.size(); ++k) {
+                const vec4 want = pc.cpp(pc.inputs[k].first, pc.inputs[k].second);
+                o << (k == 0 ? "[" : ", [");
+                for (int j = 0; j < 4; ++j) {
+                    if (j > 0) o << ',';
+                    json_number(o, double(want[j]));
+                }
+                o << ']';
+            }
+            o << "]}";
+            case_separator = ",\n";
+        }
+    o << "\n  ]\n}\n";
+    return o.str();
+}
+
+bool read_file(const std::string& path, std::string& text) {
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (f == nullptr) return false;
+    char buf[65536];
+    std::size_t n = 0;
+    text.clear();
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
+    const bool ok = std::ferror(f) == 0;
+    std::fclose(f);
+    return ok;
+}
+
+// How the programs were made, for the markdown: the GLSL twins' own text is unchanged.
+std::string measured_how(const std::string& renderer, const std::string& version) {
+    if (language == "GLSL")
+        return "Measured by `test_glsl_parity --markdown` (ctest `glsl.parity`; regenerate with `bash scripts/glsl-parity.sh`) on **" +
+               renderer + "**, OpenGL " + version + ".";
+    if (language == "HLSL")
+        return "Measured by `test_glsl_parity --language HLSL --markdown` on programs made by tests/hlsl/hlsl_parity.cmake (ctest "
+               "`hlsl.parity`; regenerate with `bash scripts/hlsl-parity.sh`): the HLSL twins compiled by glslang's HLSL front "
+               "end to SPIR-V, validated with spirv-val, converted to GLSL 4.30 by spirv-cross and run on **" +
+               renderer + "**, OpenGL " + version + ".";
+    return "Measured by `test_glsl_parity --language " + language + " --markdown` on GLSL compute programs made from the " +
+           language + " twins, run on **" + renderer + "**, OpenGL " + version + ".";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::string markdown;
+    std::string markdown, dump;
+    std::vector<std::string> program_files[2];  // [0] --program, [1] --config-program
     int fuzz_rounds = 0;
     for (int i = 1; i < argc; ++i) {
         if (std::strcmp(argv[i], "--markdown") == 0 && i + 1 < argc) markdown = argv[++i];
@@ -872,41 +1014,69 @@ int main(int argc, char** argv) {
             fuzz_rounds = std::max(1, std::atoi(argv[++i]));
             fuzz_mode = true;
         }
+        else if (std::strcmp(argv[i], "--dump-cases") == 0 && i + 1 < argc) dump = argv[++i];
+        else if (std::strcmp(argv[i], "--program") == 0 && i + 1 < argc) program_files[0].push_back(argv[++i]);
+        else if (std::strcmp(argv[i], "--config-program") == 0 && i + 1 < argc) program_files[1].push_back(argv[++i]);
+        else if (std::strcmp(argv[i], "--language") == 0 && i + 1 < argc) language = argv[++i];
         else {
-            std::fprintf(stderr, "usage: %s [--markdown FILE] [--fuzz N]\n", argv[0]);
+            std::fprintf(stderr,
+                         "usage: %s [--markdown FILE] [--fuzz N] [--dump-cases FILE]\n"
+                         "       [--program MAIN.comp]... [--config-program CONFIG.comp]... [--language NAME]\n",
+                         argv[0]);
             return 2;
         }
     }
+    const std::vector<program> programs = make_programs(fuzz_rounds);
+    if (!dump.empty()) {
+        const std::string error = cloudmath::tools::write_file_atomically(dump, dump_cases(programs));
+        if (!error.empty()) {
+            std::fprintf(stderr, "test_glsl_parity: %s\n", error.c_str());
+            return 1;
+        }
+        std::printf("wrote %zu programs of cases to %s\n", programs.size(), dump.c_str());
+        return 0;
+    }
+    // Given programs replace the GLSL twins' shaders one for one: both kinds, all of them.
+    std::vector<std::string> sources, source_names;
+    const bool external = !program_files[0].empty() || !program_files[1].empty();
+    if (external) {
+        std::size_t used[2] = {0, 0};
+        for (const program& prog : programs) {
+            const std::vector<std::string>& files = program_files[prog.config ? 1 : 0];
+            std::size_t& next = used[prog.config ? 1 : 0];
+            sources.emplace_back();
+            source_names.push_back(next < files.size() ? files[next] : "");
+            if (next < files.size() && !read_file(files[next], sources.back())) {
+                std::fprintf(stderr, "test_glsl_parity: cannot read '%s'\n", files[next].c_str());
+                return 2;
+            }
+            ++next;
+        }
+        for (int k = 0; k < 2; ++k)
+            if (used[k] != program_files[k].size()) {
+                std::fprintf(stderr, "test_glsl_parity: %zu %s given, but the cases make %zu programs (at most %zu cases each; "
+                             "see the \"program\" field of --dump-cases)\n", program_files[k].size(),
+                             k == 0 ? "--program files" : "--config-program files", used[k], max_cases_per_shader);
+                return 2;
+            }
+    }
+
     std::string why;
     std::unique_ptr<cm_gl::compute_context> gl = cm_gl::compute_context::create(why);
     if (!gl) return cm_gl::no_context_exit_code(why);
-    std::printf("GLSL parity on %s, OpenGL %s\n", gl->renderer().c_str(), gl->version().c_str());
+    std::printf("%s parity on %s, OpenGL %s\n", language.c_str(), gl->renderer().c_str(), gl->version().c_str());
 
-    struct program {
-        std::string defines;
-        std::vector<parity_case> cases;
-    };
-    // At most 64 cases per shader: each case is one `if (c == i) return` of cm_test_case, and
-    // Mesa's llvmpipe nests those ifs and mis-runs control flow nested past 80 levels
-    // (gallivm's LP_MAX_TGSI_NESTING): the 81st case returned 0 for every input.
-    constexpr std::size_t max_cases_per_shader = 64;
-    std::vector<program> programs;
-    const auto prepare = [fuzz_rounds](std::vector<parity_case> cases) {
-        return fuzz_rounds > 0 ? fuzzed(cases, fuzz_rounds, 12345u) : cases;
-    };
-    for (const program& all : {program{"", prepare(make_cases())}, program{config_defines, prepare(make_config_cases())}})
-        for (std::size_t first = 0; first < all.cases.size(); first += max_cases_per_shader) {
-            const std::size_t last = std::min(all.cases.size(), first + max_cases_per_shader);
-            programs.push_back({all.defines, std::vector<parity_case>(all.cases.begin() + std::ptrdiff_t(first),
-                                                                      all.cases.begin() + std::ptrdiff_t(last))});
-        }
     std::vector<row> rows;
     std::size_t case_count = 0;
     bool ok = true;
-    for (const program& prog : programs) {
+    for (std::size_t p = 0; p < programs.size(); ++p) {
+        const program& prog = programs[p];
         std::string log;
-        if (!gl->compile(shader_source(prog.defines, prog.cases), log)) {
-            std::printf("FAILED: the parity shader does not compile:\n%s\n", log.c_str());
+        if (!gl->compile(external ? sources[p] : shader_source(prog.defines, prog.cases), log)) {
+            if (external)
+                std::printf("FAILED: the parity shader '%s' does not compile:\n%s\n", source_names[p].c_str(), log.c_str());
+            else
+                std::printf("FAILED: the parity shader does not compile:\n%s\n", log.c_str());
             return 1;
         }
         for (std::size_t c = 0; c < prog.cases.size(); ++c) {
@@ -917,7 +1087,8 @@ int main(int argc, char** argv) {
 
     if (fuzz_mode) std::printf("Fuzz: %d rounds of each case's inputs, scaled over 76 decades and signs, and special values; "
                                "a failure is a NaN/Inf where C++ is finite (max error not compared)\n", fuzz_rounds);
-    std::printf("%-42s %8s %12s %9s %5s  %s\n", "function", "values", "max error", "budget", "NaN", "worst case (GLSL vs C++)");
+    const std::string worst_heading = "worst case (" + language + " vs C++)";
+    std::printf("%-42s %8s %12s %9s %5s  %s\n", "function", "values", "max error", "budget", "NaN", worst_heading.c_str());
     for (const row& r : rows) {
         const bool pass = (fuzz_mode || r.worst <= r.budget) && r.nonfinite == 0;
         ok = ok && pass;
@@ -926,10 +1097,9 @@ int main(int argc, char** argv) {
     }
     if (!markdown.empty()) {
         std::ostringstream md;
-        md << "# GLSL parity: GLSL twins against the C++ float functions\n\n"
-           << "Measured by `test_glsl_parity --markdown` (ctest `glsl.parity`; regenerate with `bash scripts/glsl-parity.sh`) on **"
-           << gl->renderer() << "**, OpenGL " << gl->version() << ".\n\n"
-           << "Error: |GLSL - C++| / max(|C++|, floor) per output component, over grids that include the hard cases of the C++ tests "
+        md << "# " << language << " parity: " << language << " twins against the C++ float functions\n\n"
+           << measured_how(gl->renderer(), gl->version()) << "\n\n"
+           << "Error: |" << language << " - C++| / max(|C++|, floor) per output component, over grids that include the hard cases of the C++ tests "
               "(|g| -> 1, mu = +-1, sigma_t = 0 to 1e4, Earth-radius cameras at 1.8 m to 400 km, tangent rays, degenerate ranges).\n\n"
            << "| function | values | max error | budget | NaN/Inf |\n|---|---|---|---|---|\n";
         for (const row& r : rows) {

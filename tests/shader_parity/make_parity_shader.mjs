@@ -24,7 +24,7 @@ import { HOOKS, moduleFiles, translateUnit, wgslType } from '../../tools/shader_
 const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
 const arg = (name) => { const i = process.argv.indexOf(name); return i > 0 ? process.argv[i + 1] : null; };
 const target = arg('--target'), casesPath = arg('--cases'), outPath = arg('--out');
-const program = Number(arg('--program'));
+const program = arg('--program') === null ? NaN : Number(arg('--program'));  // no silent default
 if (!['hlsl', 'wgsl'].includes(target) || !casesPath || !outPath || !Number.isInteger(program)) {
   console.error('usage: make_parity_shader.mjs --target hlsl|wgsl --cases CASES.json --program K --out FILE');
   process.exit(2);

@@ -13,7 +13,8 @@
 //   lessThan(a, b) -> (a < b) and the other comparisons, floatBitsToUint -> asuint, ...;
 // - == and != on vectors -> all(a == b) / any(a != b) (HLSL compares per component);
 // - names that are HLSL keywords get a trailing underscore;
-// - #include "x.glsl" -> #include "x.hlsl", include guards CM_*_GLSL -> CM_*_HLSL.
+// - #include "x.glsl" -> #include "x.hlsl", include guards CM_*_GLSL -> CM_*_HLSL;
+// - CM_PRECISE locals keep the macro, which HLSL defines as precise (no fused multiply-add).
 import { isScalar, isVector, dim, vectorOf } from './analysis.mjs';
 import { arrayParts } from './types.mjs';
 import { INDENT, oneLine, withComments } from './emit_common.mjs';
@@ -105,7 +106,7 @@ export function emitHlsl(unit, analysis, { emit = () => true, flatten = false, c
 
   function declarators(d, indent, isGlobal) {
     const lines = [];
-    const prefix = isGlobal ? 'static const ' : d.const ? 'const ' : '';
+    const prefix = (d.precise ? 'CM_PRECISE ' : '') + (isGlobal ? 'static const ' : d.const ? 'const ' : '');
     for (const x of d.declarators) {
       const type = x.array !== null ? arrayParts(A.typeOf(x.array)) : null;
       void type;
@@ -120,6 +121,8 @@ export function emitHlsl(unit, analysis, { emit = () => true, flatten = false, c
   function directive(text) {
     if (/^#\s*include/.test(text)) return flatten ? null : text.replace(/\.glsl"/, '.hlsl"');
     if (/^#\s*(version|extension)/.test(text)) return null;
+    // HLSL has precise in every shader model: the default of CM_PRECISE (core.glsl).
+    if (/^#\s*define\s+CM_PRECISE\s*$/.test(text)) return '#define CM_PRECISE precise';
     return text.replace(/\b(CM_\w+)_GLSL\b/g, '$1_HLSL');
   }
 

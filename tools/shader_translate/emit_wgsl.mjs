@@ -15,7 +15,8 @@
 //   max(v, vec3f(0.0))), inversesqrt -> inverseSqrt, atan(y, x) -> atan2, lessThan(a, b) ->
 //   (a < b), floatBitsToUint -> bitcast<u32>; == and != on vectors -> all() / any();
 // - #define N <number> -> const N = <number>; a configurable default (#ifndef N / #define N v)
-//   -> override N: T = v; identifiers that are WGSL keywords get a trailing underscore.
+//   -> override N: T = v; identifiers that are WGSL keywords get a trailing underscore;
+// - CM_PRECISE / precise is dropped: WGSL has no such qualifier (docs/shading_languages.md).
 import { isScalar, isVector, dim, mutatedNames } from './analysis.mjs';
 import { arrayParts, component, literalType } from './types.mjs';
 import { INDENT, oneLine, withComments } from './emit_common.mjs';

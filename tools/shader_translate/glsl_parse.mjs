@@ -228,8 +228,11 @@ export function parse(source, file, options = {}) {
   }
 
   // --- statements ---------------------------------------------------------------------------
+  // Qualifiers before a local's type: const, precision (dropped) and precise / CM_PRECISE
+  // (kept as decl.precise: values to round exactly as written, no fused multiply-add).
   function startsDeclaration() {
     let k = 0;
+    if (is('precise', k) || is('CM_PRECISE', k)) k++;
     if (is('const', k)) k++;
     if (is('highp', k) || is('mediump', k) || is('lowp', k)) k++;
     const t = peek(k);
@@ -237,7 +240,8 @@ export function parse(source, file, options = {}) {
   }
   function declaration() {
     const first = peek();
-    let isConst = false;
+    let isConst = false, precise = false;
+    if (is('precise') || is('CM_PRECISE')) { next(); precise = true; }
     if (is('const')) { next(); isConst = true; }
     if (is('highp') || is('mediump') || is('lowp')) next();
     const type = next().text;
@@ -252,7 +256,7 @@ export function parse(source, file, options = {}) {
       break;
     }
     const end = expect(';');
-    return { kind: 'decl', const: isConst, type, declarators, leading: first.leading, trailing: end.trailing, line: first.line, blankBefore: first.blankBefore };
+    return { kind: 'decl', const: isConst, precise, type, declarators, leading: first.leading, trailing: end.trailing, line: first.line, blankBefore: first.blankBefore };
   }
   function statement() {
     const t = peek();

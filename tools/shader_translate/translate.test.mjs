@@ -136,6 +136,15 @@ test('unsupported syntax is an error with its line', () => {
   assert.throws(() => hlsl('uniform float u;'), /uniform declarations are not supported/);
 });
 
+test('CM_PRECISE: precise in HLSL (its default), dropped in WGSL', () => {
+  const src = '#ifndef CM_PRECISE\n#define CM_PRECISE\n#endif\nfloat f(float a) { CM_PRECISE float s = a * 4097.0; precise float h = s - (s - a); return h; }';
+  const h = hlsl(src);
+  has(h, '#ifndef CM_PRECISE\n#define CM_PRECISE precise\n#endif');
+  has(h, 'CM_PRECISE float s = a * 4097.0;');
+  has(h, 'CM_PRECISE float h = s - (s - a);');
+  has(wgsl(src).text, 'let s: f32 = a * 4097.0;');
+});
+
 test('keywords of the target language are renamed', () => {
   has(hlsl('float f(float sample, float line) { return sample + line; }'), 'float f(float sample_, float line_) { return sample_ + line_; }');
   has(wgsl('float f(float ref, float type) { return ref + type; }').text, 'fn f(ref_: f32, type_: f32) -> f32 { return ref_ + type_; }');

@@ -51,6 +51,57 @@ export declare const sources: Readonly<Record<SourceName, string>>;
  * statements (and any CM_* #define configuration). */
 export declare const modules: Readonly<Record<ModuleName, string>>;
 
+/** The file name of each WGSL twin, as a key of `wgslSources`. */
+export type WgslSourceName =
+  | "cloudmath.wgsl"
+  | "cone_sampling.wgsl"
+  | "cone_sampling_hooks.wgsl"
+  | "core.wgsl"
+  | "density.wgsl"
+  | "diffusion_lighting.wgsl"
+  | "diffusion_lighting_hooks.wgsl"
+  | "diffusion_lighting_models.wgsl"
+  | "geometry.wgsl"
+  | "integration.wgsl"
+  | "multiple_scattering.wgsl"
+  | "multiple_scattering_hooks.wgsl"
+  | "noise.wgsl"
+  | "phase.wgsl"
+  | "reprojection.wgsl"
+  | "shadow_map.wgsl"
+  | "sun.wgsl"
+  | "texture_lod.wgsl"
+  | "transmittance.wgsl";
+
+/** The name of each WGSL module, as an argument of `wgsl()`. */
+export type WgslModuleName =
+  | "cloudmath"
+  | "cone_sampling"
+  | "cone_sampling_hooks"
+  | "core"
+  | "density"
+  | "diffusion_lighting"
+  | "diffusion_lighting_hooks"
+  | "diffusion_lighting_models"
+  | "geometry"
+  | "integration"
+  | "multiple_scattering"
+  | "multiple_scattering_hooks"
+  | "noise"
+  | "phase"
+  | "reprojection"
+  | "shadow_map"
+  | "sun"
+  | "texture_lod"
+  | "transmittance";
+
+/** The WGSL twins (WebGPU) by file name, as include/cloudmath/wgsl has them. */
+export declare const wgslSources: Readonly<Record<WgslSourceName, string>>;
+
+/** The WGSL of the named modules and of everything they need, each once, dependencies first.
+ * Throws an Error naming an unknown module. */
+export declare function wgsl(...moduleNames: (WgslModuleName | WgslModuleName[])[]): string;
+
 /** `modules.cloudmath` */
 export declare const cloudmath: string;
 /** `modules.cone_sampling` */

@@ -26,7 +26,7 @@ cd "$work/project"
 printf '{ "name": "throwaway", "version": "1.0.0", "private": true, "type": "module" }\n' > package.json
 npm install --no-audit --no-fund --loglevel=error "$work/$tarball" >/dev/null
 cat > check.mjs <<'JS'
-import { modules, sources, phase, multipleScattering, resolve, version } from 'cloudmath-glsl';
+import { modules, sources, phase, multipleScattering, resolve, version, wgsl, wgslSources } from 'cloudmath-glsl';
 import { resolveIncludes } from 'cloudmath-glsl/resolve';
 const fail = (m) => { console.log('FAIL: ' + m); process.exit(1); };
 const names = Object.keys(modules);
@@ -42,6 +42,14 @@ if (!mine.includes('cm_phase_draine') || /^[ \t]*#[ \t]*include/m.test(mine)) fa
 let threw = false;
 try { resolveIncludes('#include "nope.glsl"', sources); } catch (e) { threw = /nope\.glsl/.test(e.message); }
 if (!threw) fail('a missing include does not throw an error naming it');
+const w = wgsl('multiple_scattering_hooks');
+for (const part of ['fn cm_saturate(', 'fn cm_phase_hg(', 'fn cm_multiple_scattering(', 'fn cm_multiple_scattering_with('])
+  if (!w.includes(part)) fail(`wgsl('multiple_scattering_hooks') lacks ${part}`);
+if (w.indexOf('fn cm_saturate(') > w.indexOf('fn cm_phase_hg(') || w.split('fn cm_saturate(').length !== 2) fail('wgsl() does not put each dependency once, first');
+if (wgsl('cloudmath') !== wgslSources['cloudmath.wgsl']) fail("wgsl('cloudmath') is not cloudmath.wgsl alone");
+threw = false;
+try { wgsl('nope'); } catch (e) { threw = /nope/.test(e.message); }
+if (!threw) fail('an unknown WGSL module does not throw an error naming it');
 console.log(`ok: cloudmath-glsl ${version}, ${names.length} modules, ${Object.keys(sources).length} sources, ${modules.cloudmath.length} characters in cloudmath`);
 JS
 node check.mjs
@@ -92,13 +100,14 @@ cat > tsconfig.json <<'JSON'
 }
 JSON
 cat > check.mts <<'TS'
-import { modules, sources, phase, coneSampling, resolve, resolveIncludes, version } from 'cloudmath-glsl';
-import type { ModuleName, SourceName } from 'cloudmath-glsl';
+import { modules, sources, phase, coneSampling, resolve, resolveIncludes, version, wgsl, wgslSources } from 'cloudmath-glsl';
+import type { ModuleName, SourceName, WgslModuleName } from 'cloudmath-glsl';
 import { resolveIncludes as resolveOnly } from 'cloudmath-glsl/resolve';
 import type { ResolveIncludesOptions } from 'cloudmath-glsl/resolve';
 const name: ModuleName = 'multiple_scattering';
 const file: SourceName = 'phase.glsl';
-const texts: string[] = [modules[name], sources[file], phase, coneSampling, version];
+const wgslName: WgslModuleName = 'phase';
+const texts: string[] = [modules[name], sources[file], phase, coneSampling, version, wgsl(wgslName, ['core']), wgslSources['core.wgsl']];
 const options: ResolveIncludesOptions = { name: 'mine.frag' };
 const shader: string = resolve('#include "cloudmath/glsl/phase.glsl"\n', { 'mine.glsl': 'x' });
 const same: string = resolveIncludes('#include "core.glsl"\n', sources) + resolveOnly('x', { 'a.glsl': 'y' }, options);
@@ -106,6 +115,8 @@ const same: string = resolveIncludes('#include "core.glsl"\n', sources) + resolv
 const wrong: string = modules.no_such_module;
 // @ts-expect-error: resolve takes a string
 resolve(42);
+// @ts-expect-error: there is no WGSL module of that name
+wgsl('no_such_module');
 // @ts-expect-error: file texts are strings
 resolveOnly('x', { 'a.glsl': 1 });
 export { texts, shader, same, wrong };

@@ -16,6 +16,15 @@
 #define CM_INV_PI 0.318309886183791
 #define CM_INV_FOUR_PI 0.0795774715459477
 
+// CM_PRECISE qualifies the few values that must be rounded exactly as written: the
+// error-free products of geometry.glsl, which a fused multiply-add would spoil. GLSL 3.30 and
+// ES 3.00 have no `precise`, so it is empty by default; on GLSL 4.00+ or ES 3.20 drivers that
+// fuse (most GPUs may), `#define CM_PRECISE precise` before the include. The HLSL twin
+// defines it as precise.
+#ifndef CM_PRECISE
+#define CM_PRECISE
+#endif
+
 float cm_saturate(float x) { return clamp(x, 0.0, 1.0); }
 vec2 cm_saturate(vec2 x) { return clamp(x, 0.0, 1.0); }
 vec3 cm_saturate(vec3 x) { return clamp(x, 0.0, 1.0); }

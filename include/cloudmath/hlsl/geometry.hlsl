@@ -24,21 +24,26 @@ float2 cmi_stable_quadratic_roots(float b, float c, float disc) {
 bool cmi_enters_ahead(float2 roots) { return roots.x >= 0.0 && roots.y > roots.x; }
 
 // Error-free a * b = p + e (returned as vec2(p, e)) and a + b = s + e (Dekker's split,
-// no FMA needed; geometry.hpp's two_product and two_sum).
+// no FMA needed; geometry.hpp's two_product and two_sum). The split needs a * 4097 rounded
+// before the subtraction: a compiler that fuses as - (as - a) into fma(a, 4097, -...) loses
+// the exactness (measured: the HLSL twin through spirv-opt, 1.4e-5 off). CM_PRECISE (core.hlsl)
+// forbids that where the language can: `precise` in HLSL, and in GLSL 4.00+ if you define it so.
 float2 cmi_two_product(float a, float b) {
-    float p = a * b;
-    float as = a * 4097.0;
-    float bs = b * 4097.0;
-    float ah = as - (as - a);
-    float al = a - ah;
-    float bh = bs - (bs - b);
-    float bl = b - bh;
-    return float2(p, ((ah * bh - p) + ah * bl + al * bh) + al * bl);
+    CM_PRECISE float p = a * b;
+    CM_PRECISE float as = a * 4097.0;
+    CM_PRECISE float bs = b * 4097.0;
+    CM_PRECISE float ah = as - (as - a);
+    CM_PRECISE float al = a - ah;
+    CM_PRECISE float bh = bs - (bs - b);
+    CM_PRECISE float bl = b - bh;
+    CM_PRECISE float e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    return float2(p, e);
 }
 float2 cmi_two_sum(float a, float b) {
-    float s = a + b;
-    float bb = s - a;
-    return float2(s, (a - (s - bb)) + (b - bb));
+    CM_PRECISE float s = a + b;
+    CM_PRECISE float bb = s - a;
+    CM_PRECISE float e = (a - (s - bb)) + (b - bb);
+    return float2(s, e);
 }
 
 // |f|^2 - r^2 with the rounding errors of its products and sums added back; the plain form

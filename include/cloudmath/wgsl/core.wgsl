@@ -19,6 +19,11 @@ const CM_FOUR_PI = 12.5663706143592;
 const CM_INV_PI = 0.318309886183791;
 const CM_INV_FOUR_PI = 0.0795774715459477;
 
+// CM_PRECISE qualifies the few values that must be rounded exactly as written: the
+// error-free products of geometry.wgsl, which a fused multiply-add would spoil. GLSL 3.30 and
+// ES 3.00 have no `precise`, so it is empty by default; on GLSL 4.00+ or ES 3.20 drivers that
+// fuse (most GPUs may), `#define CM_PRECISE precise` before the include. The HLSL twin
+// defines it as precise.
 fn cm_saturate(x: f32) -> f32 { return clamp(x, 0.0, 1.0); }
 fn cm_saturate_v2(x: vec2f) -> vec2f { return clamp(x, vec2f(0.0), vec2f(1.0)); }
 fn cm_saturate_v3(x: vec3f) -> vec3f { return clamp(x, vec3f(0.0), vec3f(1.0)); }

@@ -20,7 +20,10 @@ fn cmi_stable_quadratic_roots(b: f32, c: f32, disc: f32) -> vec2f {
 fn cmi_enters_ahead(roots: vec2f) -> bool { return roots.x >= 0.0 && roots.y > roots.x; }
 
 // Error-free a * b = p + e (returned as vec2(p, e)) and a + b = s + e (Dekker's split,
-// no FMA needed; geometry.hpp's two_product and two_sum).
+// no FMA needed; geometry.hpp's two_product and two_sum). The split needs a * 4097 rounded
+// before the subtraction: a compiler that fuses as - (as - a) into fma(a, 4097, -...) loses
+// the exactness (measured: the HLSL twin through spirv-opt, 1.4e-5 off). CM_PRECISE (core.wgsl)
+// forbids that where the language can: `precise` in HLSL, and in GLSL 4.00+ if you define it so.
 fn cmi_two_product(a: f32, b: f32) -> vec2f {
     let p: f32 = a * b;
     let as_: f32 = a * 4097.0;
@@ -29,12 +32,14 @@ fn cmi_two_product(a: f32, b: f32) -> vec2f {
     let al: f32 = a - ah;
     let bh: f32 = bs - (bs - b);
     let bl: f32 = b - bh;
-    return vec2f(p, ((ah * bh - p) + ah * bl + al * bh) + al * bl);
+    let e: f32 = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    return vec2f(p, e);
 }
 fn cmi_two_sum(a: f32, b: f32) -> vec2f {
     let s: f32 = a + b;
     let bb: f32 = s - a;
-    return vec2f(s, (a - (s - bb)) + (b - bb));
+    let e: f32 = (a - (s - bb)) + (b - bb);
+    return vec2f(s, e);
 }
 
 // |f|^2 - r^2 with the rounding errors of its products and sums added back; the plain form
