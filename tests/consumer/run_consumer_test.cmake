@@ -16,6 +16,10 @@ foreach(file
     include/cloudmath/glsl.hpp
     include/cloudmath/glsl_embedded.hpp
     include/cloudmath/glsl/cloudmath.glsl
+    include/cloudmath/hlsl/cloudmath.hlsl
+    include/cloudmath/hlsl/CloudMath.ush
+    include/cloudmath/wgsl/cloudmath.wgsl
+    include/cloudmath/wgsl/cone_sampling_hooks.wgsl
     share/cmake/cloudmath/cloudmathConfig.cmake
     share/cmake/cloudmath/cloudmathConfigVersion.cmake
     share/cmake/cloudmath/cloudmathTargets.cmake
