@@ -59,15 +59,18 @@ struct parity_case {
 // --- the user hooks of the generic forms, identical on both sides --------------------------
 const char* const glsl_prelude = R"(
 float cm_test_phase(float mu, float scale);
-float cm_test_extinction(vec3 p, int i) {
-    return 0.01 * (1.0 + 0.5 * sin(0.01 * p.x) * cos(0.013 * p.z)) + 0.001 * float(i);
-}
+float cm_test_extinction(vec3 p, int i);
 #define CM_MS_PHASE cm_test_phase
 #define CM_DIFFUSION_PHASE cm_test_phase
 #define CM_CONE_EXTINCTION cm_test_extinction
 )";
+// The extinction hook uses core.glsl's accurate sin and cos: the built-ins may be 2^-11 off
+// (SwiftShader's are), which would test the platform's trigonometry, not the cone sampling.
 const char* const glsl_after = R"(
 float cm_test_phase(float mu, float scale) { return cm_phase_hg_dual(mu, 0.8 * scale, -0.5 * scale, 0.5); }
+float cm_test_extinction(vec3 p, int i) {
+    return 0.01 * (1.0 + 0.5 * cmi_sin_cos(0.01 * p.x).x * cmi_sin_cos(0.013 * p.z).y) + 0.001 * float(i);
+}
 vec4 cm_test_chord_fluence(vec4 a) {
     float flux;
     float U = cm_diffusion_chord_fluence(a.x, a.y, a.z, a.w, flux);
@@ -205,6 +208,24 @@ std::vector<parity_case> make_cases() {
         in.push_back({vec4(-0.125486612f, -0.0317127705f, -1.16267025f, 0.0f), vec4(0.920364857f, 0.920364857f, 0.0f, 0.0f)});
         in.push_back({vec4(0.285094023f, -0.252416611f, 1.121454f, 0.0f), vec4(-1.56015718f, -1.56015718f, 0.0f, 0.0f)});
         add({"cm_remap_clamped", "vec4(cm_remap_clamped(a.x, a.y, a.z, b.x, b.y))", [](vec4 a, vec4 b) { return vec4(cm::remap_clamped(a.x, a.y, a.z, b.x, b.y)); }, in, 1, 1.0f});
+    }
+
+    // cmi_sin_cos (internal, core.glsl): the accurate sin and cos behind the Sun, cone and Mie
+    // twins, against double std::sin / std::cos of the same float. Small angles relatively
+    // (the Sun's disc), then |x| up to its 8192 domain absolutely (values in [-1, 1]).
+    {
+        std::vector<std::pair<vec4, vec4>> small, wide;
+        for (float x : {0.0f, 1e-30f, 1e-8f, 2.3262e-3f, 4.6524e-3f, 0.0349f, 0.1f, 0.5f, 0.785f, 0.7854f, 1.0f})
+            small.push_back({vec4(x, -x, 0.0f, 0.0f), vec4(0)});
+        for (int i = -39; i <= 39; ++i) {  // |x| < 8192
+            const float x = float(i) * 204.8f + 0.37f * float(i % 7);
+            wide.push_back({vec4(x, x * 0.001f, 1.5707964f * float(i), 3.1415927f * float(i) + 1e-3f), vec4(0)});
+        }
+        const auto sc = [](float x) { return vec2(float(std::sin(double(x))), float(std::cos(double(x)))); };
+        add({"cmi_sin_cos [internal]", "vec4(cmi_sin_cos(a.x), cmi_sin_cos(a.y).x, 0.0)",
+             [sc](vec4 a, vec4) { return vec4(sc(a.x), sc(a.y).x, 0.0f); }, small, 3, 1e-30f, 1e-6});
+        add({"cmi_sin_cos [internal]", "vec4(cmi_sin_cos(a.x), cmi_sin_cos(a.z).x, cmi_sin_cos(a.w).y)",
+             [sc](vec4 a, vec4) { return vec4(sc(a.x), sc(a.z).x, sc(a.w).y); }, wide, 4, 1.0f, 1e-6});
     }
 
     // phase

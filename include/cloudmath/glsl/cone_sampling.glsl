@@ -34,8 +34,8 @@ vec2 cm_cone_kernel_offset(int i, int n) {
     int count = max(n, 1);
     int k = i >= 0 ? i % count : count - 1 - (-(i + 1)) % count;
     float radius = sqrt((float(k) + 0.5) / float(count));
-    float angle = float(k) * 2.39996322972865;
-    return radius * vec2(cos(angle), sin(angle));
+    vec2 sc = cmi_sin_cos(float(k) * 2.39996322972865);  // the golden angle, k times
+    return radius * vec2(sc.y, sc.x);
 }
 
 float cm_cone_sample_distance(CmConeLightConfig cfg, int i) {

@@ -15,14 +15,14 @@
 
 // 2 pi (1 - cos r) as 4 pi sin^2(r / 2): full precision for small cones.
 float cm_cone_solid_angle(float angular_radius) {
-    float s = sin(angular_radius * 0.5);
+    float s = cmi_sin_cos(angular_radius * 0.5).x; // core.hlsl: relative accuracy for small r
     return 4.0 * CM_PI * s * s;
 }
 
 // I0 (1 - u (1 - cos psi)) inside the disc, 0 outside; I0 = E / (solid angle (1 - u/3)).
 float cm_sun_disc_radiance(float irradiance, float cos_angle, float angular_radius, float limb_darkening) {
     float c = clamp(cos_angle, -1.0, 1.0);
-    float sin_r = sin(angular_radius);
+    float sin_r = cmi_sin_cos(angular_radius).x;
     float one_minus_c = 1.0 - c;
     float x2 = one_minus_c * (2.0 - one_minus_c) / (sin_r * sin_r);
     if (!(x2 <= 1.0) || c <= 0.0) return 0.0;

@@ -95,6 +95,27 @@ fn cm_one_minus_exp_neg(x: f32) -> f32 {
 fn cm_one_minus_exp_neg_v3(x: vec3f) -> vec3f {
     return vec3f(cm_one_minus_exp_neg(x.x), cm_one_minus_exp_neg(x.y), cm_one_minus_exp_neg(x.z));
 }
+
+// (sin x, cos x) to about 2 float ulps for |x| <= 8192. Why not sin() and cos(): Vulkan, GLSL
+// and WGSL promise only an absolute error of 2^-11 on [-pi, pi], and drivers use it
+// (measured: SwiftShader's sin(0.0023262) is 1.6e-4 off relative, which moved the Sun's disc
+// radiance 4% near its limb). Cody-Waite reduction by pi/2 in three parts whose products
+// with the quadrant n are exact for |n| < 2^13 (Moshier's Cephes constants, doubled), then
+// Taylor polynomials on [-pi/4, pi/4] (truncation below 2.2e-9 relative). Beyond 8192 the
+// reduction is inexact, so the built-ins are used (finite, in [-1, 1]).
+fn cmi_sin_cos(x: f32) -> vec2f {
+    if (!(abs(x) <= 8192.0)) { return vec2f(sin(x), cos(x)); }
+    let n: f32 = floor(x * 0.636619772367581 + 0.5);
+    let r: f32 = ((x - n * 1.5703125) - n * 4.837512969970703125e-4) - n * 7.54978995489188216e-8;
+    let r2: f32 = r * r;
+    let s: f32 = r + r * r2 * (-1.0 / 6.0 + r2 * (1.0 / 120.0 + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362880.0))));
+    let c: f32 = 1.0 + r2 * (-0.5 + r2 * (1.0 / 24.0 + r2 * (-1.0 / 720.0 + r2 * (1.0 / 40320.0 + r2 * (-1.0 / 3628800.0)))));
+    let q: f32 = n - 4.0 * floor(n * 0.25); // the quadrant, 0 to 3
+    if (q == 0.0) { return vec2f(s, c); }
+    if (q == 1.0) { return vec2f(c, -s); }
+    if (q == 2.0) { return vec2f(-s, -c); }
+    return vec2f(-c, s);
+}
 // cloudmath/wgsl/phase.wgsl: GLSL twin of cloudmath/phase.hpp (normalised phase functions
 // and Henyey-Greenstein sampling). Float only; same forms and clamps as the C++.
 //
@@ -175,7 +196,7 @@ fn cm_mie_approx_params(d_in: f32) -> CmMieApproxParams {
     var p: CmMieApproxParams;
     if (d <= 0.1) {
         p.g_hg = 13.8 * d * d;
-        p.g_draine = 1.1456 * d * sin(9.29044 * d);
+        p.g_draine = 1.1456 * d * cmi_sin_cos(9.29044 * d).x; // core.wgsl's accurate sin
         p.alpha = 250.0;
         // d^4.3 via exp/log only for d > 0: pow(0, y) is left undefined by some specs.
         p.w_draine = 0.252977 - (select(0.0, 312.983 * exp(4.3 * log(d)), d > 0.0));
@@ -183,15 +204,16 @@ fn cm_mie_approx_params(d_in: f32) -> CmMieApproxParams {
         let L: f32 = log(d);
         p.g_hg = 0.862 - 0.143 * L * L;
         let inner: f32 = (L - 0.238604) * (L + 1.00667) / (0.507522 - 0.15677 * L);
-        p.g_draine = 0.379685 * cos(1.19692 * cos(inner) + 1.37932 * L + 0.0625835) + 0.344213;
+        p.g_draine = 0.379685 * cmi_sin_cos(1.19692 * cmi_sin_cos(inner).y + 1.37932 * L + 0.0625835).y + 0.344213;
         p.alpha = 250.0;
-        p.w_draine = 0.146209 * cos(3.38707 * L + 2.11193) + 0.316072 + 0.0778917 * L;
+        p.w_draine = 0.146209 * cmi_sin_cos(3.38707 * L + 2.11193).y + 0.316072 + 0.0778917 * L;
     } else if (d < 5.0) {
         let L: f32 = log(d);
         p.g_hg = 0.0604931 * log(L) + 0.940256;
-        p.g_draine = 0.500411 - 0.081287 / (-2.0 * L + tan(L) + 1.27551);
+        let sc: vec2f = cmi_sin_cos(L);
+        p.g_draine = 0.500411 - 0.081287 / (-2.0 * L + sc.x / sc.y + 1.27551);
         p.alpha = 7.30354 * L + 6.31675;
-        p.w_draine = 0.026914 * (L - cos(5.68947 * (log(L) - 0.0292149))) + 0.3764;
+        p.w_draine = 0.026914 * (L - cmi_sin_cos(5.68947 * (log(L) - 0.0292149)).y) + 0.3764;
     } else {
         p.g_hg = exp(-0.0990567 / (d - 1.67154));
         p.g_draine = exp(-2.20679 / (d + 3.91029) - 0.428934);
@@ -608,8 +630,8 @@ fn cm_cone_kernel_offset(i: i32, n: i32) -> vec2f {
     let count: i32 = max(n, 1);
     let k: i32 = select(count - 1 - (-(i + 1)) % count, i % count, i >= 0);
     let radius: f32 = sqrt((f32(k) + 0.5) / f32(count));
-    let angle: f32 = f32(k) * 2.39996322972865;
-    return radius * vec2f(cos(angle), sin(angle));
+    let sc: vec2f = cmi_sin_cos(f32(k) * 2.39996322972865); // the golden angle, k times
+    return radius * vec2f(sc.y, sc.x);
 }
 
 fn cm_cone_sample_distance(cfg: CmConeLightConfig, i: i32) -> f32 {
@@ -1157,14 +1179,14 @@ const CM_SUN_ANGULAR_RADIUS = 4.6524e-3;
 
 // 2 pi (1 - cos r) as 4 pi sin^2(r / 2): full precision for small cones.
 fn cm_cone_solid_angle(angular_radius: f32) -> f32 {
-    let s: f32 = sin(angular_radius * 0.5);
+    let s: f32 = cmi_sin_cos(angular_radius * 0.5).x; // core.wgsl: relative accuracy for small r
     return 4.0 * CM_PI * s * s;
 }
 
 // I0 (1 - u (1 - cos psi)) inside the disc, 0 outside; I0 = E / (solid angle (1 - u/3)).
 fn cm_sun_disc_radiance(irradiance: f32, cos_angle: f32, angular_radius: f32, limb_darkening: f32) -> f32 {
     let c: f32 = clamp(cos_angle, -1.0, 1.0);
-    let sin_r: f32 = sin(angular_radius);
+    let sin_r: f32 = cmi_sin_cos(angular_radius).x;
     let one_minus_c: f32 = 1.0 - c;
     let x2: f32 = one_minus_c * (2.0 - one_minus_c) / (sin_r * sin_r);
     if (!(x2 <= 1.0) || c <= 0.0) { return 0.0; }

@@ -35,8 +35,8 @@ fn cm_cone_kernel_offset(i: i32, n: i32) -> vec2f {
     let count: i32 = max(n, 1);
     let k: i32 = select(count - 1 - (-(i + 1)) % count, i % count, i >= 0);
     let radius: f32 = sqrt((f32(k) + 0.5) / f32(count));
-    let angle: f32 = f32(k) * 2.39996322972865;
-    return radius * vec2f(cos(angle), sin(angle));
+    let sc: vec2f = cmi_sin_cos(f32(k) * 2.39996322972865); // the golden angle, k times
+    return radius * vec2f(sc.y, sc.x);
 }
 
 fn cm_cone_sample_distance(cfg: CmConeLightConfig, i: i32) -> f32 {

@@ -84,7 +84,7 @@ fn cm_mie_approx_params(d_in: f32) -> CmMieApproxParams {
     var p: CmMieApproxParams;
     if (d <= 0.1) {
         p.g_hg = 13.8 * d * d;
-        p.g_draine = 1.1456 * d * sin(9.29044 * d);
+        p.g_draine = 1.1456 * d * cmi_sin_cos(9.29044 * d).x; // core.wgsl's accurate sin
         p.alpha = 250.0;
         // d^4.3 via exp/log only for d > 0: pow(0, y) is left undefined by some specs.
         p.w_draine = 0.252977 - (select(0.0, 312.983 * exp(4.3 * log(d)), d > 0.0));
@@ -92,15 +92,16 @@ fn cm_mie_approx_params(d_in: f32) -> CmMieApproxParams {
         let L: f32 = log(d);
         p.g_hg = 0.862 - 0.143 * L * L;
         let inner: f32 = (L - 0.238604) * (L + 1.00667) / (0.507522 - 0.15677 * L);
-        p.g_draine = 0.379685 * cos(1.19692 * cos(inner) + 1.37932 * L + 0.0625835) + 0.344213;
+        p.g_draine = 0.379685 * cmi_sin_cos(1.19692 * cmi_sin_cos(inner).y + 1.37932 * L + 0.0625835).y + 0.344213;
         p.alpha = 250.0;
-        p.w_draine = 0.146209 * cos(3.38707 * L + 2.11193) + 0.316072 + 0.0778917 * L;
+        p.w_draine = 0.146209 * cmi_sin_cos(3.38707 * L + 2.11193).y + 0.316072 + 0.0778917 * L;
     } else if (d < 5.0) {
         let L: f32 = log(d);
         p.g_hg = 0.0604931 * log(L) + 0.940256;
-        p.g_draine = 0.500411 - 0.081287 / (-2.0 * L + tan(L) + 1.27551);
+        let sc: vec2f = cmi_sin_cos(L);
+        p.g_draine = 0.500411 - 0.081287 / (-2.0 * L + sc.x / sc.y + 1.27551);
         p.alpha = 7.30354 * L + 6.31675;
-        p.w_draine = 0.026914 * (L - cos(5.68947 * (log(L) - 0.0292149))) + 0.3764;
+        p.w_draine = 0.026914 * (L - cmi_sin_cos(5.68947 * (log(L) - 0.0292149)).y) + 0.3764;
     } else {
         p.g_hg = exp(-0.0990567 / (d - 1.67154));
         p.g_draine = exp(-2.20679 / (d + 3.91029) - 0.428934);

@@ -11,14 +11,14 @@ const CM_SUN_ANGULAR_RADIUS = 4.6524e-3;
 
 // 2 pi (1 - cos r) as 4 pi sin^2(r / 2): full precision for small cones.
 fn cm_cone_solid_angle(angular_radius: f32) -> f32 {
-    let s: f32 = sin(angular_radius * 0.5);
+    let s: f32 = cmi_sin_cos(angular_radius * 0.5).x; // core.wgsl: relative accuracy for small r
     return 4.0 * CM_PI * s * s;
 }
 
 // I0 (1 - u (1 - cos psi)) inside the disc, 0 outside; I0 = E / (solid angle (1 - u/3)).
 fn cm_sun_disc_radiance(irradiance: f32, cos_angle: f32, angular_radius: f32, limb_darkening: f32) -> f32 {
     let c: f32 = clamp(cos_angle, -1.0, 1.0);
-    let sin_r: f32 = sin(angular_radius);
+    let sin_r: f32 = cmi_sin_cos(angular_radius).x;
     let one_minus_c: f32 = 1.0 - c;
     let x2: f32 = one_minus_c * (2.0 - one_minus_c) / (sin_r * sin_r);
     if (!(x2 <= 1.0) || c <= 0.0) { return 0.0; }
