@@ -1016,7 +1016,8 @@ std::string measured_how(const std::string& renderer, const std::string& version
                renderer + "**, OpenGL " + version + ".";
     if (language == "HLSL")
         return "Measured by `test_glsl_parity --language HLSL --markdown` on programs made by tests/hlsl/hlsl_parity.cmake (ctest "
-               "`hlsl.parity`; regenerate with `bash scripts/hlsl-parity.sh`): the HLSL twins compiled by glslang's HLSL front "
+               "`hlsl.parity`; regenerate with `bash scripts/hlsl-parity.sh`): the shipped HLSL twins (include/cloudmath/hlsl, with "
+               "the test's own code translated by tests/shader_parity/make_parity_shader.mjs) compiled by glslang's HLSL front "
                "end to SPIR-V, validated with spirv-val, converted to GLSL 4.30 by spirv-cross and run on **" +
                renderer + "**, OpenGL " + version + ".";
     return "Measured by `test_glsl_parity --language " + language + " --markdown` on GLSL compute programs made from the " +

@@ -1,15 +1,22 @@
 // The demo page: parity of the cm_ functions (GPU against JavaScript) and the example
-// renderer's clouds, both from the cloudmath-glsl package's generated sources.
+// renderer's clouds, both from the cloudmath-glsl package's generated sources; the same clouds
+// from clouds.wgsl on WebGPU beside them (webgpu.js), compared pixel by pixel.
 // window.cloudmathDemo holds the results (read by web/test/browser.mjs).
 import { modules, resolve } from '../dist/index.js';
 import { cases, defaultBudget, floor } from './parity.js';
 import { scenePresets, variants, msPresets, frameConstants, phaseMeanCosine } from './scene.js';
 import { cloudsFrag } from './clouds_frag.js';
+import { imageStats, compareImages, shiftImage } from './image.js';
+import { initWebGPU, createClouds, renderClouds } from './webgpu.js';
 
-const demo = (window.cloudmathDemo = { ready: false, error: null, parity: [], image: null, frames: [] });
+const demo = (window.cloudmathDemo = { ready: false, error: null, parity: [], image: null, frames: [],
+  webgpu: { available: false, reason: 'not tried yet', adapter: null, frameMs: null, frames: [], image: null, comparison: null, busy: false } });
 const params = new URLSearchParams(location.search);
 const baseSize = Number(params.get('base') || 64);  // base noise volume edge (the desktop renderer: 128)
 const status = (text) => { document.getElementById('status').textContent = text; };
+// The names of clouds.frag's uniforms (its CR_PARAM and uniform lines).
+const cloudsFragUniforms = new Set([...cloudsFrag.matchAll(/^CR_PARAM\(\w+,\s*(\w+)\)/gm)].map((m) => m[1]));
+for (const m of cloudsFrag.matchAll(/^uniform\s+\w+\s+([^;]+);/gm)) for (const n of m[1].split(',')) cloudsFragUniforms.add(n.trim());
 
 const canvas = document.getElementById('view');
 const gl = canvas.getContext('webgl2', { antialias: false, preserveDrawingBuffer: true });
@@ -117,7 +124,7 @@ void main() {
 }
 `;
 
-function bakeTextures() {
+function bakeTextures(keepTexels) {
   const p = program(bakeSource, 'noise bake');
   gl.useProgram(p);
   const u = (n) => gl.getUniformLocation(p, n);
@@ -140,10 +147,16 @@ function bakeTextures() {
       else gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, t, 0);
       gl.uniform1i(u('u_layer'), z);
       drawTriangle();
+      if (texels) {  // the same texels for WebGPU: read each layer back
+        texels[kind] ??= { size, depth, data: new Uint8Array(size * size * depth * 4) };
+        gl.readPixels(0, 0, size, size, gl.RGBA, gl.UNSIGNED_BYTE, texels[kind].data.subarray(z * size * size * 4, (z + 1) * size * size * 4));
+      }
     }
     return t;
   }
+  const texels = keepTexels ? [] : null;
   const textures = { base: make(0, baseSize, 4, baseSize), detail: make(1, 32, 2, 32), weather: make(2, 256, 4, 1) };
+  if (texels) textures.texels = { base: texels[0], detail: texels[1], weather: texels[2] };
   gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));  // waits for the bake
   gl.bindFramebuffer(gl.FRAMEBUFFER, null);
   gl.deleteFramebuffer(fbo);
@@ -171,41 +184,62 @@ function setupClouds() {
   gl.bindFramebuffer(gl.FRAMEBUFFER, null);
 }
 
-function render(state) {
+// The cloud pass's uniform values by their GLSL names (clouds.frag's uniforms; the WebGPU
+// pass sets the same values into clouds.wgsl's CrUniforms members of the same names). Unset
+// uniforms are 0 in both.
+function cloudUniforms(state) {
   const s = { ...scenePresets.find((x) => x.name === state.scene) };
   s.sunElevation = state.sunElevation;
   s.coverage = state.coverage;
   const f = frameConstants(s);
   const v = variants[state.variant];
   const [msA, msB, msC, msN] = msPresets[state.ms];
+  return {
+    u_phase_model: v.phase, u_lighting: v.lighting, u_octaves: state.ms === 'production' ? v.octaves : msN, u_powder: v.powder,
+    u_light_mode: v.light, u_behind_mode: v.behind, u_phase_mean_cosine: phaseMeanCosine(f, v.phase),
+    u_cone_samples: v.coneSamples, u_light_steps: v.lightSteps, u_integration: v.integration,
+    u_light_quadratic: v.lightQuadratic, u_light_jitter: v.lightJitter, u_refine: v.refine,
+    u_view_steps: v.viewSteps, u_schedule: v.schedule, u_jitter: v.jitter, u_sun_disc: v.sun, u_haze: v.haze, u_dither: v.dither,
+    u_skip: v.skip, u_occluded_ambient: v.ambient, u_shadows: v.shadows, u_pass: 0,
+    u_shape: 0,  // the classic density field: the demo bakes no wide weather map or curl texture
+    u_resolution: [canvas.width, canvas.height],
+    u_forward: f.forward, u_right: f.right, u_up: f.up, u_tan_half_fov: f.tanHalfFov,
+    u_cam_altitude: s.cameraAltitude, u_planet_radius: s.planetRadius, u_layer_bottom: s.layerBottom, u_layer_top: s.layerTop,
+    u_sun_dir: f.sunDir, u_sun_radiance: f.sunRadiance, u_ambient_top: f.ambientTop, u_ambient_bottom: f.ambientBottom,
+    u_sky_zenith: f.skyZenith, u_sky_horizon: f.skyHorizon, u_ground: f.ground, u_sun_angular_radius: f.sunAngularRadius,
+    u_coverage: s.coverage, u_cloud_type: s.cloudType, u_extinction: s.extinction, u_albedo: s.albedo, u_max_distance: s.maxDistance,
+    u_base_tile: s.baseTile, u_detail_tile: s.detailTile, u_weather_tile: s.weatherTile, u_wind: s.wind,
+    u_exposure: s.exposure,
+    u_phase_g: f.phaseG, u_phase_g_back: f.phaseGBack, u_phase_w: f.phaseW, u_droplet_diameter: f.dropletDiameter,
+    u_ms_a: msA, u_ms_b: msB, u_ms_c: msC,
+    u_cone_step: f.coneStep, u_cone_spread: f.coneSpread, u_cone_far_distance: f.coneFarDistance, u_cone_far_length: f.coneFarLength,
+    u_light_march_max: f.lightMarchMax, u_min_transmittance: f.minTransmittance, u_march_near_distance: f.marchNearDistance,
+  };
+}
+
+function render(values) {
   gl.useProgram(clouds);
-  const u = (n) => gl.getUniformLocation(clouds, n);
-  const i1 = (n, x) => gl.uniform1i(u(n), x), f1 = (n, x) => gl.uniform1f(u(n), x), v3 = (n, x) => gl.uniform3fv(u(n), x);
-  i1('u_phase_model', v.phase); i1('u_lighting', v.lighting); i1('u_octaves', state.ms === 'production' ? v.octaves : msN); i1('u_powder', v.powder);
-  i1('u_light_mode', v.light); i1('u_behind_mode', v.behind); f1('u_phase_mean_cosine', phaseMeanCosine(f, v.phase));
-  i1('u_cone_samples', v.coneSamples); i1('u_light_steps', v.lightSteps); i1('u_integration', v.integration);
-  i1('u_light_quadratic', v.lightQuadratic); i1('u_light_jitter', v.lightJitter); i1('u_refine', v.refine);
-  i1('u_view_steps', v.viewSteps); i1('u_schedule', v.schedule); i1('u_jitter', v.jitter); i1('u_sun_disc', v.sun); i1('u_haze', v.haze); i1('u_dither', v.dither);
-  i1('u_skip', v.skip); i1('u_occluded_ambient', v.ambient); i1('u_shadows', v.shadows); i1('u_pass', 0);
-  i1('u_shape', 0);  // the classic density field: the demo bakes no wide weather map or curl texture
-  gl.uniform2f(u('u_resolution'), canvas.width, canvas.height);
-  v3('u_forward', f.forward); v3('u_right', f.right); v3('u_up', f.up); f1('u_tan_half_fov', f.tanHalfFov);
-  f1('u_cam_altitude', s.cameraAltitude); f1('u_planet_radius', s.planetRadius); f1('u_layer_bottom', s.layerBottom); f1('u_layer_top', s.layerTop);
-  v3('u_sun_dir', f.sunDir); v3('u_sun_radiance', f.sunRadiance); v3('u_ambient_top', f.ambientTop); v3('u_ambient_bottom', f.ambientBottom);
-  v3('u_sky_zenith', f.skyZenith); v3('u_sky_horizon', f.skyHorizon); v3('u_ground', f.ground); f1('u_sun_angular_radius', f.sunAngularRadius);
-  f1('u_coverage', s.coverage); f1('u_cloud_type', s.cloudType); f1('u_extinction', s.extinction); f1('u_albedo', s.albedo); f1('u_max_distance', s.maxDistance);
-  f1('u_base_tile', s.baseTile); f1('u_detail_tile', s.detailTile); f1('u_weather_tile', s.weatherTile); gl.uniform2fv(u('u_wind'), s.wind);
-  f1('u_exposure', s.exposure);
-  f1('u_phase_g', f.phaseG); f1('u_phase_g_back', f.phaseGBack); f1('u_phase_w', f.phaseW); f1('u_droplet_diameter', f.dropletDiameter);
-  f1('u_ms_a', msA); f1('u_ms_b', msB); f1('u_ms_c', msC);
-  f1('u_cone_step', f.coneStep); f1('u_cone_spread', f.coneSpread); f1('u_cone_far_distance', f.coneFarDistance); f1('u_cone_far_length', f.coneFarLength);
-  f1('u_light_march_max', f.lightMarchMax); f1('u_min_transmittance', f.minTransmittance); f1('u_march_near_distance', f.marchNearDistance);
+  // Each value by the type the program declares (a uniform the compiler dropped is skipped).
+  const active = new Map();
+  for (let i = 0, n = gl.getProgramParameter(clouds, gl.ACTIVE_UNIFORMS); i < n; ++i) {
+    const info = gl.getActiveUniform(clouds, i);
+    active.set(info.name, info.type);
+  }
+  for (const [name, v] of Object.entries(values)) {
+    const type = active.get(name), at = gl.getUniformLocation(clouds, name);
+    if (type === undefined) { if (!cloudsFragUniforms.has(name)) throw new Error(`clouds.frag declares no uniform ${name}`); continue; }
+    if (type === gl.INT) gl.uniform1i(at, v);
+    else if (type === gl.FLOAT) gl.uniform1f(at, v);
+    else if (type === gl.FLOAT_VEC2) gl.uniform2fv(at, v);
+    else if (type === gl.FLOAT_VEC3) gl.uniform3fv(at, v);
+    else throw new Error(`clouds.frag: uniform ${name} has type 0x${type.toString(16)}, which render() does not set`);
+  }
   // u_shadow_map, u_weather_wide and u_curl get units of their own (a 1 x 1 texture: shadows
   // are off and the shape is classic), so that no unit holds two texture types.
   const units = [['u_base', gl.TEXTURE_3D, textures.base], ['u_detail', gl.TEXTURE_3D, textures.detail], ['u_weather', gl.TEXTURE_2D, textures.weather],
                  ['u_shadow_map', gl.TEXTURE_2D, textures.noShadow], ['u_weather_wide', gl.TEXTURE_2D, textures.noShadow],
                  ['u_curl', gl.TEXTURE_2D, textures.noShadow]];
-  units.forEach(([name, kind, tex], i) => { gl.activeTexture(gl.TEXTURE0 + i); gl.bindTexture(kind, tex); i1(name, i); });
+  units.forEach(([name, kind, tex], i) => { gl.activeTexture(gl.TEXTURE0 + i); gl.bindTexture(kind, tex); gl.uniform1i(gl.getUniformLocation(clouds, name), i); });
 
   gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
   gl.viewport(0, 0, canvas.width, canvas.height);
@@ -218,24 +252,67 @@ function render(state) {
   gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
   gl.blitFramebuffer(0, 0, canvas.width, canvas.height, 0, 0, canvas.width, canvas.height, gl.COLOR_BUFFER_BIT, gl.NEAREST);
   gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-  return { ms, stats: imageStats(pixels) };
+  return { ms, pixels, stats: imageStats(pixels) };
 }
 
-// Mean and standard deviation of the luminance (0..1), the share of cloudy pixels (opacity
-// above 0.5) and the number of distinct grey levels.
-function imageStats(px) {
-  let sum = 0, sum2 = 0, cloudy = 0;
-  const levels = new Set();
-  const n = px.length / 4;
-  for (let i = 0; i < px.length; i += 4) {
-    const y = (0.2126 * px[i] + 0.7152 * px[i + 1] + 0.0722 * px[i + 2]) / 255;
-    sum += y; sum2 += y * y;
-    levels.add(Math.round(y * 255));
-    if (px[i + 3] > 127) cloudy++;
-  }
-  const mean = sum / n;
-  return { mean, std: Math.sqrt(Math.max(sum2 / n - mean * mean, 0)), cloudFraction: cloudy / n, levels: levels.size, pixels: n };
+// ------------------------------------------------------------------------------------------
+// WebGPU: clouds.wgsl beside clouds.frag. Frames are drawn one at a time; a change made while
+// one is in flight draws the latest state next. Each frame is compared with the WebGL2 frame
+// of the same uniform values.
+let gpuClouds = null, gpuNext = null, gpuDone = Promise.resolve(), lastFrame = null;
+const gpuStatus = (text) => { document.getElementById('webgpuStatus').textContent = text; };
+const psnrText = (c) => (c.psnrDb === Infinity ? 'inf' : c.psnrDb.toFixed(1));
+const showComparison = (c) => `PSNR ${psnrText(c)} dB, mean |difference| ${c.meanAbsDiff.toFixed(3)}, ` +
+  `largest ${c.maxAbsDiff} of 255 (opacity ${c.alphaMaxAbsDiff}), ${(100 * c.differingPixelFraction).toFixed(2)} % of the pixels differ`;
+
+async function setupWebGPU() {
+  const w = demo.webgpu;
+  const gpu = await initWebGPU();
+  if (!gpu.device) { w.reason = gpu.reason; gpuStatus(`WebGPU is not available: ${gpu.reason}. The WebGL2 image is unaffected.`); return; }
+  w.adapter = gpu.name;
+  gpu.device.lost.then((info) => { w.error = `WebGPU device lost: ${info.message}`; gpuStatus(w.error); });
+  w.fallbackAdapter = gpu.fallback;
+  gpuStatus(`compiling clouds.wgsl on ${gpu.name}...`);
+  const t0 = performance.now();
+  gpuClouds = await createClouds(gpu, document.getElementById('viewGpu'), textures.texels, params.get('present') === '2d');
+  w.presentation = gpuClouds.context ? 'WebGPU canvas context' : '2D canvas (read-back image, ?present=2d)';
+  w.compileMs = performance.now() - t0;
+  w.compilerMessages = gpuClouds.warnings;
+  w.available = true;
+  w.reason = null;
 }
+
+function drawWebGPU(values, glPixels) {
+  const w = demo.webgpu;
+  if (!gpuClouds) return Promise.resolve();
+  const job = { values, glPixels };
+  if (w.busy) { gpuNext = job; return gpuDone; }
+  w.busy = true;
+  gpuDone = (async () => {
+    for (let j = job; j; j = gpuNext, gpuNext = null) {
+      const r = await renderClouds(gpuClouds, j.values);
+      w.frames.push(r.ms);
+      w.frameMs = r.ms;
+      w.image = imageStats(r.pixels);
+      w.comparison = compareImages(j.glPixels, r.pixels);
+      gpuStatus(`${canvas.width} x ${canvas.height} on ${w.adapter}: ${r.ms.toFixed(1)} ms per frame (submit to mapped readback); ` +
+        `against WebGL2: ${showComparison(w.comparison)}`);
+    }
+  })().catch((e) => { w.error = String(e && e.message || e); gpuStatus('WebGPU error: ' + w.error); console.error(e); })
+    .finally(() => { w.busy = false; });
+  return gpuDone;
+}
+
+// For web/test/browser.mjs, to show that the comparison can fail: the current WebGL2 frame
+// against a WebGPU frame with some uniform values changed, or against itself shifted.
+window.cloudmathDemoTools = {
+  async perturbed(overrides) {
+    await gpuDone;
+    const r = await renderClouds(gpuClouds, { ...lastFrame.values, ...overrides }, false);
+    return { overrides, image: imageStats(r.pixels), comparison: compareImages(lastFrame.pixels, r.pixels) };
+  },
+  shifted(dx) { return compareImages(lastFrame.pixels, shiftImage(lastFrame.pixels, canvas.width, dx)); },
+};
 
 // ------------------------------------------------------------------------------------------
 function fillSelect(id, names, value) {
@@ -257,7 +334,7 @@ async function main() {
   demo.parity = runParity();
   status('baking noise textures...');
   let t0 = performance.now();
-  textures = bakeTextures();
+  textures = bakeTextures(!!navigator.gpu);  // keeps the texels for WebGPU
   gl.finish();
   demo.bakeMs = performance.now() - t0;
   status('compiling the cloud shader...');
@@ -274,11 +351,14 @@ async function main() {
     sun.value = state.sunElevation; coverage.value = state.coverage;
     document.getElementById('sunValue').textContent = `${state.sunElevation} deg`;
     document.getElementById('coverageValue').textContent = state.coverage.toFixed(2);
-    const r = render(state);
+    const values = cloudUniforms(state);
+    const r = render(values);
+    lastFrame = { values, pixels: r.pixels };
     demo.image = r.stats;
     demo.frames.push(r.ms);
     document.getElementById('timing').textContent = `${canvas.width} x ${canvas.height}: ${r.ms.toFixed(1)} ms per frame ` +
       `(draw to readPixels, after a warm-up draw); base volume ${baseSize}^3 baked in ${demo.bakeMs.toFixed(0)} ms`;
+    drawWebGPU(values, r.pixels);  // asynchronous: demo.webgpu.busy until it is drawn and compared
   };
   fillSelect('scene', scenePresets.map((x) => x.name), state.scene).onchange = (e) => {
     state.scene = e.target.value; state.sunElevation = preset().sunElevation; state.coverage = preset().coverage; draw(); };
@@ -286,10 +366,27 @@ async function main() {
   fillSelect('ms', Object.keys(msPresets), state.ms).onchange = (e) => { state.ms = e.target.value; draw(); };
   sun.oninput = () => { state.sunElevation = Number(sun.value); draw(); };
   coverage.oninput = () => { state.coverage = Number(coverage.value); draw(); };
-  render(state);  // warm-up: the driver finishes compiling at the first draw
+  render(cloudUniforms(state));  // warm-up: the driver finishes compiling at the first draw
   draw();
+
+  // WebGPU beside it; any failure there leaves the WebGL2 part as it is.
+  status('WebGPU: clouds.wgsl...');
+  try {
+    await setupWebGPU();
+    if (gpuClouds) {
+      const warm = await renderClouds(gpuClouds, lastFrame.values);  // warm-up, as for WebGL2
+      demo.webgpu.warmUpMs = warm.ms;
+      await drawWebGPU(lastFrame.values, lastFrame.pixels);
+    }
+  } catch (e) {
+    demo.webgpu.error = String(e && e.message || e);
+    gpuStatus('WebGPU error: ' + demo.webgpu.error);
+    console.error(e);
+  }
   const failed = demo.parity.filter((r) => !r.pass).length;
-  status(`ready: ${demo.parity.length} parity cases, ${failed} over budget; clouds drawn`);
+  const w = demo.webgpu;
+  status(`ready: ${demo.parity.length} parity cases, ${failed} over budget; clouds drawn; WebGPU ` +
+    (w.error ? 'failed' : w.available ? `drawn, PSNR ${w.comparison ? psnrText(w.comparison) : '?'} dB against WebGL2` : 'not available'));
   demo.ready = true;
 }
 

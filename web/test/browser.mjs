@@ -1,7 +1,9 @@
-// web.browser: the demo page in Debian's Chromium (headless, SwiftShader's WebGL2, no GPU),
-// driven by Playwright (playwright-core) against the web/ folder served on localhost.
+// web.browser: the demo page in Debian's Chromium (headless, SwiftShader's WebGL2 and WebGPU,
+// no GPU), driven by Playwright (playwright-core) against the web/ folder served on localhost.
 // Checks: every parity case within its budget and free of NaN/Inf; the cloud image is not
-// blank (statistics in stated ranges) for two scenes and after switching variant and preset.
+// blank (statistics in stated ranges) for two scenes and after switching variant and preset;
+// the WebGPU image (clouds.wgsl) passes the same checks and matches the WebGL2 image
+// (clouds.frag) within sameImage's thresholds, which a changed uniform and a shifted image fail.
 //
 //   node web/test/browser.mjs [--screenshot FILE] [--markdown FILE] [--chromium PATH]
 // Exit status 0 when every check passes; each failed check is printed.
@@ -10,6 +12,7 @@ import { readFile, mkdtemp, rm, writeFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { dirname, extname, join, normalize } from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { spawnSync } from 'node:child_process';
 import { chromium } from 'playwright-core';
 
 const web = join(dirname(fileURLToPath(import.meta.url)), '..');
@@ -42,8 +45,18 @@ const threeBlock = (text) => [...text.matchAll(/```js\n([\s\S]*?)```/g)].map((m)
 const webSnippet = threeBlock(await readFile(join(web, 'README.md'), 'utf8'));
 const rootSnippet = threeBlock(await readFile(join(web, '..', 'README.md'), 'utf8'));
 check(webSnippet && webSnippet === rootSnippet, 'README.md shows the three.js snippet of web/README.md unchanged');
+// The page's clouds.wgsl (web/demo/clouds_wgsl.js) is generated from examples/cloud_renderer/shaders/clouds.wgsl.
+const fresh = spawnSync(process.execPath, [join(web, 'demo', 'build_wgsl_demo.mjs'), '--check'], { encoding: 'utf8' });
+check(fresh.status === 0, `web/demo/clouds_wgsl.js is fresh (node web/demo/build_wgsl_demo.mjs --check)${fresh.status ? ': ' + fresh.stderr.trim() : ''}`);
 const userDataDir = await mkdtemp(join(tmpdir(), 'cloudmath-chromium-'));
-const flags = ['--headless', '--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
+// WebGL2 through ANGLE on SwiftShader's Vulkan; WebGPU through Dawn on SwiftShader's Vulkan
+// (--enable-unsafe-webgpu --enable-features=Vulkan --use-webgpu-adapter=swiftshader). Both
+// APIs run in one page with these flags, but a WebGPU canvas also needs --use-vulkan=swiftshader
+// and no --disable-gpu: without them the GPU process dies at the canvas's getCurrentTexture
+// ("Could not find SharedImageBackingFactory ... WebgpuSwapChainTexture"), losing the WebGL2
+// context too.
+const flags = ['--headless', '--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
+  '--use-vulkan=swiftshader', '--enable-unsafe-webgpu', '--enable-features=Vulkan', '--use-webgpu-adapter=swiftshader',
   '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run'];
 let context, threeRevision = '?';
 try {
@@ -64,6 +77,25 @@ try {
     check(img && img.cloudFraction > 0.02 && img.cloudFraction < 0.98, `${what}: cloudy pixels ${img && img.cloudFraction.toFixed(3)} in (0.02, 0.98)`);
     check(img && img.levels > 20, `${what}: ${img && img.levels} grey levels > 20`);
   };
+  // The WebGPU image against the WebGL2 one (RGBA8, compared in the page). Measured on
+  // SwiftShader: identical for cumulus and horizon (PSNR inf), one channel of one pixel one
+  // level apart for cumulus with HG and the cheap preset (100.5 dB).
+  // Other GPUs may round differently (float ordering and contraction, texture filtering's
+  // fixed-point weights), so the bounds leave room: PSNR >= 45 dB is an RMS difference of at
+  // most 1.4 levels of 255 (every pixel one level off is 48.1 dB), and no channel off by more
+  // than 16 levels. They are tight enough to fail: measured, a 5 % exposure change gives
+  // 39.9 dB (largest difference 3), the image shifted by one pixel 41.5 dB (largest 62).
+  const psnrText = (c) => (c.psnrDb === Infinity ? 'inf' : c.psnrDb.toFixed(1));
+  const sameImage = (c) => !!c && c.psnrDb >= 45 && c.maxAbsDiff <= 16 && c.alphaMaxAbsDiff <= 16;
+  const comparisonText = (c) => c ? `PSNR ${psnrText(c)} dB, mean |diff| ${c.meanAbsDiff.toFixed(3)}, max ${c.maxAbsDiff} ` +
+    `(opacity ${c.alphaMaxAbsDiff}), ${(100 * c.differingPixelFraction).toFixed(2)} % of pixels differ` : 'no comparison';
+  const waitWebgpu = () => page.waitForFunction(() => !window.cloudmathDemo.webgpu.busy, null, { timeout: 600000, polling: 500 });
+  const webgpuOk = (demo, what) => {
+    const w = demo.webgpu;
+    check(w && w.available && !w.error, `${what}: WebGPU draws clouds.wgsl${w && w.error ? ': ' + w.error : w && !w.available ? ': ' + w.reason : ''}`);
+    imageOk(w && w.image, `${what}, WebGPU`);
+    check(sameImage(w && w.comparison), `${what}: WebGPU image as WebGL2's (PSNR >= 45 dB, max diff <= 16): ${comparisonText(w && w.comparison)}`);
+  };
 
   const t0 = Date.now();
   let demo = await load('?scene=cumulus');
@@ -74,21 +106,39 @@ try {
   for (const r of demo.parity)
     check(r.pass, `parity ${r.fn}: max error ${r.maxError.toExponential(2)} <= ${r.budget}, NaN/Inf ${r.nonFinite}` + (r.pass ? '' : ` (worst at ${JSON.stringify(r.worstAt)})`));
   imageOk(demo.image, 'cumulus, default variant');
+  console.log(`WebGPU adapter: ${demo.webgpu.adapter} (${demo.webgpu.presentation}); pipeline ${demo.webgpu.compileMs?.toFixed(0)} ms, ` +
+    `warm-up frame ${demo.webgpu.warmUpMs?.toFixed(0)} ms, frame ${demo.webgpu.frameMs?.toFixed(0)} ms`);
+  check(typeof demo.webgpu.adapter === 'string' && demo.webgpu.adapter.length > 0, `WebGPU adapter reported (${demo.webgpu.adapter || demo.webgpu.reason})`);
+  webgpuOk(demo, 'cumulus, default variant');
   if (screenshot) { await page.screenshot({ path: screenshot, fullPage: true }); console.log(`screenshot: ${screenshot}`); }
   const parity = demo.parity, renderer = demo.renderer, firstFrame = demo.frames[0];
+  const gpuFrame = demo.webgpu.frameMs, gpuAdapter = demo.webgpu.adapter, firstComparison = demo.webgpu.comparison;
+
+  // The thresholds can fail: a WebGPU frame with one lighting uniform changed (exposure 1 ->
+  // 1.05), and the WebGL2 image against itself moved by one pixel.
+  if (demo.webgpu.available) {
+    const perturbed = await page.evaluate(() => window.cloudmathDemoTools.perturbed({ u_exposure: 1.05 }));
+    check(!sameImage(perturbed.comparison), `WebGPU with u_exposure 1.05 fails the comparison: ${comparisonText(perturbed.comparison)}`);
+    const shifted = await page.evaluate(() => window.cloudmathDemoTools.shifted(1));
+    check(!sameImage(shifted), `WebGL2 image shifted by one pixel fails the comparison: ${comparisonText(shifted)}`);
+  }
 
   // The controls: another variant and multiple-scattering preset redraw a different image.
   const before = demo.image;
   await page.selectOption('#variant', 'hg');
   await page.selectOption('#ms', 'cheap');
+  await waitWebgpu();
   demo = await page.evaluate(() => window.cloudmathDemo);
   check(demo.frames.length === 3, `variant and preset controls redraw (${demo.frames.length} frames)`);
   imageOk(demo.image, 'cumulus, HG, ms_preset cheap');
   check(Math.abs(demo.image.mean - before.mean) > 1e-4, `the variant changes the image (mean ${before.mean.toFixed(4)} -> ${demo.image.mean.toFixed(4)})`);
+  check(demo.webgpu.frames.length >= 2, `the controls redraw the WebGPU image too (${demo.webgpu.frames.length} frames)`);
+  webgpuOk(demo, 'cumulus, HG, ms_preset cheap');
 
   demo = await load('?scene=horizon&sun=12&coverage=0.4');
   check(!demo.error, 'horizon scene loads');
   imageOk(demo.image, 'horizon, sun 12 deg, coverage 0.4');
+  webgpuOk(demo, 'horizon, sun 12 deg, coverage 0.4');
 
   // The three.js snippet of web/README.md, run as written with three.js from npm.
   await page.goto(`${base}/demo/three.html`, { waitUntil: 'commit' });
@@ -109,7 +159,9 @@ try {
       `independent JavaScript double-precision formula on the same float-rounded inputs (web/demo/parity.js). ` +
       `Error: |GPU - JS| / max(|JS|, 1e-30).\n\n| function | values | max error | budget | NaN/Inf |\n|---|---|---|---|---|\n` +
       rows.join('\n') + `\n\nCloud frame (cumulus preset, default variant, 320 x 180, 64 view steps, base volume 64^3): ` +
-      `${firstFrame.toFixed(0)} ms on this software renderer. The three.js snippet of web/README.md runs as written ` +
+      `${firstFrame.toFixed(0)} ms on this software renderer. The same frame from clouds.wgsl (the WGSL port, with ` +
+      `cloudmath's generated WGSL library) on WebGPU (${gpuAdapter}): ${gpuFrame?.toFixed(0)} ms; against the WebGL2 image ` +
+      `${comparisonText(firstComparison)}. The three.js snippet of web/README.md runs as written ` +
       `(three.js r${threeRevision}, GLSL3 ShaderMaterial, no shader errors).\n\n![the demo page](images/web_demo.png)\n`);
     console.log(`markdown: ${markdown}`);
   }

@@ -429,7 +429,7 @@ if (opts.markdown && !failures.length) {  // a failing run leaves the old table
   const md = `# WGSL parity: WGSL twins against the C++ float functions\n\n` +
     `Measured by \`web/test/wgsl_parity.mjs\` (ctest \`web.wgsl_parity\`; regenerate with \`bash scripts/wgsl-parity.sh\`) ` +
     `on Chromium ${chromiumVersion}'s WebGPU (headless, flags \`${flags.slice(0, 6).join(' ')}\`), adapter **${adapterName(a)}**. ` +
-    `The WGSL twins are translated from the GLSL twins (tests/shader_parity/make_parity_shader.mjs --target wgsl); every case ` +
+    `The shipped WGSL twins (include/cloudmath/wgsl, generated from the GLSL by tools/shader_translate) run with the test's own code translated by tests/shader_parity/make_parity_shader.mjs --target wgsl; every case ` +
     `of docs/glsl_parity.md runs as a WebGPU compute shader on the inputs as f32, against the C++ outputs dumped by ` +
     `\`test_glsl_parity --dump-cases\`.\n\n` +
     `Error: |WGSL - C++| / max(|C++|, floor) per output component, over grids that include the hard cases of the C++ tests ` +

@@ -1,0 +1,415 @@
+// clouds.wgsl: clouds.frag in WGSL, line for line. It mirrors clouds.frag (the same functions
+// in the same order, the same names, the same arithmetic); read clouds.frag for the comments
+// on what each piece does. Every piece of cloud math is a cloudmath WGSL function (cm_*,
+// include/cloudmath/wgsl/, generated from the GLSL twins).
+//
+// The host (web/demo/webgpu.js) puts in front of it include/cloudmath/wgsl/cloudmath.wgsl (the
+// library without hooks) and the *_hooks.wgsl files (cm_cone_optical_depth,
+// cm_multiple_scattering_with, cm_diffusion_scattering_with), which call the hooks defined
+// below; the run-time variant switches stay uniforms (there is no compile-time variant block).
+//
+// What differs from clouds.frag, all forced by WGSL:
+// - Uniforms are the members of one uniform struct, U, with the GLSL names: u_x is U.u_x.
+//   The variant switches (CR_PARAM) are members too, always run-time values.
+// - Each sampler2D / sampler3D is a texture and a sampler binding (u_x, u_x_sampler);
+//   textureLod -> textureSampleLevel, textureSize(t, 0) -> textureDimensions(t),
+//   texelFetch -> textureLoad. u_shadow_map (RGBA32F, read with textureLoad only) has no sampler.
+// - The hooks have fixed names: cm_cone_extinction (CM_CONE_EXTINCTION), cm_ms_phase
+//   (CM_MS_PHASE) and cm_diffusion_phase (CM_DIFFUSION_PHASE) call cr_cone_extinction and
+//   cr_phase.
+// - gl_FragCoord has its origin at the bottom left, WebGPU's position at the top left: main()
+//   flips y (frag_coord) so that every pixel gets the same ray, jitter and dither as in GLSL.
+// - The outputs are a struct (location 0 colour, location 1 depth).
+// - No ?: operator: select() where both sides are cheap and free of side effects, if/else
+//   otherwise (light_index++ is a statement of its own). Function parameters are immutable
+//   (cr_light_optical_depth copies `mode`); `from` is a reserved word (from_); overloaded
+//   cm_ functions carry their type suffix (cm_aerial_perspective_v3v3v3,
+//   cm_march_add_segment_...), in/out structs are passed as pointers (&acc).
+// - Globals set per pixel are var<private>.
+
+struct CrUniforms {
+    // The lighting variant (values in scene.hpp's `variant`): clouds.frag's CR_PARAM lines.
+    u_phase_model: i32,      // 0 HG, 1 dual-lobe HG, 2 Cornette-Shanks, 3 Mie fit
+    u_lighting: i32,         // 0 Wrenninge octaves, 1 diffusion model
+    u_octaves: i32,
+    u_powder: i32,
+    u_light_mode: i32,       // toward the sun: 0 cone, 1 march, 2 shadow map
+    u_behind_mode: i32,      // behind the sample (diffusion model): 0 cone, 1 march, 2 shadow map
+    u_cone_samples: i32,
+    u_light_steps: i32,
+    u_light_quadratic: i32,
+    u_light_jitter: i32,
+    u_refine: i32,
+    u_integration: i32,      // 0 energy-conserving (analytic), 1 naive Riemann sum
+    u_view_steps: i32,
+    u_schedule: i32,
+    u_skip: i32,
+    u_shadows: i32,
+    u_occluded_ambient: i32,
+    u_lod: i32,
+    u_far_base: i32,
+    u_long_reach: i32,
+    u_jitter: i32,
+    u_sun_disc: i32,
+    u_haze: i32,
+    u_dither: i32,
+
+    // The scene (scene.hpp's `scene` and `frame_constants`).
+    u_resolution: vec2f,
+    u_forward: vec3f, u_right: vec3f, u_up: vec3f,
+    u_tan_half_fov: f32,
+    u_cam_altitude: f32, u_planet_radius: f32, u_layer_bottom: f32, u_layer_top: f32,
+    u_sun_dir: vec3f, u_sun_radiance: vec3f, u_ambient_top: vec3f, u_ambient_bottom: vec3f,
+    u_sky_zenith: vec3f, u_sky_horizon: vec3f, u_ground: vec3f,
+    u_sun_angular_radius: f32,
+    u_coverage: f32, u_cloud_type: f32, u_extinction: f32, u_albedo: f32, u_max_distance: f32,
+    u_base_tile: f32, u_detail_tile: f32, u_weather_tile: f32,
+    u_shape: i32,
+    u_weather_wide_tile: f32, u_curl_tile: f32, u_curl_strength: f32, u_type_spread: f32, u_top_rounding: f32, u_density_scale: f32,
+    u_band: vec2f,
+    u_wind: vec2f,
+    u_frame: u32,
+    u_exposure: f32,
+    u_phase_g: f32, u_phase_g_back: f32, u_phase_w: f32, u_droplet_diameter: f32,
+    u_ms_a: f32, u_ms_b: f32, u_ms_c: f32,
+    u_phase_mean_cosine: f32,
+    u_cone_step: f32, u_cone_spread: f32, u_cone_far_distance: f32, u_cone_far_length: f32,
+    u_light_march_max: f32, u_min_transmittance: f32,
+    u_march_near_distance: f32,
+    u_shadow_origin: vec3f, u_shadow_right: vec3f, u_shadow_up: vec3f,
+    u_shadow_half_extent: f32,
+    u_pass: i32,
+    u_update_offset: vec2u,
+}
+
+@group(0) @binding(0) var<uniform> U: CrUniforms;
+@group(0) @binding(1) var u_base: texture_3d<f32>;
+@group(0) @binding(2) var u_base_sampler: sampler;
+@group(0) @binding(3) var u_detail: texture_3d<f32>;
+@group(0) @binding(4) var u_detail_sampler: sampler;
+@group(0) @binding(5) var u_weather: texture_2d<f32>;
+@group(0) @binding(6) var u_weather_sampler: sampler;
+@group(0) @binding(7) var u_weather_wide: texture_2d<f32>;
+@group(0) @binding(8) var u_weather_wide_sampler: sampler;
+@group(0) @binding(9) var u_curl: texture_2d<f32>;
+@group(0) @binding(10) var u_curl_sampler: sampler;
+@group(0) @binding(11) var u_shadow_map: texture_2d<f32>;  // RGBA32F, textureLoad only
+
+struct CrOutput {
+    @location(0) out_color: vec4f,
+    @location(1) out_depth: f32,
+}
+
+// cloudmath calls these back (clouds.frag's #define CM_CONE_EXTINCTION cr_cone_extinction ...).
+fn cm_cone_extinction(p: vec3f, i: i32) -> f32 { return cr_cone_extinction(p, i); }
+fn cm_ms_phase(mu: f32, scale: f32) -> f32 { return cr_phase(mu, scale); }
+fn cm_diffusion_phase(mu: f32, scale: f32) -> f32 { return cr_phase(mu, scale); }
+
+const CR_SKIP_BLOCK = 4;
+const CR_LIGHT_FAR_STEP = 3;
+const CR_LIGHT_LONG_REACH = 30000.0;
+const CR_SHADOW_MAP_SIZE = 128;
+const CR_SHADOW_MAP_STEPS = 24;
+const CR_GROUND_SKY_SHARE = 0.4;
+
+var<private> cr_mie: CmMieApproxParams;
+var<private> cr_footprint: f32 = 0.0;
+var<private> cr_band: vec2f;
+
+fn cr_altitude(p: vec3f) -> f32 { return cm_point_altitude(p, U.u_cam_altitude, U.u_planet_radius); }
+
+fn cr_base_density(p: vec3f, altitude: f32) -> f32 {
+    let h = cm_height_fraction(altitude, U.u_layer_bottom, U.u_layer_top);
+    if (h <= 0.0 || h >= 1.0) { return 0.0; }
+    let q = vec3f(p.x + U.u_wind.x, altitude, p.z + U.u_wind.y);
+    if (U.u_shape == 1) {
+        let w = textureSampleLevel(u_weather_wide, u_weather_wide_sampler, q.xz / U.u_weather_wide_tile,
+                                   cm_texture_lod(cr_footprint, U.u_weather_wide_tile / f32(textureDimensions(u_weather_wide).x))).rgb;
+        let b = textureSampleLevel(u_base, u_base_sampler, q / U.u_base_tile, cm_texture_lod(cr_footprint, U.u_base_tile / f32(textureDimensions(u_base).x)));
+        return cm_cloud_shape_density(b, w, h, U.u_coverage, U.u_cloud_type, U.u_type_spread, U.u_top_rounding);
+    }
+    let weather_lod = cm_texture_lod(cr_footprint, U.u_weather_tile / f32(textureDimensions(u_weather).x));
+    let base_lod = cm_texture_lod(cr_footprint, U.u_base_tile / f32(textureDimensions(u_base).x));
+    let coverage = cm_saturate(textureSampleLevel(u_weather, u_weather_sampler, q.xz / U.u_weather_tile, weather_lod).r - 0.5 + U.u_coverage);
+    let base = textureSampleLevel(u_base, u_base_sampler, q / U.u_base_tile, base_lod);
+    let shaped = cm_nubis_base_cloud(base) * cm_height_gradient_for_type(h, U.u_cloud_type);
+    return cm_apply_coverage(shaped, coverage);
+}
+
+fn cr_density(p: vec3f, altitude: f32) -> f32 {
+    let covered = cr_base_density(p, altitude);
+    if (covered <= 0.0) { return 0.0; }
+    let h = cm_height_fraction(altitude, U.u_layer_bottom, U.u_layer_top);
+    var q = vec3f(p.x + U.u_wind.x, altitude, p.z + U.u_wind.y);
+    let detail_lod = cm_texture_lod(cr_footprint, U.u_detail_tile / f32(textureDimensions(u_detail).x));
+    if (U.u_shape == 1) {
+        let curl = (2.0 * textureSampleLevel(u_curl, u_curl_sampler, q.xz / U.u_curl_tile, 0.0).rgb - 1.0) * 4.0;  // curl_bake_decode
+        q += curl * (U.u_curl_strength * (1.0 - h));
+        let d = textureSampleLevel(u_detail, u_detail_sampler, q / U.u_detail_tile, detail_lod).rgb;
+        return cm_saturate(cm_erode(covered, cm_nubis_detail_erosion(d, h)) * U.u_density_scale);
+    }
+    let detail = textureSampleLevel(u_detail, u_detail_sampler, q / U.u_detail_tile, detail_lod).rgb;
+    return cm_erode(covered, cm_nubis_detail_erosion(detail, h));
+}
+
+fn cr_coarse_density(p: vec3f, altitude: f32) -> f32 {
+    let covered = cr_base_density(p, altitude);
+    return select(covered, cm_saturate(covered * U.u_density_scale), U.u_shape == 1);
+}
+
+var<private> cr_far_index: i32 = 1 << 30;
+
+fn cr_cone_extinction(p: vec3f, i: i32) -> f32 {
+    if (U.u_far_base != 0 && i >= cr_far_index) { return U.u_extinction * cr_coarse_density(p, cr_altitude(p)); }
+    return U.u_extinction * cr_density(p, cr_altitude(p));
+}
+
+fn cr_phase(mu: f32, scale: f32) -> f32 {
+    if (U.u_phase_model == 0) { return cm_phase_hg(mu, scale * U.u_phase_g); }
+    if (U.u_phase_model == 1) { return cm_phase_hg_dual(mu, scale * U.u_phase_g, scale * U.u_phase_g_back, U.u_phase_w); }
+    if (U.u_phase_model == 2) { return cm_phase_cornette_shanks(mu, scale * U.u_phase_g); }
+    var m = cr_mie;
+    m.g_hg *= scale;
+    m.g_draine *= scale;
+    return cm_phase_mie_approx(mu, m);
+}
+
+fn cr_shadow_lookup(uv: vec2f) -> vec3f {
+    let fp = cm_texel_bilinear(uv, vec2f(f32(CR_SHADOW_MAP_SIZE)));
+    var texel = vec3f(0.0);
+    for (var dy = 0; dy < 2; dy++) {
+        for (var dx = 0; dx < 2; dx++) {
+            let t = clamp(vec2i(fp.xy) + vec2i(dx, dy), vec2i(0), vec2i(CR_SHADOW_MAP_SIZE - 1));
+            texel += textureLoad(u_shadow_map, t, 0).xyz * (select(1.0 - fp.z, fp.z, dx != 0) * select(1.0 - fp.w, fp.w, dy != 0));
+        }
+    }
+    return texel;
+}
+
+fn cr_light_distance(u: f32, length: f32) -> f32 { return select(u * length, cm_light_march_distance(u, length), U.u_light_quadratic != 0); }
+
+fn cr_on_map(uvd: vec3f) -> bool { return uvd.x >= 0.0 && uvd.x <= 1.0 && uvd.y >= 0.0 && uvd.y <= 1.0; }
+
+fn cr_light_optical_depth(p: vec3f, altitude: f32, toward: vec3f, mode_in: i32, light_offset: f32) -> f32 {
+    var mode = mode_in;
+    if (mode == 2) {
+        let uvd = cm_shadow_map_project(p, U.u_shadow_origin, U.u_shadow_right, U.u_shadow_up, U.u_sun_dir, U.u_shadow_half_extent);
+        if (cr_on_map(uvd)) {
+            let texel = cr_shadow_lookup(uvd.xy);
+            let before = cm_beer_shadow_optical_depth(texel, uvd.z);
+            return select(max(texel.z - before, 0.0), before, dot(toward, U.u_sun_dir) > 0.0);
+        }
+        mode = 0;
+    }
+    if (mode == 0) {
+        let cone = CmConeLightConfig(U.u_cone_samples, U.u_cone_step, U.u_cone_spread,
+                                     U.u_cone_far_distance, U.u_cone_far_length);
+        cr_far_index = U.u_cone_samples - 1;
+        return cm_cone_optical_depth(p, toward, cone);
+    }
+    cr_far_index = CR_LIGHT_FAR_STEP;
+    let up = normalize(vec3f(p.x, p.y + (U.u_planet_radius + U.u_cam_altitude), p.z));
+    let seg = cm_cloud_layer_segment(altitude, dot(toward, up), U.u_planet_radius, cr_band.x, cr_band.y);
+    let reach = select(U.u_light_march_max, CR_LIGHT_LONG_REACH, U.u_long_reach != 0);
+    let length_to_exit = select(0.0, min(seg.y, reach), seg.y > seg.x);
+    let n = f32(U.u_light_steps);
+    var tau = 0.0;
+    for (var i = 0; i < U.u_light_steps; i++) {
+        let ds = cr_light_distance((f32(i) + 1.0) / n, length_to_exit) - cr_light_distance(f32(i) / n, length_to_exit);
+        tau += cr_cone_extinction(p + toward * cr_light_distance((f32(i) + light_offset) / n, length_to_exit), i) * ds;
+    }
+    return tau;
+}
+
+fn cr_in_scattering(tau_light: f32, tau_behind: f32, tau_view: f32, mu: f32, h: f32) -> vec3f {
+    var sun: f32;
+    if (U.u_lighting == 1) {
+        sun = cm_diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, U.u_phase_mean_cosine, U.u_albedo,
+                                           CM_DIFFUSION_MODEL_FITTED);
+    } else {
+        sun = cm_multiple_scattering_with(tau_light, mu, U.u_ms_a, U.u_ms_b, U.u_ms_c, U.u_octaves);
+    }
+    if (U.u_powder != 0) {
+        sun *= mix(2.0 * cm_powder(tau_light, 2.0), 1.0, 0.5 + 0.5 * mu);
+    }
+    if (U.u_occluded_ambient == 0) { return U.u_sun_radiance * sun + mix(U.u_ambient_bottom, U.u_ambient_top, h); }
+    let up = max(U.u_sun_dir.y, 0.0);
+    return U.u_sun_radiance * sun + mix(U.u_ambient_bottom * cm_diffuse_transmittance(tau_behind * up, U.u_phase_mean_cosine),
+                                        U.u_ambient_top * cm_diffuse_transmittance(tau_light * up, U.u_phase_mean_cosine), h);
+}
+
+fn cr_shadow_texel(ij: vec2f) -> vec3f {
+    let ab = ((ij + 0.5) / f32(CR_SHADOW_MAP_SIZE) * 2.0 - 1.0) * U.u_shadow_half_extent;
+    let p0 = U.u_shadow_origin + U.u_shadow_right * ab.x + U.u_shadow_up * ab.y;
+    let up0 = normalize(vec3f(p0.x, p0.y + (U.u_planet_radius + U.u_cam_altitude), p0.z));
+    let seg = cm_cloud_layer_segment(cr_altitude(p0), -dot(U.u_sun_dir, up0), U.u_planet_radius, cr_band.x, cr_band.y);
+    var acc = cm_beer_shadow_accumulator();
+    if (seg.y > seg.x) {
+        let ds = (seg.y - seg.x) / f32(CR_SHADOW_MAP_STEPS);
+        for (var m = 0; m < CR_SHADOW_MAP_STEPS; m++) {
+            let t = seg.x + f32(m) * ds;
+            let q = p0 - U.u_sun_dir * (t + 0.5 * ds);
+            cm_beer_shadow_add_step(&acc, t, ds, U.u_extinction * cr_density(q, cr_altitude(q)));
+        }
+    }
+    return cm_beer_shadow_texel(acc);
+}
+
+fn cr_ground_shadow(g: vec3f) -> f32 {
+    let uvd = cm_shadow_map_project(g, U.u_shadow_origin, U.u_shadow_right, U.u_shadow_up, U.u_sun_dir, U.u_shadow_half_extent);
+    if (!cr_on_map(uvd)) { return 1.0; }
+    return mix(CR_GROUND_SKY_SHARE, 1.0, cm_beer_shadow_transmittance(cr_shadow_lookup(uvd.xy), uvd.z));
+}
+
+fn cr_background(dir: vec3f) -> vec3f {
+    let ground = cm_ray_sphere_intersect_altitude(U.u_cam_altitude, dir.y, U.u_planet_radius, 0.0);
+    if (ground.x >= 0.0 && ground.y > ground.x) {
+        if (U.u_shadows != 0) { return U.u_ground * cr_ground_shadow(dir * ground.x); }
+        return U.u_ground;
+    }
+    let mu = dot(dir, U.u_sun_dir);
+    var sky = mix(U.u_sky_horizon, U.u_sky_zenith, sqrt(cm_saturate(dir.y)));
+    sky += U.u_sun_radiance * (0.05 * cm_phase_hg(mu, 0.75));
+    if (U.u_sun_disc != 0) { sky += U.u_sun_radiance * cm_sun_disc_radiance(1.0, mu, U.u_sun_angular_radius, 0.6); }
+    return sky;
+}
+
+fn cr_march_distance(u: f32, t0: f32, t1: f32) -> f32 {
+    if (U.u_schedule == 1) { return cm_march_schedule_distance(u, t0, t1, U.u_march_near_distance); }
+    return t0 + u * (t1 - t0);
+}
+
+fn cr_tonemap(c: vec3f) -> vec3f { return pow(vec3f(1.0) - exp(-c * U.u_exposure), vec3f(1.0 / 2.2)); }
+
+fn cr_pixel_hash(pixel: vec2f) -> u32 { return cm_noise_hash(u32(pixel.x) + u32(pixel.y) * 8192u); }
+
+@vertex
+fn cr_vertex(@builtin(vertex_index) id: u32) -> @builtin(position) vec4f {
+    // The full-screen triangle of the WebGL2 demo's vertex shader.
+    return vec4f(select(-1.0, 3.0, id == 1u), select(-1.0, 3.0, id == 2u), 0.0, 1.0);
+}
+
+@fragment
+fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
+    var out: CrOutput;
+    // gl_FragCoord.xy: y up from the bottom row, pixel centres at .5.
+    let frag_coord = vec2f(position.x, U.u_resolution.y - position.y);
+    let pixel = select(frag_coord, floor(frag_coord) * 4.0 + vec2f(U.u_update_offset) + 0.5, U.u_pass != 0);
+    let ndc = pixel / U.u_resolution * 2.0 - 1.0;
+    let aspect = U.u_resolution.x / U.u_resolution.y;
+    let dir = normalize(U.u_forward + U.u_right * (ndc.x * aspect * U.u_tan_half_fov) + U.u_up * (ndc.y * U.u_tan_half_fov));
+    cr_mie = cm_mie_approx_params(U.u_droplet_diameter);
+    cr_band = select(cm_height_range_for_type(U.u_cloud_type) * (U.u_layer_top - U.u_layer_bottom) + U.u_layer_bottom, U.u_band, U.u_shape == 1);
+    if (U.u_pass == 2) {
+        cr_footprint = select(0.0, 2.0 * U.u_shadow_half_extent / f32(CR_SHADOW_MAP_SIZE), U.u_lod != 0);
+        out.out_color = vec4f(cr_shadow_texel(floor(frag_coord)), 0.0);
+        out.out_depth = 0.0;
+        return out;
+    }
+
+    var acc = cm_march_accumulator();
+    var cloud_depth = 0.0;
+    let layer = cm_cloud_layer_segment(U.u_cam_altitude, dir.y, U.u_planet_radius, U.u_layer_bottom, U.u_layer_top);
+    let in_band = cm_cloud_layer_segment(U.u_cam_altitude, dir.y, U.u_planet_radius, cr_band.x, cr_band.y);
+    let seg = vec2f(max(layer.x, in_band.x), min(min(layer.y, layer.x + U.u_max_distance), in_band.y));
+    if (seg.y > seg.x) {
+        let t1 = seg.y;
+        let pixel_hash = cr_pixel_hash(pixel);
+        let offset = select(0.5, cm_frame_jitter(pixel_hash, U.u_frame), U.u_jitter != 0);
+        let mu = dot(dir, U.u_sun_dir);
+        let n = f32(U.u_view_steps);
+        var tau_view = 0.0;
+        var depth_sum = 0.0;
+        var step_begin = seg.x;
+        var empty_steps = CR_SKIP_BLOCK;
+        var last_empty = -1.0;
+        var light_index = 0u;
+        for (var i = 0; i < U.u_view_steps; i++) {
+            if (U.u_skip != 0 && empty_steps >= CR_SKIP_BLOCK) {
+                let j = min(i + CR_SKIP_BLOCK, U.u_view_steps);
+                let tp = cr_march_distance((f32(i) + offset * f32(j - i)) / n, seg.x, t1);
+                let altp = cm_altitude_along_ray(U.u_cam_altitude, dir.y, U.u_planet_radius, tp);
+                cr_footprint = select(0.0, cm_pixel_footprint(tp, U.u_tan_half_fov, U.u_resolution.y), U.u_lod != 0);
+                if (cr_base_density(dir * tp, altp) <= 0.0) {
+                    step_begin = cr_march_distance(f32(j) / n, seg.x, t1);
+                    last_empty = step_begin;
+                    i = j - 1;
+                    continue;
+                }
+                empty_steps = 0;
+            }
+            let t = cr_march_distance((f32(i) + offset) / n, seg.x, t1);
+            let step_end = cr_march_distance((f32(i) + 1.0) / n, seg.x, t1);
+            let altitude = cm_altitude_along_ray(U.u_cam_altitude, dir.y, U.u_planet_radius, t);
+            cr_footprint = select(0.0, cm_pixel_footprint(t, U.u_tan_half_fov, U.u_resolution.y), U.u_lod != 0);
+            let density = cr_density(dir * t, altitude);
+            if (density <= 0.0) {
+                last_empty = t;
+                step_begin = step_end;
+                empty_steps++;
+                continue;
+            }
+            let r0 = select(step_begin, last_empty, empty_steps > 0 && last_empty >= 0.0);
+            let sub = cm_refine_substeps(U.u_extinction * density * (step_end - r0), U.u_refine);
+            let from_ = select(step_begin, r0, sub > 1);
+            let ds = (step_end - from_) / f32(sub);
+            empty_steps = 0;
+            var opaque = false;
+            for (var m = 0; m < sub && !opaque; m++) {
+                var ts = t;
+                var alts = altitude;
+                var dm = density;
+                if (sub > 1) {
+                    ts = from_ + (f32(m) + offset) * ds;
+                    alts = cm_altitude_along_ray(U.u_cam_altitude, dir.y, U.u_planet_radius, ts);
+                    cr_footprint = select(0.0, cm_pixel_footprint(ts, U.u_tan_half_fov, U.u_resolution.y), U.u_lod != 0);
+                    dm = cr_density(dir * ts, alts);
+                }
+                if (dm <= 0.0) { continue; }
+                let sigma_t = U.u_extinction * dm;
+                var lo = 0.5;
+                if (U.u_jitter != 0 && U.u_light_jitter != 0) {
+                    lo = cm_sample_jitter(pixel_hash, U.u_frame, light_index);
+                    light_index++;
+                }
+                let tau_light = cr_light_optical_depth(dir * ts, alts, U.u_sun_dir, U.u_light_mode, lo);
+                var tau_behind = 0.0;
+                if (U.u_lighting == 1) { tau_behind = cr_light_optical_depth(dir * ts, alts, -U.u_sun_dir, U.u_behind_mode, lo); }
+                let h = cm_height_fraction(alts, U.u_layer_bottom, U.u_layer_top);
+                let S = (U.u_albedo * sigma_t) * cr_in_scattering(tau_light, tau_behind, tau_view + 0.5 * sigma_t * ds, mu, h);
+                tau_view += sigma_t * ds;
+                let before = acc.transmittance.r;
+                if (U.u_integration == 0) {
+                    cm_march_add_segment_MarchAccumulatorv3ff(&acc, S, sigma_t, ds);
+                } else {
+                    acc.luminance += acc.transmittance * S * ds;
+                    acc.transmittance *= cm_beer_lambert(sigma_t * ds);
+                }
+                depth_sum += (before - acc.transmittance.r) * ts;
+                opaque = cm_march_is_opaque(acc, U.u_min_transmittance);
+            }
+            step_begin = step_end;
+            if (opaque) { break; }
+        }
+        let opacity = 1.0 - acc.transmittance.r;
+        if (opacity > 0.0) { cloud_depth = depth_sum / opacity; }
+        if (U.u_haze != 0 && opacity > 0.0) {
+            let tau_air = cm_air_optical_depth(U.u_cam_altitude, dir.y, depth_sum / opacity);
+            acc.luminance = cm_aerial_perspective_v3v3v3(acc.luminance, U.u_sky_horizon * opacity, tau_air);
+        }
+    }
+    let color = cr_background(dir) * acc.transmittance + acc.luminance;
+    let alpha = 1.0 - (acc.transmittance.r + acc.transmittance.g + acc.transmittance.b) / 3.0;
+    out.out_depth = cloud_depth;
+    if (U.u_pass != 0) {
+        out.out_color = vec4f(color, alpha);
+        return out;
+    }
+    var display = cr_tonemap(color);
+    if (U.u_dither != 0) {
+        let index = u32(frag_coord.x) + u32(frag_coord.y) * 8192u;
+        display += cm_triangular_dither(cm_noise_hash(cm_noise_hash(index) + U.u_frame * 0x9e3779b9u)) * (1.0 / 255.0);
+    }
+    out.out_color = vec4f(display, alpha);
+    return out;
+}
