@@ -13,3 +13,15 @@ macro(cloudmath_pop_line text_var line_var)
     string(SUBSTRING "${${text_var}}" ${_cm_next} -1 ${text_var})
   endif()
 endmacro()
+
+# cloudmath_text_line(<text> <number> <line_var>): line <number> (1-based) of <text>, without
+# its newline ("" past the end), for reports that quote the lines a compiler names.
+function(cloudmath_text_line text number line_var)
+  set(current 1)
+  while(current LESS number AND NOT text STREQUAL "")
+    cloudmath_pop_line(text skipped)
+    math(EXPR current "${current} + 1")
+  endwhile()
+  cloudmath_pop_line(text line)
+  set(${line_var} "${line}" PARENT_SCOPE)
+endfunction()

@@ -19,6 +19,7 @@
 # exits non-zero or prints a line containing "WARNING" or "ERROR".
 # EXPECT_FAILURE=ON inverts only that verdict (the shader must be rejected), for the test
 # that proves a broken expression is caught; set-up errors still fail.
+include("${CMAKE_CURRENT_LIST_DIR}/../../cmake/TextLines.cmake")
 cmake_minimum_required(VERSION 3.20)
 
 include("${CMAKE_CURRENT_LIST_DIR}/calls.cmake")
@@ -143,21 +144,7 @@ if(failed)
     string(APPEND report "Shader lines named above (${shader_file}):\n")
     foreach(location IN LISTS locations)
       string(REGEX REPLACE ".*: 0:([0-9]+):" "\\1" number "${location}")
-      # Walk to line <number> with string(FIND): GLSL lines hold ";", which CMake lists split.
-      set(rest "${shader}")
-      set(current 1)
-      while(current LESS number)
-        string(FIND "${rest}" "\n" eol)
-        if(eol EQUAL -1)
-          set(rest "")
-          break()
-        endif()
-        math(EXPR next "${eol} + 1")
-        string(SUBSTRING "${rest}" ${next} -1 rest)
-        math(EXPR current "${current} + 1")
-      endwhile()
-      string(FIND "${rest}" "\n" eol)
-      string(SUBSTRING "${rest}" 0 ${eol} text)
+      cloudmath_text_line("${shader}" ${number} text)
       string(APPEND report "  ${number}: ${text}\n")
     endforeach()
   endif()

@@ -21,6 +21,7 @@
 # ctest's SKIP_REGULAR_EXPRESSION turns into a skip (cmake -P cannot exit 77).
 # EXPECT_FAILURE=ON inverts only the compile verdict of the BODY mode (the body must be
 # rejected), for the test that proves the compile gate can fail; set-up errors still fail.
+include("${CMAKE_CURRENT_LIST_DIR}/../../cmake/TextLines.cmake")
 cmake_minimum_required(VERSION 3.20)
 
 function(hlsl_require var what)
@@ -78,21 +79,7 @@ function(hlsl_named_lines output file text report_var)
   endif()
   foreach(location IN LISTS locations)
     string(REGEX REPLACE ".*: 0:([0-9]+):" "\\1" number "${location}")
-    # Walk to line <number> with string(FIND): HLSL lines hold ";" and "[", which lists mangle.
-    set(rest "${text}")
-    set(current 1)
-    while(current LESS number)
-      string(FIND "${rest}" "\n" eol)
-      if(eol EQUAL -1)
-        set(rest "")
-        break()
-      endif()
-      math(EXPR next "${eol} + 1")
-      string(SUBSTRING "${rest}" ${next} -1 rest)
-      math(EXPR current "${current} + 1")
-    endwhile()
-    string(FIND "${rest}" "\n" eol)
-    string(SUBSTRING "${rest}" 0 ${eol} line)
+    cloudmath_text_line("${text}" ${number} line)
     string(APPEND report "  ${number}: ${line}\n")
   endforeach()
   set(${report_var} "${report}" PARENT_SCOPE)
