@@ -126,8 +126,17 @@ export class Analysis {
 
 // Names a function assigns to, increments or passes as out/inout arguments (their root
 // variables): these must be WGSL `var`s, and parameters among them need a local copy.
-export function mutatedNames(body, analysis) {
+// With runtimeIndexed, also the roots of arrays indexed by a non-literal (WGSL: such arrays
+// must be vars for older naga). The caller has bound the parameters.
+export function mutatedNames(body, analysis, { runtimeIndexed = false } = {}) {
   const out = new Set();
+  const locals = new Map();  // local declarations, for the types of indexed arrays
+  const declared = (s) => {
+    if (!s || typeof s !== 'object') return;
+    if (s.kind === 'decl') for (const d of s.declarators) locals.set(d.name, d.array ? `${s.type}[]` : s.type);
+    for (const v of Object.values(s)) if (Array.isArray(v)) v.forEach(declared); else if (v && typeof v === 'object' && v !== s.expr) declared(v);
+  };
+  if (runtimeIndexed) declared(body);
   const root = (e) => {
     while (e.kind === 'member' || e.kind === 'index' || e.kind === 'paren') e = e.obj || e.expr;
     return e.kind === 'ident' ? e.name : null;
@@ -135,6 +144,16 @@ export function mutatedNames(body, analysis) {
   const expr = (e) => {
     if (!e || typeof e !== 'object') return;
     if (e.kind === 'assign') { const r = root(e.left); if (r) out.add(r); }
+    if (runtimeIndexed && e.kind === 'index' && e.index.kind !== 'num') {
+      const r = root(e.obj);
+      if (r) {
+        analysis.push();
+        for (const [n, t] of locals) analysis.bind(n, t);
+        const isArray = /\[/.test(analysis.typeOf(e.obj) || '');
+        analysis.pop();
+        if (isArray) out.add(r);
+      }
+    }
     if ((e.kind === 'postfix' || e.kind === 'unary') && (e.op === '++' || e.op === '--')) { const r = root(e.arg); if (r) out.add(r); }
     if (e.kind === 'call' && analysis.functions.has(e.callee)) {
       for (const o of analysis.functions.get(e.callee))

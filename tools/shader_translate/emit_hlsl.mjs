@@ -48,17 +48,21 @@ export function emitHlsl(unit, analysis, { emit = () => true, flatten = false, c
       case 'num': return e.text;
       case 'ident': return hlslName(e.name);
       case 'paren': return `(${expr(e.expr)})`;
-      case 'member': return `${expr(e.obj)}.${e.name}`;
+      case 'member': return `${expr(e.obj)}.${A.structs.has(A.typeOf(e.obj)) ? hlslName(e.name) : e.name}`;
       case 'index': return `${expr(e.obj)}[${expr(e.index)}]`;
-      case 'unary': return `${e.op}${expr(e.arg)}`;
+      case 'unary': { const a = expr(e.arg); return `${e.op}${/^[-+]/.test(a) && (e.op === '-' || e.op === '+') ? ' ' : ''}${a}`; }
       case 'postfix': return `${expr(e.arg)}${e.op}`;
       case 'ternary': return `${expr(e.cond)} ? ${expr(e.then)} : ${expr(e.else)}`;
       case 'assign': return `${expr(e.left)} ${e.op} ${expr(e.right)}`;
       case 'binary': {
         const l = expr(e.left), r = expr(e.right);
+        // x != x is GLSL's NaN test; DXC and FXC may fold it to false under their default
+        // float optimisations, isnan() they keep.
+        if ((e.op === '!=' || e.op === '==') && l === r && !isVector(A.typeOf(e.left)) && A.typeOf(e.left) === 'float')
+          return e.op === '!=' ? `isnan(${l})` : `!isnan(${l})`;
         if ((e.op === '==' || e.op === '!=') && (isVector(A.typeOf(e.left)) || isVector(A.typeOf(e.right))))
           return `${e.op === '==' ? 'all' : 'any'}(${l} ${e.op} ${r})`;
-        if (e.op === '^^') return `(${l} != ${r})`;
+        if (e.op === '^^') return `((${l}) != (${r}))`;
         return `${l} ${e.op} ${r}`;
       }
       case 'call': return call(e, ctx);
@@ -98,6 +102,7 @@ export function emitHlsl(unit, analysis, { emit = () => true, flatten = false, c
     if (COMPARE[e.callee] && !A.functions.has(e.callee)) return `(${args[0]} ${COMPARE[e.callee]} ${args[1]})`;
     if (e.callee === 'not' && !A.functions.has('not')) return `(!${args[0]})`;
     if (e.callee === 'atan' && args.length === 2 && !A.functions.has('atan')) return `atan2(${args.join(', ')})`;
+    if (e.callee === 'fma' && !A.functions.has('fma')) A.error('fma() has no float HLSL form (HLSL fma takes doubles; mad may round differently)', e.line);
     if (e.callee === 'mod' && !A.functions.has('mod')) A.error('mod() has no HLSL twin here (fmod truncates); write x - y * floor(x / y)', e.line);
     A.typeOf(e);  // checks the overload exists and is unique
     const name = !A.functions.has(e.callee) && RENAME[e.callee] ? RENAME[e.callee] : e.callee;
@@ -143,21 +148,22 @@ export function emitHlsl(unit, analysis, { emit = () => true, flatten = false, c
       case 'return': return c(`${indent}return${s.expr ? ' ' + expr(s.expr) : ''};`);
       case 'break': case 'continue': return c(`${indent}${s.kind};`);
       case 'if': {
-        let text = `${indent}if (${expr(s.cond)}) ${body(s.then, indent)}`;
-        if (s.else) text += ` else ${s.else.kind === 'if' ? stmt({ ...s.else, leading: [] }, indent).trimStart() : body(s.else, indent)}`;
+        let text = `${indent}if (${expr(s.cond)})${sep(body(s.then, indent))}`;
+        if (s.else) text += `${s.then.kind === 'block' ? ' ' : `\n${indent}`}else${s.else.kind === 'if' ? ' ' + stmt({ ...s.else, leading: [] }, indent).trimStart() : sep(body(s.else, indent))}`;
         return c(text);
       }
       case 'for': {
         A.push();
         const init = s.init ? (s.init.kind === 'decl' ? declarators(s.init, '', false).replace(/;$/, '') : expr(s.init.expr)) : '';
-        const text = `${indent}for (${init}; ${s.cond ? expr(s.cond) : ''}; ${s.step ? expr(s.step) : ''}) ${body(s.body, indent)}`;
+        const text = `${indent}for (${init}; ${s.cond ? expr(s.cond) : ''}; ${s.step ? expr(s.step) : ''})${sep(body(s.body, indent))}`;
         A.pop();
         return c(text);
       }
-      case 'while': return c(`${indent}while (${expr(s.cond)}) ${body(s.body, indent)}`);
+      case 'while': return c(`${indent}while (${expr(s.cond)})${sep(body(s.body, indent))}`);
       default: throw new Error(`unknown statement ${s.kind}`);
     }
   }
+  const sep = (b) => (b.startsWith('\n') ? b : ` ${b}`);
   // A sub-statement: a block as is, a single statement on its own indented line.
   function body(s, indent) {
     if (s.kind === 'block') return stmt({ ...s, leading: [] }, indent).trimStart();
@@ -175,6 +181,9 @@ export function emitHlsl(unit, analysis, { emit = () => true, flatten = false, c
       case 'struct': {
         const fields = it.fields.map((f) => withComments(f, `${INDENT}${hlslType(f.type)} ${hlslName(f.name)}${f.array ? `[${expr(f.array)}]` : ''};`, INDENT, comment));
         const params = it.fields.map((f) => `${hlslType(f.type)} ${hlslName(f.name)}${f.array ? `[${expr(f.array)}]` : ''}`);
+        // No maker for a struct with array fields: HLSL copies arrays into members poorly
+        // (DXC has asserted on it), and the twins construct such structs only as constants.
+        if (it.fields.some((f) => f.array)) return withComments(it, `struct ${it.name} {\n${fields.join('\n')}\n};`, '', comment);
         const maker = `// ${it.name}(...) of the GLSL: HLSL has no struct constructors.\n` +
           `${it.name} ${makerName(it.name)}(${params.join(', ')}) {\n${INDENT}${it.name} r;\n` +
           it.fields.map((f) => `${INDENT}r.${hlslName(f.name)} = ${hlslName(f.name)};\n`).join('') + `${INDENT}return r;\n}`;
@@ -186,7 +195,7 @@ export function emitHlsl(unit, analysis, { emit = () => true, flatten = false, c
         for (const p of it.params) A.bind(p.name, p.type);
         const params = it.params.map((p) => `${p.qual ? p.qual + ' ' : ''}${hlslType(p.type)} ${hlslName(p.name)}`).join(', ');
         const head = `${hlslType(it.ret)} ${it.name}(${params})`;
-        const text = it.body ? oneLine(head, stmt({ ...it.body, leading: [] }, '').trimStart()) : `${head};`;
+        const text = it.body ? oneLine(head, stmt({ ...it.body, leading: [], trailing: null }, '').trimStart()) : `${head};`;
         A.pop();
         return withComments(it, text, '', comment);
       }

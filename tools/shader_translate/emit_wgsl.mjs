@@ -14,6 +14,8 @@
 // - built-ins: scalars are splatted where WGSL wants equal types (max(v, 0.0) ->
 //   max(v, vec3f(0.0))), inversesqrt -> inverseSqrt, atan(y, x) -> atan2, lessThan(a, b) ->
 //   (a < b), floatBitsToUint -> bitcast<u32>; == and != on vectors -> all() / any();
+// - arrays indexed at run time are vars (global arrays var<private>): older naga indexes
+//   arrays only behind a pointer;
 // - #define N <number> -> const N = <number>; a configurable default (#ifndef N / #define N v)
 //   -> override N: T = v; identifiers that are WGSL keywords get a trailing underscore;
 // - CM_PRECISE / precise is dropped: WGSL has no such qualifier (docs/shading_languages.md).
@@ -36,7 +38,8 @@ const RESERVED = new Set(['fn', 'let', 'var', 'loop', 'override', 'enable', 'req
   'typeof', 'unorm', 'unsized', 'varying', 'volatile', 'wgsl', 'writeonly', 'active', 'asm', 'attribute', 'binding_array',
   'co_await', 'co_return', 'co_yield', 'coherent', 'column_major', 'common', 'compile', 'compile_fragment', 'concept', 'f16',
   'f32', 'i32', 'u32', 'vec2', 'vec3', 'vec4', 'mat2x2', 'bitcast', 'select', 'default', 'case', 'break', 'if',
-  'else', 'for', 'while', 'return', 'struct', 'const', 'discard', 'diagnostic', 'bool']);
+  'else', 'for', 'while', 'return', 'struct', 'const', 'discard', 'diagnostic', 'bool', 'delete', 'mutable', 'abstract',
+  'partition', 'require', 'finally']);
 const RENAME = { inversesqrt: 'inverseSqrt', roundEven: 'round' };
 const COMPARE = { lessThan: '<', lessThanEqual: '<=', greaterThan: '>', greaterThanEqual: '>=', equal: '==', notEqual: '!=' };
 // Built-ins whose WGSL form needs every argument of the result's type (scalars splatted);
@@ -62,9 +65,22 @@ export const wgslName = (n) => (RESERVED.has(n) ? n + '_' : n);
 export function overloadName(name, overload) {
   return overload.index === 0 ? name : `${name}_${overload.params.map((p) => typeCode(p.type)).join('')}`;
 }
+// Two overloads whose codes read the same (f(int, vec2) and f(ivec2) are both f_iv2) would
+// be one WGSL function: refused.
+function checkOverloadNames(A) {
+  const seen = new Map();
+  for (const [name, list] of A.functions)
+    for (const o of list) {
+      if (o.hook) continue;
+      const n = overloadName(name, o);
+      if (seen.has(n) && seen.get(n) !== o) A.error(`overloads of ${name} both become ${n} in WGSL`, o.item.line);
+      seen.set(n, o);
+    }
+}
 
 export function emitWgsl(unit, analysis, { emit = () => true, comment = (c) => c } = {}) {
   const A = analysis;
+  checkOverloadNames(A);
   const simple = (e) => e.kind === 'num' || e.kind === 'ident' || e.kind === 'member' || e.kind === 'call' || e.kind === 'paren' || e.kind === 'index';
   let mutated = new Set();
 
@@ -80,11 +96,17 @@ export function emitWgsl(unit, analysis, { emit = () => true, comment = (c) => c
       case 'num': return e.text.replace(/[fF]$/, '');
       case 'ident': { const v = A.lookup(e.name); return v && v.pointer ? `(*${wgslName(e.name)})` : wgslName(e.name); }
       case 'paren': return `(${expr(e.expr)})`;
-      case 'member': return `${expr(e.obj)}.${isVector(A.typeOf(e.obj)) ? e.name.replace(/[stpq]/g, (c) => ({ s: 'x', t: 'y', p: 'z', q: 'w' })[c]) : e.name}`;
+      case 'member': {
+        const t = A.typeOf(e.obj);
+        return `${expr(e.obj)}.${isVector(t) ? e.name.replace(/[stpq]/g, (c) => ({ s: 'x', t: 'y', p: 'z', q: 'w' })[c]) : A.structs.has(t) ? wgslName(e.name) : e.name}`;
+      }
       case 'index': return `${expr(e.obj)}[${expr(e.index)}]`;
-      case 'unary':
+      case 'unary': {
         if (e.op === '++' || e.op === '--') A.error('++/-- inside an expression has no WGSL form', e.line);
-        return `${e.op}${expr(e.arg)}`;
+        if (e.op === '-' && component(A.typeOf(e.arg)) === 'uint') A.error('unary minus on a uint has no WGSL form', e.line);
+        const a = expr(e.arg);
+        return `${e.op}${/^[-+]/.test(a) && e.op === '-' ? `(${a})` : a}`;
+      }
       case 'postfix': A.error('++/-- inside an expression has no WGSL form', e.line); break;
       case 'assign': A.error('an assignment inside an expression has no WGSL form', e.line); break;
       case 'ternary': {
@@ -105,12 +127,14 @@ export function emitWgsl(unit, analysis, { emit = () => true, comment = (c) => c
       const bitwise = ['&', '|', '^', '<<', '>>'];
       if (bitwise.includes(e.op) || bitwise.includes(child.op)) return `(${text})`;   // WGSL does not mix these
       if ((e.op === '&&' && child.op === '||') || (e.op === '||' && child.op === '&&')) return `(${text})`;
+      const relational = ['<', '>', '<=', '>=', '==', '!='];
+      if (relational.includes(e.op) && relational.includes(child.op)) return `(${text})`;  // WGSL does not chain them
       return text;
     };
     let l = wrap(e.left, expr(e.left)), r = wrap(e.right, expr(e.right));
     if ((e.op === '<<' || e.op === '>>') && component(rt) === 'int' && e.right.kind !== 'num') r = `u32(${r})`;
     if ((e.op === '==' || e.op === '!=') && (isVector(lt) || isVector(rt))) return `${e.op === '==' ? 'all' : 'any'}(${l} ${e.op} ${r})`;
-    if (e.op === '^^') return `(${l} != ${r})`;
+    if (e.op === '^^') return `((${l}) != (${r}))`;
     return `${l} ${e.op} ${r}`;
   }
 
@@ -129,7 +153,7 @@ export function emitWgsl(unit, analysis, { emit = () => true, comment = (c) => c
       }
       const args = e.args.map((a) => {
         const at = A.typeOf(a);
-        return e.args.length > 1 && isScalar(at) && at !== want && !(a.kind === 'num' && literalType(a.text) === 'int')
+        return isVector(e.callee) && isScalar(at) && at !== want && !(a.kind === 'num' && literalType(a.text) === 'int')
           ? `${wgslType(want)}(${expr(a)})` : expr(a);
       });
       return `${T}(${args.join(', ')})`;
@@ -139,6 +163,7 @@ export function emitWgsl(unit, analysis, { emit = () => true, comment = (c) => c
       if (COMPARE[e.callee]) return `(${args[0]} ${COMPARE[e.callee]} ${args[1]})`;
       if (e.callee === 'not') return `(!${args[0]})`;
       if (e.callee === 'mod') A.error('mod() has no WGSL twin here (% truncates); write x - y * floor(x / y)', e.line);
+      if (e.callee === 'isnan' || e.callee === 'isinf') A.error(`${e.callee}() has no WGSL form (WGSL may assume no NaN or Inf)`, e.line);
       if (/^(float|int|uint)BitsTo|^(uint|int)BitsToFloat$/.test(e.callee)) return `bitcast<${wgslType(A.typeOf(e))}>(${args[0]})`;
       if (SAME_TYPE.has(e.callee)) {
         const t = A.typeOf(e);
@@ -156,7 +181,10 @@ export function emitWgsl(unit, analysis, { emit = () => true, comment = (c) => c
     const args = e.args.map((a, i) => {
       if (!o.params[i].qual) return expr(a);
       if (a.kind === 'ident') { const v = A.lookup(a.name); return v && v.pointer ? wgslName(a.name) : `&${wgslName(a.name)}`; }
-      return `&(${expr(a)})`;
+      // WGSL takes no address of a vector component, and of a struct member or array element
+      // only with its unrestricted_pointer_parameters extension: pass a whole variable.
+      A.error('an out / inout argument that is not a whole variable has no portable WGSL form', e.line);
+      return '';
     });
     return `${o.hook ? A.hooks[e.callee]?.fn || e.callee : overloadName(e.callee, o)}(${args.join(', ')})`;
   }
@@ -200,7 +228,10 @@ export function emitWgsl(unit, analysis, { emit = () => true, comment = (c) => c
   function stmt(s, indent) {
     const c = (text) => withComments(s, text, indent, comment);
     switch (s.kind) {
-      case 'directive': A.error(`a preprocessor line inside a function after preprocessing: ${s.text}`, s.line); break;
+      case 'directive':
+        if (/^#\s*pragma\s+cm_removed/.test(s.text)) return '';
+        A.error(`a preprocessor line inside a function after preprocessing: ${s.text}`, s.line);
+        break;
       case 'empty': return '';
       case 'block': {
         A.push();
@@ -260,6 +291,7 @@ export function emitWgsl(unit, analysis, { emit = () => true, comment = (c) => c
     if (m) return withComments(it, `const ${m[1]} = ${m[2].replace(/[fF]$/, '')};`, '', comment);
     m = /^#\s*pragma\s+cm_override\s+(\w+)\s+(\S+)\s*$/.exec(text);
     if (m) return withComments(it, `override ${m[1]}: ${wgslType(literalType(m[2]))} = ${m[2]};`, '', comment);
+    if (/^#\s*pragma\s+cm_removed\s+keep/.test(text)) return (it.leading || []).map(comment).join('\n');  // a file's header
     if (/^#\s*pragma\s+cm_/.test(text) || /^#\s*define\s+\w+\s*$/.test(text)) return '';
     A.error(`a preprocessor line WGSL cannot express: ${text}`, it.line);
     return '';
@@ -275,13 +307,18 @@ export function emitWgsl(unit, analysis, { emit = () => true, comment = (c) => c
       case 'global':
         return withComments(it, it.declarators.map((x) => {
           const type = x.array !== null ? `${it.type}[${expr(x.array)}]` : it.type;
-          return `const ${wgslName(x.name)}: ${wgslType(type)} = ${expr(x.init)};`;
+          // An array is a private var: naga before wgpu 23 (Bevy 0.14) indexes arrays at run
+          // time only behind a pointer; Tint and newer naga accept both.
+          return `${x.array !== null ? 'var<private>' : 'const'} ${wgslName(x.name)}: ${wgslType(type)} = ${expr(x.init)};`;
         }).join('\n'), '', comment);
       case 'function': {
         if (!it.body) return '';  // prototypes: WGSL declarations are order-independent
         const overload = A.functions.get(it.name).find((o) => o.item === it);
         A.push();
-        mutated = mutatedNames(it.body, A);
+        for (const p of it.params) A.bind(p.name, p.type, p.qual ? { pointer: true } : {});
+        mutated = mutatedNames(it.body, A, { runtimeIndexed: true });
+        A.pop();
+        A.push();
         const copies = [];
         const params = it.params.map((p) => {
           const name = wgslName(p.name);
@@ -292,7 +329,7 @@ export function emitWgsl(unit, analysis, { emit = () => true, comment = (c) => c
         });
         returnType = it.ret;
         const head = `fn ${overloadName(it.name, overload)}(${params.join(', ')})${it.ret === 'void' ? '' : ` -> ${wgslType(it.ret)}`}`;
-        let text = stmt({ ...it.body, leading: [] }, '').trimStart();
+        let text = stmt({ ...it.body, leading: [], trailing: null }, '').trimStart();
         if (copies.length) text = text.replace(/^\{\n/, `{\n${copies.join('\n')}\n`);
         A.pop();
         return withComments(it, oneLine(head, text), '', comment);

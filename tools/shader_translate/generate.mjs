@@ -33,12 +33,15 @@ const hlslBanner = (name) =>
   `// cloudmath/hlsl/${name}: generated from the GLSL twin by tools/shader_translate; do not edit.\n` +
   `// Regenerate with: node tools/shader_translate/generate.mjs ${stale}.\n` +
   `// HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in\n` +
-  `// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.\n//\n`;
+  `// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments\n` +
+  `// below are the GLSL twin's (file names made .hlsl).\n//\n`;
 const wgslBanner = (name, requires) =>
   `// cloudmath/wgsl/${name}: generated from the GLSL twin by tools/shader_translate; do not edit.\n` +
   `// Regenerate with: node tools/shader_translate/generate.mjs ${stale}.\n` +
   `// Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload\n` +
   `// keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).\n` +
+  `// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,\n` +
+  `// #define configuration and overloads become in WGSL.\n` +
   (requires.length ? `// Requires, before this file: ${requires.join(', ')}.\n` : `// Requires nothing else.\n`) + `//\n`;
 
 export function generate(sources = readGlsl()) {

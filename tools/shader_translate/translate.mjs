@@ -44,7 +44,10 @@ const FILE_MARK = '#pragma cm_file';
 // - #define N <identifier> becomes an alias (substituted in the tokens);
 // - #ifdef HOOK sections are kept between #pragma cm_hook_begin / cm_hook_end lines;
 // - #include, include guards, #version and #extension lines disappear.
-// Removed lines become blank, so line numbers in errors stay those of the input.
+// Removed directive lines become `#pragma cm_removed` (which the emitter drops with the
+// comments above it, which spoke of the directive), `#pragma cm_removed keep` for an include
+// guard (whose comments are the file's header); other removed lines become blank, so line
+// numbers in errors stay those of the input.
 export function preprocessWgsl(text, { defines = {}, hooks = {}, file } = {}) {
   const defined = new Map(Object.entries(defines));
   const aliases = {};
@@ -64,8 +67,9 @@ export function preprocessWgsl(text, { defines = {}, hooks = {}, file } = {}) {
       const name = rest;
       const isHook = dir === 'ifdef' && Object.hasOwn(hooks, name);
       const on = isHook || (dir === 'ifdef' ? defined.has(name) : !defined.has(name));
+      const wasActive = active();
       stack.push({ active: on, name, kind: dir, hook: isHook });
-      out.push(isHook && active() ? `#pragma cm_hook_begin ${name}` : '');
+      out.push(isHook && wasActive ? `#pragma cm_hook_begin ${name}` : !wasActive ? '' : /^CM_\w+_GLSL$/.test(name) ? '#pragma cm_removed keep' : '#pragma cm_removed');
       continue;
     }
     if (dir === 'if' || dir === 'elif') fail(`#${dir} is not supported (use #ifdef / #ifndef)`, i);
@@ -74,13 +78,13 @@ export function preprocessWgsl(text, { defines = {}, hooks = {}, file } = {}) {
       if (!f) fail('#else without #ifdef', i);
       if (f.hook) fail(`#else in a #ifdef ${f.name} hook section`, i);
       f.active = !f.active;
-      out.push('');
+      out.push(stack.slice(0, -1).every((x) => x.active) ? '#pragma cm_removed' : '');
       continue;
     }
     if (dir === 'endif') {
       const f = stack.pop();
       if (!f) fail('#endif without #ifdef', i);
-      out.push(f.hook && active() ? '#pragma cm_hook_end' : '');
+      out.push(!active() ? '' : f.hook ? '#pragma cm_hook_end' : '#pragma cm_removed');
       continue;
     }
     if (!active()) { out.push(''); continue; }
@@ -89,8 +93,8 @@ export function preprocessWgsl(text, { defines = {}, hooks = {}, file } = {}) {
       if (!d || d[2]) fail(`function-like macros are not supported: ${line.trim()}`, i);
       const [, name, , value] = d;
       defined.set(name, value);
-      if (value === '') out.push('');
-      else if (/^[A-Za-z_]\w*$/.test(value)) { aliases[name] = value; out.push(''); }
+      if (value === '') out.push('#pragma cm_removed');
+      else if (/^[A-Za-z_]\w*$/.test(value)) { aliases[name] = value; out.push('#pragma cm_removed'); }
       else if (/^[-+]?[0-9.][0-9a-fA-FxX.eE+-]*[uUfF]?$/.test(value)) {
         const f = stack[stack.length - 1];
         const setting = f && f.kind === 'ifndef' && f.name === name;
@@ -98,8 +102,8 @@ export function preprocessWgsl(text, { defines = {}, hooks = {}, file } = {}) {
       } else fail(`#define ${name} with a value WGSL cannot express: ${value}`, i);
       continue;
     }
-    if (dir === 'undef') { defined.delete(rest); delete aliases[rest]; out.push(''); continue; }
-    if (['include', 'version', 'extension', 'pragma'].includes(dir)) { out.push(''); continue; }
+    if (dir === 'undef') { defined.delete(rest); delete aliases[rest]; out.push('#pragma cm_removed'); continue; }
+    if (['include', 'version', 'extension', 'pragma'].includes(dir)) { out.push('#pragma cm_removed'); continue; }
     fail(`#${dir} is not supported`, i);
   }
   if (stack.length) fail(`#${stack[stack.length - 1].kind} ${stack[stack.length - 1].name} without #endif`, lines.length - 1);
@@ -107,10 +111,12 @@ export function preprocessWgsl(text, { defines = {}, hooks = {}, file } = {}) {
 }
 
 // Comments keep their text; paths and names of the GLSL files become the target's.
+// HLSL keeps the GLSL's files, #includes and guards, so its comments name the .hlsl files.
+// WGSL's comments stay as the GLSL twin wrote them (there is no #include to rename).
 export function commentRewriter(target) {
-  const ext = target === 'hlsl' ? 'hlsl' : 'wgsl';
-  return (c) => c.replace(/cloudmath\/glsl\/(\w+)\.glsl/g, `cloudmath/${ext}/$1.${ext}`)
-    .replace(/\b(\w+)\.glsl\b/g, `$1.${ext}`);
+  if (target !== 'hlsl') return (c) => c;
+  return (c) => c.replace(/cloudmath\/glsl\/(\w+)\.glsl/g, 'cloudmath/hlsl/$1.hlsl')
+    .replace(/\b(\w+)\.glsl\b/g, '$1.hlsl').replace(/\b(CM_\w+)_GLSL\b/g, '$1_HLSL');
 }
 
 export function translateUnit(files, options = {}) {

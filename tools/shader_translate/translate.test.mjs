@@ -100,7 +100,7 @@ test('globals: static const in HLSL, const in WGSL, brace initialisers', () => {
   const w = wgsl(src).text;
   has(w, 'struct P {\n    a: f32,\n    n: i32,\n    t: array<f32, 2>,\n}');
   has(w, 'const Q: P = P(0.5, 3, array<f32, 2>(1.0, 2.0));');
-  has(w, 'const G: array<vec2f, 2> = array<vec2f, 2>(vec2f(1.0, 0.0), vec2f(0.0, 1.0));');
+  has(w, 'var<private> G: array<vec2f, 2> = array<vec2f, 2>(vec2f(1.0, 0.0), vec2f(0.0, 1.0));');
 });
 
 test('preprocessor: HLSL keeps it, WGSL evaluates it', () => {
@@ -143,6 +143,29 @@ test('CM_PRECISE: precise in HLSL (its default), dropped in WGSL', () => {
   has(h, 'CM_PRECISE float s = a * 4097.0;');
   has(h, 'CM_PRECISE float h = s - (s - a);');
   has(wgsl(src).text, 'let s: f32 = a * 4097.0;');
+});
+
+test('review fixes: NaN tests, signs, ^^, relational chains, fields, overload clashes, out arguments', () => {
+  has(hlsl('float f(float d) { if (d != d) return d; return 0.0; }'), 'if (isnan(d)) return d;');
+  has(hlsl('float f(float x) { return - -x; }'), 'return - -x;');
+  has(wgsl('float f(float x) { return - -x; }').text, 'return -(-x);');
+  has(hlsl('bool f(bool a, bool b, bool c) { return a && b ^^ c; }'), 'return ((a && b) != (c));');
+  has(wgsl('bool f(bool a, float x, float y) { return a == x < y; }').text, 'return a == (x < y);');
+  const fields = 'struct S { float type; float sample; };\nfloat f(S s) { return s.type + s.sample; }';
+  has(hlsl(fields), 'return s.type + s.sample_;');
+  has(wgsl(fields).text, 'return s.type_ + s.sample;');
+  assert.throws(() => wgsl('float f(float x) { return 0.0; }\nfloat f(int a, vec2 b) { return 1.0; }\nfloat f(ivec2 a) { return 2.0; }'), /both become f_iv2/);
+  assert.throws(() => wgsl('void h(out float y) { y = 1.0; }\nfloat f() { vec2 v; h(v.x); return v.x; }'), /not a whole variable/);
+  has(wgsl('vec3 f(int i) { return vec3(i); }').text, 'return vec3f(f32(i));');
+  assert.throws(() => wgsl('bool f(float x) { return isnan(x); }'), /isnan\(\) has no WGSL form/);
+  assert.throws(() => hlsl('float f(float x) { return fma(x, x, x); }'), /fma\(\) has no float HLSL form/);
+});
+
+test('WGSL: arrays indexed at run time are vars; comments of removed directives go with them', () => {
+  const w = wgsl('struct M { float t[2]; };\nfloat f(M m, int i) { return m.t[i] + m.t[0]; }').text;
+  has(w, 'fn f(m_in: M, i: i32) -> f32 {\n    var m: M = m_in;');
+  const g = wgsl('// header\n#ifndef CM_X_GLSL\n#define CM_X_GLSL\n// about the include\n#include "y.glsl"\nfloat f() { return 1.0; }\n#endif\n').text;
+  assert.equal(g, '// header\nfn f() -> f32 { return 1.0; }\n');
 });
 
 test('keywords of the target language are renamed', () => {

@@ -1,7 +1,8 @@
 // cloudmath/hlsl/cloudmath.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/cloudmath.hlsl: every GLSL twin. Define configuration macros
 // (CM_MS_OCTAVES, CM_MS_PHASE, CM_DIFFUSION_PHASE, CM_CONE_EXTINCTION, CM_CONE_SAMPLES) before including it.
@@ -23,4 +24,4 @@
 #include "shadow_map.hlsl"
 #include "texture_lod.hlsl"
 
-#endif // CM_CLOUDMATH_GLSL
+#endif // CM_CLOUDMATH_HLSL

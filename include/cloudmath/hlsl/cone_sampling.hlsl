@@ -1,7 +1,8 @@
 // cloudmath/hlsl/cone_sampling.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/cone_sampling.hlsl: GLSL twin of cloudmath/cone_sampling.hpp, Schneider's
 // cone of light samples toward the sun (near samples at (i + 1/2) step_length, offset across
@@ -102,4 +103,4 @@ float cm_cone_optical_depth(float3 origin, float3 light_dir, CmConeLightConfig c
 }
 #endif
 
-#endif // CM_CONE_SAMPLING_GLSL
+#endif // CM_CONE_SAMPLING_HLSL

@@ -1,7 +1,8 @@
 // cloudmath/hlsl/core.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/core.hlsl: GLSL twin of cloudmath/core.hpp (constants, saturate, remap,
 // smoothstep_safe, stable exponential helpers).
@@ -117,4 +118,4 @@ float2 cmi_sin_cos(float x) {
     return float2(-c, s);
 }
 
-#endif // CM_CORE_GLSL
+#endif // CM_CORE_HLSL

@@ -1,7 +1,8 @@
 // cloudmath/hlsl/density.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/density.hlsl: GLSL twin of cloudmath/density.hpp: height gradients and
 // presets, coverage, erosion, exponential height fog and its analytic optical depth.
@@ -51,9 +52,7 @@ float cm_apply_coverage(float base, float coverage) {
     return cmi_remap_unit(base, 1.0 - c, 1.0) * c; // cm_remap_clamped(..., 0.0, 1.0)
 }
 
-float cm_erode(float base, float erosion) {
-    return cmi_remap_unit(base, erosion, 1.0);
-} // cm_remap_clamped(..., 0, 1) // cm_remap_clamped(..., 0, 1)
+float cm_erode(float base, float erosion) { return cmi_remap_unit(base, erosion, 1.0); } // cm_remap_clamped(..., 0, 1)
 
 // The exponent is floored at -104 (exp gives 0 there in float, as in C++) before exp: a driver
 // that folds exp's log2(e) into the product would otherwise compute (-falloff log2 e) *
@@ -112,4 +111,4 @@ float cm_nubis_density(float4 base, float3 detail, float coverage, float cloud_t
     return cm_erode(cm_apply_coverage(shaped, coverage), cm_nubis_detail_erosion(detail, h));
 }
 
-#endif // CM_DENSITY_GLSL
+#endif // CM_DENSITY_HLSL

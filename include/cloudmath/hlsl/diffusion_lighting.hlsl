@@ -1,7 +1,8 @@
 // cloudmath/hlsl/diffusion_lighting.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/diffusion_lighting.hlsl: GLSL twin of cloudmath/diffusion_lighting.hpp,
 // multiple scattering from diffusion along the sun's chord with a fitted correction table.
@@ -108,9 +109,9 @@ float cm_diffusion_table_lookup(CmDiffusionModel m, float4 u) {
     cmi_diffusion_hat(u.z, CM_DIFFUSION_SIZE_MU, im, wm);
     cmi_diffusion_hat(u.w, CM_DIFFUSION_SIZE_D, id, wd);
     float sum = 0.0;
-    for (int a = 0; a < 2; ++a) 
-        for (int b = 0; b < 2; ++b) 
-            for (int c = 0; c < 2; ++c) 
+    for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b)
+            for (int c = 0; c < 2; ++c)
                 for (int e = 0; e < 2; ++e) {
                     float w = (a == 1 ? wx : 1.0 - wx) * (b == 1 ? wy : 1.0 - wy) * (c == 1 ? wm : 1.0 - wm) * (e == 1 ? wd : 1.0 - wd);
                     int index = (((ix + a) * CM_DIFFUSION_SIZE_Y + iy + b) * CM_DIFFUSION_SIZE_MU + im + c) * CM_DIFFUSION_SIZE_D + id + e;
@@ -156,4 +157,4 @@ float cm_diffusion_scattering_with(float tau_sun, float tau_behind, float tau_vi
 }
 #endif
 
-#endif // CM_DIFFUSION_LIGHTING_GLSL
+#endif // CM_DIFFUSION_LIGHTING_HLSL

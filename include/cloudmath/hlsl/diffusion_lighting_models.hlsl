@@ -1,7 +1,8 @@
 // cloudmath/hlsl/diffusion_lighting_models.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/diffusion_lighting_models.hlsl: the table layout, CmDiffusionModel (the C++
 // diffusion_model without its name) and the fitted models of diffusion_lighting.hlsl.
@@ -35,22 +36,8 @@ struct CmDiffusionModel {
     float max_error;
     float holdout_rms_error;
 };
-// CmDiffusionModel(...) of the GLSL: HLSL has no struct constructors.
-CmDiffusionModel cm_make_CmDiffusionModel(float table[CM_DIFFUSION_TABLE_SIZE], float peak[CM_DIFFUSION_PEAK_SIZE], float tau_min, float tau_max, float g_min, float g_max, float rms_error, float max_error, float holdout_rms_error) {
-    CmDiffusionModel r;
-    r.table = table;
-    r.peak = peak;
-    r.tau_min = tau_min;
-    r.tau_max = tau_max;
-    r.g_min = g_min;
-    r.g_max = g_max;
-    r.rms_error = rms_error;
-    r.max_error = max_error;
-    r.holdout_rms_error = holdout_rms_error;
-    return r;
-}
 
 static const CmDiffusionModel CM_DIFFUSION_MODEL_FITTED = {{-3.63779521, -0.914912105, 1.70635867, -3.88458657, -1.01438761, 1.83863842, -4.07411861, -1.08499706, 1.86364174, -4.22852182, -1.13680637, 1.88357854, -4.41337013, -1.28653598, 1.8906889, -3.41249418, -0.438435525, 2.37067914, -3.679389, -0.481398314, 2.81360269, -3.93735456, -0.434743732, 3.32535911, -4.21281815, 0.13397783, 3.96604371, -4.75296021, -0.625977397, 3.94676495, -3.18768859, 0.303834915, 3.61556053, -3.40330791, 0.532708824, 4.28667927, -3.72234249, 0.670352578, 5.08247805, -4.18615723, 1.10500419, 5.82438374, -5.03370428, 0.268707722, 6.00597525, -1.12483203, -0.250908911, 0.737691581, -1.71727872, -0.154107124, 1.35278749, -2.31270099, -0.296629399, 1.84419191, -2.83147717, -0.176857606, 2.27854133, -3.39857984, -0.432381898, 2.52588558, -1.54329336, -0.0783012658, 1.66810703, -1.77514899, 0.140656725, 2.07082248, -2.06641412, 0.0201398432, 2.38603806, -2.30488491, 0.186118767, 2.62956119, -2.64830375, -0.0491206907, 2.65699935, -1.87015486, 0.323230892, 2.65220881, -1.68363297, 0.543600142, 2.75091314, -1.61523712, 0.567802548, 2.85334826, -1.68403065, 0.650013268, 2.90595961, -1.86149454, 0.381197721, 2.77433991, 1.47935808, 0.837722957, 0.11385522, 0.524554372, 1.02400398, 1.10683131, -0.494857401, 0.653903306, 1.88313341, -1.41779208, 0.683402479, 2.5830009, -2.40844631, 0.296885759, 3.10795283, 0.436332822, 0.629811347, 0.913960934, 0.191543251, 0.694232047, 1.13961029, -0.123454496, 0.431802183, 1.23250413, -0.331619084, 0.489707559, 1.28881478, -0.561985373, 0.352616936, 1.31824267, -0.536168933, 0.526002526, 1.6706773, -0.00326269679, 0.535771668, 1.13110614, 0.441741884, 0.463310778, 0.564299405, 0.824672639, 0.380927026, 0.0115512311, 1.28021872, 0.403354585, -0.482045919}, {-0.335704416, 0.275073111, 1.61848819, -0.819109738, -1.57667077, 1.85697007}, 1.0, 100.0, 0.800000012, 0.930000007, 0.332646996, 1.82897592, 0.514358997};
 static const CmDiffusionModel CM_DIFFUSION_MODEL_PHYSICAL = {{1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0}, {0.0, 0.0, 0.0, 1.0, 0.0, 0.0}, 1.0, 100.0, 0.800000012, 0.930000007, 3.1927526, 11.7154102, 2.26203418};
 
-#endif // CM_DIFFUSION_LIGHTING_MODELS_GLSL
+#endif // CM_DIFFUSION_LIGHTING_MODELS_HLSL

@@ -1,7 +1,8 @@
 // cloudmath/hlsl/geometry.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/geometry.hlsl: GLSL twin of cloudmath/geometry.hpp: ray/sphere roots and
 // planet-scale cloud-layer segments in the altitude form, accurate in float at Earth radius
@@ -142,4 +143,4 @@ float cm_height_fraction(float altitude, float layer_bottom, float layer_top) {
     return cmi_remap_unit(altitude, layer_bottom, layer_top); // cm_remap_clamped(..., 0.0, 1.0)
 }
 
-#endif // CM_GEOMETRY_GLSL
+#endif // CM_GEOMETRY_HLSL

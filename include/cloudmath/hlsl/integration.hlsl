@@ -1,7 +1,8 @@
 // cloudmath/hlsl/integration.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/integration.hlsl: GLSL twin of cloudmath/integration.hpp: the
 // energy-conserving step integral (Hillaire 2015) and a front-to-back march accumulator.
@@ -86,4 +87,4 @@ int cm_refine_substeps(float step_optical_depth, int max_substeps) {
     return int(ceil(step_optical_depth));
 }
 
-#endif // CM_INTEGRATION_GLSL
+#endif // CM_INTEGRATION_HLSL

@@ -1,7 +1,8 @@
 // cloudmath/hlsl/multiple_scattering.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/multiple_scattering.hlsl: GLSL twin of cloudmath/multiple_scattering.hpp,
 // Wrenninge's octaves: sum_{i<N} b^i phase(mu, c^i g) exp(-a^i tau).
@@ -100,4 +101,4 @@ float cm_multiple_scattering_with(float optical_depth, float mu, float a, float 
 }
 #endif
 
-#endif // CM_MULTIPLE_SCATTERING_GLSL
+#endif // CM_MULTIPLE_SCATTERING_HLSL

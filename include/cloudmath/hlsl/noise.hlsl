@@ -1,7 +1,8 @@
 // cloudmath/hlsl/noise.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/noise.hlsl: GLSL twin of cloudmath/noise.hpp: tileable improved Perlin
 // (2D, 3D, analytic derivatives), Worley, fBm, Nubis Worley fBm, Perlin-Worley, curl noise.
@@ -159,8 +160,8 @@ float cm_worley_f1(float3 p, int period, uint seed) {
     int3 i = cmi_floor_to_cell(p);
     float3 q = p - floor(p);
     float best = 3.0;
-    for (int dz = -1; dz <= 1; ++dz) 
-        for (int dy = -1; dy <= 1; ++dy) 
+    for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx) {
                 uint h = cm_noise_hash(uint(cmi_wrap_cell(i.x + dx, n)), uint(cmi_wrap_cell(i.y + dy, n)), uint(cmi_wrap_cell(i.z + dz, n)), seed);
                 uint h2 = cm_noise_hash(h);
@@ -254,4 +255,4 @@ float2 cm_curl_noise(float2 p, int period, uint seed) {
 }
 float2 cm_curl_noise(float2 p, int period) { return cm_curl_noise(p, period, 0u); }
 
-#endif // CM_NOISE_GLSL
+#endif // CM_NOISE_HLSL

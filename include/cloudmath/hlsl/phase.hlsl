@@ -1,7 +1,8 @@
 // cloudmath/hlsl/phase.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/phase.hlsl: GLSL twin of cloudmath/phase.hpp (normalised phase functions
 // and Henyey-Greenstein sampling). Float only; same forms and clamps as the C++.
@@ -154,4 +155,4 @@ float cm_sample_phase_hg(float g, float u) {
     return g >= 0.0 ? m : -m;
 }
 
-#endif // CM_PHASE_GLSL
+#endif // CM_PHASE_HLSL

@@ -1,7 +1,8 @@
 // cloudmath/hlsl/reprojection.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/reprojection.hlsl: GLSL twin of cloudmath/reprojection.hpp: the pixel of
 // each 4 x 4 block a frame renders (Bayer order), the projection of a point into a previous
@@ -51,4 +52,4 @@ float cm_temporal_blend_weight(float history_samples, float max_samples) {
     return 1.0 / (n + 1.0);
 }
 
-#endif // CM_REPROJECTION_GLSL
+#endif // CM_REPROJECTION_HLSL

@@ -1,7 +1,8 @@
 // cloudmath/hlsl/shadow_map.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/shadow_map.hlsl: GLSL twin of cloudmath/shadow_map.hpp: the Beer shadow map's
 // texel built by a march along the sunlight, the optical depth and transmittance it gives at a
@@ -49,7 +50,7 @@ float3 cm_beer_shadow_texel(CmBeerShadowAccumulator acc) {
 // min(max(depth - front, 0) mean_extinction, total).
 float cm_beer_shadow_optical_depth(float3 texel, float depth) {
     float d = depth - texel.x;
-    if (d != d) return d;
+    if (isnan(d)) return d;
     float tau = max(d, 0.0) * texel.y;
     return tau < texel.z ? tau : texel.z;
 }
@@ -65,4 +66,4 @@ float3 cm_shadow_map_project(float3 p, float3 origin, float3 right, float3 up, f
     return float3(0.5 + dot(q, right) * s, 0.5 + dot(q, up) * s, -dot(q, toward_sun));
 }
 
-#endif // CM_SHADOW_MAP_GLSL
+#endif // CM_SHADOW_MAP_HLSL

@@ -1,7 +1,8 @@
 // cloudmath/hlsl/sun.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/sun.hlsl: GLSL twin of cloudmath/sun.hpp: the Sun's angular radius, the
 // solid angle of a cone and the limb-darkened radiance of the sun disc for an irradiance.
@@ -31,4 +32,4 @@ float cm_sun_disc_radiance(float irradiance, float cos_angle, float angular_radi
     return peak * (1.0 - u + u * sqrt(1.0 - x2));
 }
 
-#endif // CM_SUN_GLSL
+#endif // CM_SUN_HLSL

@@ -1,7 +1,8 @@
 // cloudmath/hlsl/texture_lod.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/texture_lod.hlsl: GLSL twin of cloudmath/texture_lod.hpp: a pixel's
 // footprint at a distance and the mip level that matches it, for textureLod in a march loop.
@@ -22,4 +23,4 @@ float cm_texture_lod(float footprint, float texel_size) {
     return ratio > 1.0 ? log2(ratio) : 0.0;
 }
 
-#endif // CM_TEXTURE_LOD_GLSL
+#endif // CM_TEXTURE_LOD_HLSL

@@ -1,7 +1,8 @@
 // cloudmath/hlsl/transmittance.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
-// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here.
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
 //
 // cloudmath/hlsl/transmittance.hlsl: GLSL twin of cloudmath/transmittance.hpp.
 // Optical depth tau >= 0; negative tau is clamped to 0. float and vec3 (RGB) overloads.
@@ -50,4 +51,4 @@ float3 cm_diffuse_transmittance(float3 optical_depth, float g) {
     return 1.0 / (1.0 + 0.75 * (1.0 - clamp(g, -1.0, 1.0)) * max(optical_depth, float3(0.0, 0.0, 0.0)));
 }
 
-#endif // CM_TRANSMITTANCE_GLSL
+#endif // CM_TRANSMITTANCE_HLSL

@@ -2,28 +2,26 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires nothing else.
 //
-// cloudmath/wgsl/core.wgsl: GLSL twin of cloudmath/core.hpp (constants, saturate, remap,
+// cloudmath/glsl/core.glsl: GLSL twin of cloudmath/core.hpp (constants, saturate, remap,
 // smoothstep_safe, stable exponential helpers).
 //
-// Use:      #include "cloudmath/wgsl/core.wgsl"   (GL_GOOGLE_include_directive, shaderc,
+// Use:      #include "cloudmath/glsl/core.glsl"   (GL_GOOGLE_include_directive, shaderc,
 //           GL_ARB_shading_language_include), or cloudmath::glsl_source("core") for raw GL.
 // Targets:  function bodies valid in GLSL 3.30 core, GLSL ES 3.00 and Vulkan GLSL 4.50;
 //           float only. Same names as the C++ with the cm_ prefix, same argument order.
 // Bad input: handled with comparisons, as in C++; nothing relies on NaN or Inf behaviour,
 //           which differs between drivers.
+
 const CM_PI = 3.14159265358979;
 const CM_TWO_PI = 6.28318530717959;
 const CM_FOUR_PI = 12.5663706143592;
 const CM_INV_PI = 0.318309886183791;
 const CM_INV_FOUR_PI = 0.0795774715459477;
 
-// CM_PRECISE qualifies the few values that must be rounded exactly as written: the
-// error-free products of geometry.wgsl, which a fused multiply-add would spoil. GLSL 3.30 and
-// ES 3.00 have no `precise`, so it is empty by default; on GLSL 4.00+ or ES 3.20 drivers that
-// fuse (most GPUs may), `#define CM_PRECISE precise` before the include. The HLSL twin
-// defines it as precise.
 fn cm_saturate(x: f32) -> f32 { return clamp(x, 0.0, 1.0); }
 fn cm_saturate_v2(x: vec2f) -> vec2f { return clamp(x, vec2f(0.0), vec2f(1.0)); }
 fn cm_saturate_v3(x: vec3f) -> vec3f { return clamp(x, vec3f(0.0), vec3f(1.0)); }
@@ -116,13 +114,14 @@ fn cmi_sin_cos(x: f32) -> vec2f {
     if (q == 2.0) { return vec2f(-s, -c); }
     return vec2f(-c, s);
 }
-// cloudmath/wgsl/phase.wgsl: GLSL twin of cloudmath/phase.hpp (normalised phase functions
+// cloudmath/glsl/phase.glsl: GLSL twin of cloudmath/phase.hpp (normalised phase functions
 // and Henyey-Greenstein sampling). Float only; same forms and clamps as the C++.
 //
 // Convention: mu = dot(view_dir, light_dir), +1 looking into the light (forward).
 // Domain:   mu clamped to [-1, 1], g to [-CM_PHASE_G_MAX, CM_PHASE_G_MAX] (0.9999).
 // Accuracy: the HG-type base 1 + g^2 - 2 g mu is written (1-g)^2 + 2g(1-mu) for g >= 0 and
 //           (1+g)^2 - 2g(1+mu) for g < 0, never pow(x, 1.5): full precision at the peaks.
+
 const CM_PHASE_G_MAX = 0.9999;
 
 // cmi_ functions are internal helpers (the C++ detail namespace); cm_ functions are the
@@ -196,7 +195,7 @@ fn cm_mie_approx_params(d_in: f32) -> CmMieApproxParams {
     var p: CmMieApproxParams;
     if (d <= 0.1) {
         p.g_hg = 13.8 * d * d;
-        p.g_draine = 1.1456 * d * cmi_sin_cos(9.29044 * d).x; // core.wgsl's accurate sin
+        p.g_draine = 1.1456 * d * cmi_sin_cos(9.29044 * d).x; // core.glsl's accurate sin
         p.alpha = 250.0;
         // d^4.3 via exp/log only for d > 0: pow(0, y) is left undefined by some specs.
         p.w_draine = 0.252977 - (select(0.0, 312.983 * exp(4.3 * log(d)), d > 0.0));
@@ -266,8 +265,9 @@ fn cm_sample_phase_hg(g_in: f32, u_in: f32) -> f32 {
     let m: f32 = select(clamp(1.0 - one_minus_m, -1.0, 1.0), -1.0, v <= 0.0);
     return select(-m, m, g >= 0.0);
 }
-// cloudmath/wgsl/transmittance.wgsl: GLSL twin of cloudmath/transmittance.hpp.
+// cloudmath/glsl/transmittance.glsl: GLSL twin of cloudmath/transmittance.hpp.
 // Optical depth tau >= 0; negative tau is clamped to 0. float and vec3 (RGB) overloads.
+
 // exp(-tau), in [0, 1].
 fn cm_beer_lambert(optical_depth: f32) -> f32 { return exp(-max(optical_depth, 0.0)); }
 fn cm_beer_lambert_v3(optical_depth: vec3f) -> vec3f { return exp(-max(optical_depth, vec3f(0.0))); }
@@ -307,13 +307,14 @@ fn cm_diffuse_transmittance(optical_depth: f32, g: f32) -> f32 {
 fn cm_diffuse_transmittance_v3f(optical_depth: vec3f, g: f32) -> vec3f {
     return 1.0 / (1.0 + 0.75 * (1.0 - clamp(g, -1.0, 1.0)) * max(optical_depth, vec3f(0.0)));
 }
-// cloudmath/wgsl/integration.wgsl: GLSL twin of cloudmath/integration.hpp: the
+// cloudmath/glsl/integration.glsl: GLSL twin of cloudmath/integration.hpp: the
 // energy-conserving step integral (Hillaire 2015) and a front-to-back march accumulator.
 //
 // Use:      CmMarchAccumulator acc = cm_march_accumulator();
 //           for (...) { cm_march_add_segment(acc, S, sigma_t, ds); if (cm_march_is_opaque(acc, 0.01)) break; }
 //           color = background * acc.transmittance + acc.luminance;
 // S is radiance per metre (sigma_s * phase * light); sigma_t in 1/m; ds in m.
+
 // S (1 - exp(-sigma_t ds)) / sigma_t, exactly S ds at sigma_t = 0, no clamp constant.
 fn cm_integrate_scattering(S: f32, sigma_t: f32, ds: f32) -> f32 {
     return S * ds * cm_one_minus_exp_neg_over_x(max(sigma_t * ds, 0.0));
@@ -374,7 +375,7 @@ fn cm_refine_substeps(step_optical_depth: f32, max_substeps: i32) -> i32 {
     if (step_optical_depth >= f32(most)) { return most; }
     return i32(ceil(step_optical_depth));
 }
-// cloudmath/wgsl/multiple_scattering.wgsl: GLSL twin of cloudmath/multiple_scattering.hpp,
+// cloudmath/glsl/multiple_scattering.glsl: GLSL twin of cloudmath/multiple_scattering.hpp,
 // Wrenninge's octaves: sum_{i<N} b^i phase(mu, c^i g) exp(-a^i tau).
 // Letters: a scales extinction, b the contribution, c the eccentricity (b <= a conserves
 // energy); Frostbite's notes swap a and b.
@@ -429,13 +430,14 @@ const CM_MS_PRESET_THICK: CmMsPreset = CmMsPreset(0.299, 0.625, 0.529, 6, 10.0, 
 fn cm_multiple_scattering_fffMsPreset(optical_depth: f32, mu: f32, g: f32, preset: CmMsPreset) -> f32 {
     return cm_multiple_scattering(optical_depth, mu, g, preset.a, preset.b, preset.c, preset.octaves);
 }
-// cloudmath/wgsl/diffusion_lighting_models.wgsl: the table layout, CmDiffusionModel (the C++
-// diffusion_model without its name) and the fitted models of diffusion_lighting.wgsl.
+// cloudmath/glsl/diffusion_lighting_models.glsl: the table layout, CmDiffusionModel (the C++
+// diffusion_model without its name) and the fitted models of diffusion_lighting.glsl.
 // Generated by cloudmath_lighting_error fit-diffusion (scripts/reference.sh)
 // fitted on lighting_reference.csv, lighting_train_g0.8.csv, lighting_train_g0.93.csv
 // held out: lighting_holdout_g0.75.csv, lighting_holdout_g0.85.csv, lighting_holdout_g0.9.csv, lighting_holdout_g0.85_albedo0.99.csv, lighting_holdout_renderer_phase.csv
 // options: smoothing 0.01, ridge 0.0001;
 // do not edit.
+
 // diffusion_layout of the C++ header.
 const CM_DIFFUSION_SIZE_X = 3;
 const CM_DIFFUSION_SIZE_Y = 3;
@@ -459,7 +461,7 @@ struct CmDiffusionModel {
 
 const CM_DIFFUSION_MODEL_FITTED: CmDiffusionModel = CmDiffusionModel(array<f32, 135>(-3.63779521, -0.914912105, 1.70635867, -3.88458657, -1.01438761, 1.83863842, -4.07411861, -1.08499706, 1.86364174, -4.22852182, -1.13680637, 1.88357854, -4.41337013, -1.28653598, 1.8906889, -3.41249418, -0.438435525, 2.37067914, -3.679389, -0.481398314, 2.81360269, -3.93735456, -0.434743732, 3.32535911, -4.21281815, 0.13397783, 3.96604371, -4.75296021, -0.625977397, 3.94676495, -3.18768859, 0.303834915, 3.61556053, -3.40330791, 0.532708824, 4.28667927, -3.72234249, 0.670352578, 5.08247805, -4.18615723, 1.10500419, 5.82438374, -5.03370428, 0.268707722, 6.00597525, -1.12483203, -0.250908911, 0.737691581, -1.71727872, -0.154107124, 1.35278749, -2.31270099, -0.296629399, 1.84419191, -2.83147717, -0.176857606, 2.27854133, -3.39857984, -0.432381898, 2.52588558, -1.54329336, -0.0783012658, 1.66810703, -1.77514899, 0.140656725, 2.07082248, -2.06641412, 0.0201398432, 2.38603806, -2.30488491, 0.186118767, 2.62956119, -2.64830375, -0.0491206907, 2.65699935, -1.87015486, 0.323230892, 2.65220881, -1.68363297, 0.543600142, 2.75091314, -1.61523712, 0.567802548, 2.85334826, -1.68403065, 0.650013268, 2.90595961, -1.86149454, 0.381197721, 2.77433991, 1.47935808, 0.837722957, 0.11385522, 0.524554372, 1.02400398, 1.10683131, -0.494857401, 0.653903306, 1.88313341, -1.41779208, 0.683402479, 2.5830009, -2.40844631, 0.296885759, 3.10795283, 0.436332822, 0.629811347, 0.913960934, 0.191543251, 0.694232047, 1.13961029, -0.123454496, 0.431802183, 1.23250413, -0.331619084, 0.489707559, 1.28881478, -0.561985373, 0.352616936, 1.31824267, -0.536168933, 0.526002526, 1.6706773, -0.00326269679, 0.535771668, 1.13110614, 0.441741884, 0.463310778, 0.564299405, 0.824672639, 0.380927026, 0.0115512311, 1.28021872, 0.403354585, -0.482045919), array<f32, 6>(-0.335704416, 0.275073111, 1.61848819, -0.819109738, -1.57667077, 1.85697007), 1.0, 100.0, 0.800000012, 0.930000007, 0.332646996, 1.82897592, 0.514358997);
 const CM_DIFFUSION_MODEL_PHYSICAL: CmDiffusionModel = CmDiffusionModel(array<f32, 135>(1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0), array<f32, 6>(0.0, 0.0, 0.0, 1.0, 0.0, 0.0), 1.0, 100.0, 0.800000012, 0.930000007, 3.1927526, 11.7154102, 2.26203418);
-// cloudmath/wgsl/diffusion_lighting.wgsl: GLSL twin of cloudmath/diffusion_lighting.hpp,
+// cloudmath/glsl/diffusion_lighting.glsl: GLSL twin of cloudmath/diffusion_lighting.hpp,
 // multiple scattering from diffusion along the sun's chord with a fitted correction table.
 // The formulas, their sources and the inputs are documented in the C++ header.
 //
@@ -473,10 +475,9 @@ const CM_DIFFUSION_MODEL_PHYSICAL: CmDiffusionModel = CmDiffusionModel(array<f32
 //                       When defined, cm_diffusion_scattering_with(...) is available (the C++
 //                       generic form); g is then that phase function's mean cosine.
 // Models:   CM_DIFFUSION_MODEL_FITTED (the default), CM_DIFFUSION_MODEL_PHYSICAL (plain
-//           diffusion, for comparison), generated in diffusion_lighting_models.wgsl.
+//           diffusion, for comparison), generated in diffusion_lighting_models.glsl.
 // GLSL 3.30 / ES 3.00: const arrays inside a struct, indexed at run time.
-// The table layout (CM_DIFFUSION_SIZE_*, CM_DIFFUSION_EXTRAPOLATION), CmDiffusionModel and
-// the fitted models, generated from the C++ side with the fit.
+
 fn cmi_diffusion_depth(tau: f32) -> f32 { return clamp(tau, 0.0, 1e6); }
 
 // (1 - albedo g, kappa): the similarity relations with absorption (C++ diffusion_similarity).
@@ -542,7 +543,8 @@ fn cmi_diffusion_hat(u: f32, n: i32, i0: ptr<function, i32>, w1: ptr<function, f
     (*w1) = p - f32(i);
 }
 
-fn cm_diffusion_table_lookup(m: CmDiffusionModel, u: vec4f) -> f32 {
+fn cm_diffusion_table_lookup(m_in: CmDiffusionModel, u: vec4f) -> f32 {
+    var m: CmDiffusionModel = m_in;
     var ix: i32;
     var iy: i32;
     var im: i32;
@@ -599,7 +601,7 @@ fn cm_diffusion_scattering(tau_sun: f32, tau_behind: f32, tau_view: f32, mu: f32
     let mc: f32 = clamp(mu, -1.0, 1.0);
     return cmi_diffusion_scattering_phases(tau_sun, tau_behind, tau_view, mu, g, albedo, m, cm_phase_hg(mc, g), cm_phase_hg(mc, 0.5 * g), cm_phase_hg(mc, 0.8 * g));
 }
-// cloudmath/wgsl/cone_sampling.wgsl: GLSL twin of cloudmath/cone_sampling.hpp, Schneider's
+// cloudmath/glsl/cone_sampling.glsl: GLSL twin of cloudmath/cone_sampling.hpp, Schneider's
 // cone of light samples toward the sun (near samples at (i + 1/2) step_length, offset across
 // the light by a Vogel spiral scaled with distance; the last one far away on the axis).
 //
@@ -610,6 +612,7 @@ fn cm_diffusion_scattering(tau_sun: f32, tau_behind: f32, tau_view: f32, mu: f32
 //   CM_CONE_SAMPLES     when defined, cm_cone_optical_depth uses this compile-time sample
 //                       count (the driver can unroll the loop) in place of cfg.sample_count
 //                       (default: not defined; cfg.sample_count is used).
+
 struct CmConeLightConfig {
     sample_count: i32, // all samples, the far one included
     step_length: f32, // length of each near segment
@@ -664,10 +667,11 @@ fn cm_cone_sample_position(origin: vec3f, light_dir: vec3f, cfg: CmConeLightConf
     let k: vec2f = cm_cone_kernel_offset(i, n_near);
     return origin + light_dir * d + (u * k.x + v * k.y) * (cfg.cone_spread * d);
 }
-// cloudmath/wgsl/geometry.wgsl: GLSL twin of cloudmath/geometry.hpp: ray/sphere roots and
+// cloudmath/glsl/geometry.glsl: GLSL twin of cloudmath/geometry.hpp: ray/sphere roots and
 // planet-scale cloud-layer segments in the altitude form, accurate in float at Earth radius
 // (c = (h - H)(2R + h + H) and a cancellation-free discriminant; see geometry.hpp).
 // Results are vec2(t_near, t_far); vec2(-1) when the line misses.
+
 // Roots of t^2 + 2 b t + c = 0 with disc = b^2 - c >= 0, sorted; stable q form.
 fn cmi_stable_quadratic_roots(b: f32, c: f32, disc: f32) -> vec2f {
     let sq: f32 = sqrt(disc);
@@ -682,7 +686,7 @@ fn cmi_enters_ahead(roots: vec2f) -> bool { return roots.x >= 0.0 && roots.y > r
 // Error-free a * b = p + e (returned as vec2(p, e)) and a + b = s + e (Dekker's split,
 // no FMA needed; geometry.hpp's two_product and two_sum). The split needs a * 4097 rounded
 // before the subtraction: a compiler that fuses as - (as - a) into fma(a, 4097, -...) loses
-// the exactness (measured: the HLSL twin through spirv-opt, 1.4e-5 off). CM_PRECISE (core.wgsl)
+// the exactness (measured: the HLSL twin through spirv-opt, 1.4e-5 off). CM_PRECISE (core.glsl)
 // forbids that where the language can: `precise` in HLSL, and in GLSL 4.00+ if you define it so.
 fn cmi_two_product(a: f32, b: f32) -> vec2f {
     let p: f32 = a * b;
@@ -800,8 +804,9 @@ fn cm_point_altitude(p: vec3f, camera_altitude: f32, planet_radius: f32) -> f32 
 fn cm_height_fraction(altitude: f32, layer_bottom: f32, layer_top: f32) -> f32 {
     return cmi_remap_unit(altitude, layer_bottom, layer_top); // cm_remap_clamped(..., 0.0, 1.0)
 }
-// cloudmath/wgsl/density.wgsl: GLSL twin of cloudmath/density.hpp: height gradients and
+// cloudmath/glsl/density.glsl: GLSL twin of cloudmath/density.hpp: height gradients and
 // presets, coverage, erosion, exponential height fog and its analytic optical depth.
+
 fn cm_height_gradient(h: f32, profile: vec4f) -> f32 {
     return cm_smoothstep_safe(profile.x, profile.y, h) - cm_smoothstep_safe(profile.z, profile.w, h);
 }
@@ -843,9 +848,7 @@ fn cm_apply_coverage(base: f32, coverage: f32) -> f32 {
     return cmi_remap_unit(base, 1.0 - c, 1.0) * c; // cm_remap_clamped(..., 0.0, 1.0)
 }
 
-fn cm_erode(base: f32, erosion: f32) -> f32 {
-    return cmi_remap_unit(base, erosion, 1.0);
-} // cm_remap_clamped(..., 0, 1) // cm_remap_clamped(..., 0, 1)
+fn cm_erode(base: f32, erosion: f32) -> f32 { return cmi_remap_unit(base, erosion, 1.0); } // cm_remap_clamped(..., 0, 1)
 
 // The exponent is floored at -104 (exp gives 0 there in float, as in C++) before exp: a driver
 // that folds exp's log2(e) into the product would otherwise compute (-falloff log2 e) *
@@ -907,11 +910,12 @@ fn cm_nubis_density(base: vec4f, detail: vec3f, coverage: f32, cloud_type: f32, 
     let shaped: f32 = cm_nubis_base_cloud(base) * cm_height_gradient_for_type(h, cloud_type);
     return cm_erode(cm_apply_coverage(shaped, coverage), cm_nubis_detail_erosion(detail, h));
 }
-// cloudmath/wgsl/noise.wgsl: GLSL twin of cloudmath/noise.hpp: tileable improved Perlin
+// cloudmath/glsl/noise.glsl: GLSL twin of cloudmath/noise.hpp: tileable improved Perlin
 // (2D, 3D, analytic derivatives), Worley, fBm, Nubis Worley fBm, Perlin-Worley, curl noise.
 // p in lattice cells; period = cells per tile (int >= 1); seed a uint (overloads without it
 // use 0). The hashes are uint arithmetic and match the C++ bit for bit; in GLSL ES fragment
 // shaders declare `precision highp int;` so that uint has 32 bits.
+
 // 32-bit mixer ("lowbias32" constants), identical to cloudmath::noise_hash.
 fn cm_noise_hash(x_in: u32) -> u32 {
     var x: u32 = x_in;
@@ -957,8 +961,8 @@ fn cm_hash_to_unit(h: u32) -> f32 { return f32(h >> 8u) * (1.0 / 16777216.0); }
 fn cmi_fade(t: f32) -> f32 { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 fn cmi_fade_derivative(t: f32) -> f32 { return 30.0 * t * t * (t - 1.0) * (t - 1.0); }
 
-const CMI_GRADIENTS3: array<vec3f, 16> = array<vec3f, 16>(vec3f(1.0, 1.0, 0.0), vec3f(-1.0, 1.0, 0.0), vec3f(1.0, -1.0, 0.0), vec3f(-1.0, -1.0, 0.0), vec3f(1.0, 0.0, 1.0), vec3f(-1.0, 0.0, 1.0), vec3f(1.0, 0.0, -1.0), vec3f(-1.0, 0.0, -1.0), vec3f(0.0, 1.0, 1.0), vec3f(0.0, -1.0, 1.0), vec3f(0.0, 1.0, -1.0), vec3f(0.0, -1.0, -1.0), vec3f(1.0, 1.0, 0.0), vec3f(-1.0, 1.0, 0.0), vec3f(0.0, -1.0, 1.0), vec3f(0.0, -1.0, -1.0));
-const CMI_GRADIENTS2: array<vec2f, 8> = array<vec2f, 8>(vec2f(1.0, 0.0), vec2f(-1.0, 0.0), vec2f(0.0, 1.0), vec2f(0.0, -1.0), vec2f(0.70710678, 0.70710678), vec2f(-0.70710678, 0.70710678), vec2f(0.70710678, -0.70710678), vec2f(-0.70710678, -0.70710678));
+var<private> CMI_GRADIENTS3: array<vec3f, 16> = array<vec3f, 16>(vec3f(1.0, 1.0, 0.0), vec3f(-1.0, 1.0, 0.0), vec3f(1.0, -1.0, 0.0), vec3f(-1.0, -1.0, 0.0), vec3f(1.0, 0.0, 1.0), vec3f(-1.0, 0.0, 1.0), vec3f(1.0, 0.0, -1.0), vec3f(-1.0, 0.0, -1.0), vec3f(0.0, 1.0, 1.0), vec3f(0.0, -1.0, 1.0), vec3f(0.0, 1.0, -1.0), vec3f(0.0, -1.0, -1.0), vec3f(1.0, 1.0, 0.0), vec3f(-1.0, 1.0, 0.0), vec3f(0.0, -1.0, 1.0), vec3f(0.0, -1.0, -1.0));
+var<private> CMI_GRADIENTS2: array<vec2f, 8> = array<vec2f, 8>(vec2f(1.0, 0.0), vec2f(-1.0, 0.0), vec2f(0.0, 1.0), vec2f(0.0, -1.0), vec2f(0.70710678, 0.70710678), vec2f(-0.70710678, 0.70710678), vec2f(0.70710678, -0.70710678), vec2f(-0.70710678, -0.70710678));
 fn cmi_gradient3(h: u32) -> vec3f { return CMI_GRADIENTS3[i32(h & 15u)]; }
 fn cmi_gradient2(h: u32) -> vec2f { return CMI_GRADIENTS2[i32(h & 7u)]; }
 
@@ -1172,14 +1176,15 @@ fn cm_curl_noise_v2iu(p: vec2f, period: i32, seed: u32) -> vec2f {
     return vec2f(d.z, -d.y);
 }
 fn cm_curl_noise_v2i(p: vec2f, period: i32) -> vec2f { return cm_curl_noise_v2iu(p, period, 0u); }
-// cloudmath/wgsl/sun.wgsl: GLSL twin of cloudmath/sun.hpp: the Sun's angular radius, the
+// cloudmath/glsl/sun.glsl: GLSL twin of cloudmath/sun.hpp: the Sun's angular radius, the
 // solid angle of a cone and the limb-darkened radiance of the sun disc for an irradiance.
 // Use: sky += sun_color * cm_sun_disc_radiance(1.0, dot(view_dir, sun_dir), CM_SUN_ANGULAR_RADIUS, 0.6);
+
 const CM_SUN_ANGULAR_RADIUS = 4.6524e-3;
 
 // 2 pi (1 - cos r) as 4 pi sin^2(r / 2): full precision for small cones.
 fn cm_cone_solid_angle(angular_radius: f32) -> f32 {
-    let s: f32 = cmi_sin_cos(angular_radius * 0.5).x; // core.wgsl: relative accuracy for small r
+    let s: f32 = cmi_sin_cos(angular_radius * 0.5).x; // core.glsl: relative accuracy for small r
     return 4.0 * CM_PI * s * s;
 }
 
@@ -1194,12 +1199,13 @@ fn cm_sun_disc_radiance(irradiance: f32, cos_angle: f32, angular_radius: f32, li
     let peak: f32 = irradiance / (cm_cone_solid_angle(angular_radius) * (1.0 - u / 3.0));
     return peak * (1.0 - u + u * sqrt(1.0 - x2));
 }
-// cloudmath/wgsl/reprojection.wgsl: GLSL twin of cloudmath/reprojection.hpp: the pixel of
+// cloudmath/glsl/reprojection.glsl: GLSL twin of cloudmath/reprojection.hpp: the pixel of
 // each 4 x 4 block a frame renders (Bayer order), the projection of a point into a previous
 // camera, the bilinear footprint of a history lookup and the running-mean blend weight.
 // Use: uvec2 o = cm_temporal_update_offset(frame);
 //      vec3 uvz = cm_camera_project(p_prev, fwd, right, up, tan_half_fov, aspect);
 //      vec4 fp = cm_texel_bilinear(uvz.xy, vec2(textureSize(history, 0)));  // texelFetch taps
+
 // Rank of (x mod 4, y mod 4) in the 4 x 4 Bayer matrix: 4 [0 2; 3 1](low bits) + (high bits).
 fn cm_bayer_index_4x4(x: u32, y: u32) -> u32 {
     let lo: u32 = (((x ^ y) & 1u) << 1u) | (y & 1u);
@@ -1236,13 +1242,14 @@ fn cm_temporal_blend_weight(history_samples: f32, max_samples: f32) -> f32 {
     let n: f32 = select(0.0, (select(cap, history_samples, history_samples < cap)), history_samples > 0.0);
     return 1.0 / (n + 1.0);
 }
-// cloudmath/wgsl/shadow_map.wgsl: GLSL twin of cloudmath/shadow_map.hpp: the Beer shadow map's
+// cloudmath/glsl/shadow_map.glsl: GLSL twin of cloudmath/shadow_map.hpp: the Beer shadow map's
 // texel built by a march along the sunlight, the optical depth and transmittance it gives at a
 // depth, and the projection of a point into the sun-aligned map.
 // Use: CmBeerShadowAccumulator acc = cm_beer_shadow_accumulator();
 //      cm_beer_shadow_add_step(acc, t, ds, sigma_t);  ...  out_texel = cm_beer_shadow_texel(acc);
 //      vec3 uvd = cm_shadow_map_project(p, origin, right, up, toward_sun, half_extent);
 //      float T = cm_beer_shadow_transmittance(texture(shadow_map, uvd.xy).xyz, uvd.z);
+
 // front > back while the march has met no extinction.
 struct CmBeerShadowAccumulator {
     front: f32,
@@ -1284,9 +1291,10 @@ fn cm_shadow_map_project(p: vec3f, origin: vec3f, right: vec3f, up: vec3f, towar
     let s: f32 = 0.5 / half_extent;
     return vec3f(0.5 + dot(q, right) * s, 0.5 + dot(q, up) * s, -dot(q, toward_sun));
 }
-// cloudmath/wgsl/texture_lod.wgsl: GLSL twin of cloudmath/texture_lod.hpp: a pixel's
+// cloudmath/glsl/texture_lod.glsl: GLSL twin of cloudmath/texture_lod.hpp: a pixel's
 // footprint at a distance and the mip level that matches it, for textureLod in a march loop.
 // Use: float lod = cm_texture_lod(cm_pixel_footprint(t, tan_half_fov, u_resolution.y), tile / size);
+
 // distance * 2 tan_half_fov / image_height.
 fn cm_pixel_footprint(distance: f32, tan_half_fov: f32, image_height: f32) -> f32 {
     return distance * (2.0 * tan_half_fov / image_height);
@@ -1297,3 +1305,5 @@ fn cm_texture_lod(footprint: f32, texel_size: f32) -> f32 {
     let ratio: f32 = footprint / texel_size;
     return select(0.0, log2(ratio), ratio > 1.0);
 }
+// cloudmath/glsl/cloudmath.glsl: every GLSL twin. Define configuration macros
+// (CM_MS_OCTAVES, CM_MS_PHASE, CM_DIFFUSION_PHASE, CM_CONE_EXTINCTION, CM_CONE_SAMPLES) before including it.

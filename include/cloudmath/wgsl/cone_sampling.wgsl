@@ -2,9 +2,11 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires, before this file: core.wgsl.
 //
-// cloudmath/wgsl/cone_sampling.wgsl: GLSL twin of cloudmath/cone_sampling.hpp, Schneider's
+// cloudmath/glsl/cone_sampling.glsl: GLSL twin of cloudmath/cone_sampling.hpp, Schneider's
 // cone of light samples toward the sun (near samples at (i + 1/2) step_length, offset across
 // the light by a Vogel spiral scaled with distance; the last one far away on the axis).
 //
@@ -15,6 +17,7 @@
 //   CM_CONE_SAMPLES     when defined, cm_cone_optical_depth uses this compile-time sample
 //                       count (the driver can unroll the loop) in place of cfg.sample_count
 //                       (default: not defined; cfg.sample_count is used).
+
 struct CmConeLightConfig {
     sample_count: i32, // all samples, the far one included
     step_length: f32, // length of each near segment

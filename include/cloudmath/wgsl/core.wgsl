@@ -2,28 +2,26 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires nothing else.
 //
-// cloudmath/wgsl/core.wgsl: GLSL twin of cloudmath/core.hpp (constants, saturate, remap,
+// cloudmath/glsl/core.glsl: GLSL twin of cloudmath/core.hpp (constants, saturate, remap,
 // smoothstep_safe, stable exponential helpers).
 //
-// Use:      #include "cloudmath/wgsl/core.wgsl"   (GL_GOOGLE_include_directive, shaderc,
+// Use:      #include "cloudmath/glsl/core.glsl"   (GL_GOOGLE_include_directive, shaderc,
 //           GL_ARB_shading_language_include), or cloudmath::glsl_source("core") for raw GL.
 // Targets:  function bodies valid in GLSL 3.30 core, GLSL ES 3.00 and Vulkan GLSL 4.50;
 //           float only. Same names as the C++ with the cm_ prefix, same argument order.
 // Bad input: handled with comparisons, as in C++; nothing relies on NaN or Inf behaviour,
 //           which differs between drivers.
+
 const CM_PI = 3.14159265358979;
 const CM_TWO_PI = 6.28318530717959;
 const CM_FOUR_PI = 12.5663706143592;
 const CM_INV_PI = 0.318309886183791;
 const CM_INV_FOUR_PI = 0.0795774715459477;
 
-// CM_PRECISE qualifies the few values that must be rounded exactly as written: the
-// error-free products of geometry.wgsl, which a fused multiply-add would spoil. GLSL 3.30 and
-// ES 3.00 have no `precise`, so it is empty by default; on GLSL 4.00+ or ES 3.20 drivers that
-// fuse (most GPUs may), `#define CM_PRECISE precise` before the include. The HLSL twin
-// defines it as precise.
 fn cm_saturate(x: f32) -> f32 { return clamp(x, 0.0, 1.0); }
 fn cm_saturate_v2(x: vec2f) -> vec2f { return clamp(x, vec2f(0.0), vec2f(1.0)); }
 fn cm_saturate_v3(x: vec3f) -> vec3f { return clamp(x, vec3f(0.0), vec3f(1.0)); }

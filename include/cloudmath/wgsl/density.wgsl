@@ -2,10 +2,13 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires, before this file: core.wgsl.
 //
-// cloudmath/wgsl/density.wgsl: GLSL twin of cloudmath/density.hpp: height gradients and
+// cloudmath/glsl/density.glsl: GLSL twin of cloudmath/density.hpp: height gradients and
 // presets, coverage, erosion, exponential height fog and its analytic optical depth.
+
 fn cm_height_gradient(h: f32, profile: vec4f) -> f32 {
     return cm_smoothstep_safe(profile.x, profile.y, h) - cm_smoothstep_safe(profile.z, profile.w, h);
 }
@@ -47,9 +50,7 @@ fn cm_apply_coverage(base: f32, coverage: f32) -> f32 {
     return cmi_remap_unit(base, 1.0 - c, 1.0) * c; // cm_remap_clamped(..., 0.0, 1.0)
 }
 
-fn cm_erode(base: f32, erosion: f32) -> f32 {
-    return cmi_remap_unit(base, erosion, 1.0);
-} // cm_remap_clamped(..., 0, 1) // cm_remap_clamped(..., 0, 1)
+fn cm_erode(base: f32, erosion: f32) -> f32 { return cmi_remap_unit(base, erosion, 1.0); } // cm_remap_clamped(..., 0, 1)
 
 // The exponent is floored at -104 (exp gives 0 there in float, as in C++) before exp: a driver
 // that folds exp's log2(e) into the product would otherwise compute (-falloff log2 e) *

@@ -2,9 +2,11 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires, before this file: core.wgsl, phase.wgsl, diffusion_lighting_models.wgsl.
 //
-// cloudmath/wgsl/diffusion_lighting.wgsl: GLSL twin of cloudmath/diffusion_lighting.hpp,
+// cloudmath/glsl/diffusion_lighting.glsl: GLSL twin of cloudmath/diffusion_lighting.hpp,
 // multiple scattering from diffusion along the sun's chord with a fitted correction table.
 // The formulas, their sources and the inputs are documented in the C++ header.
 //
@@ -18,10 +20,9 @@
 //                       When defined, cm_diffusion_scattering_with(...) is available (the C++
 //                       generic form); g is then that phase function's mean cosine.
 // Models:   CM_DIFFUSION_MODEL_FITTED (the default), CM_DIFFUSION_MODEL_PHYSICAL (plain
-//           diffusion, for comparison), generated in diffusion_lighting_models.wgsl.
+//           diffusion, for comparison), generated in diffusion_lighting_models.glsl.
 // GLSL 3.30 / ES 3.00: const arrays inside a struct, indexed at run time.
-// The table layout (CM_DIFFUSION_SIZE_*, CM_DIFFUSION_EXTRAPOLATION), CmDiffusionModel and
-// the fitted models, generated from the C++ side with the fit.
+
 fn cmi_diffusion_depth(tau: f32) -> f32 { return clamp(tau, 0.0, 1e6); }
 
 // (1 - albedo g, kappa): the similarity relations with absorption (C++ diffusion_similarity).
@@ -87,7 +88,8 @@ fn cmi_diffusion_hat(u: f32, n: i32, i0: ptr<function, i32>, w1: ptr<function, f
     (*w1) = p - f32(i);
 }
 
-fn cm_diffusion_table_lookup(m: CmDiffusionModel, u: vec4f) -> f32 {
+fn cm_diffusion_table_lookup(m_in: CmDiffusionModel, u: vec4f) -> f32 {
+    var m: CmDiffusionModel = m_in;
     var ix: i32;
     var iy: i32;
     var im: i32;

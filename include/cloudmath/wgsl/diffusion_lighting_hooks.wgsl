@@ -2,6 +2,8 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires, before this file: core.wgsl, phase.wgsl, diffusion_lighting_models.wgsl, diffusion_lighting.wgsl.
 // and your function(s):
 //   fn cm_diffusion_phase(mu: f32, scale: f32) -> f32  (GLSL: #define CM_DIFFUSION_PHASE)

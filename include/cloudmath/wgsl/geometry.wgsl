@@ -2,12 +2,15 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires, before this file: core.wgsl.
 //
-// cloudmath/wgsl/geometry.wgsl: GLSL twin of cloudmath/geometry.hpp: ray/sphere roots and
+// cloudmath/glsl/geometry.glsl: GLSL twin of cloudmath/geometry.hpp: ray/sphere roots and
 // planet-scale cloud-layer segments in the altitude form, accurate in float at Earth radius
 // (c = (h - H)(2R + h + H) and a cancellation-free discriminant; see geometry.hpp).
 // Results are vec2(t_near, t_far); vec2(-1) when the line misses.
+
 // Roots of t^2 + 2 b t + c = 0 with disc = b^2 - c >= 0, sorted; stable q form.
 fn cmi_stable_quadratic_roots(b: f32, c: f32, disc: f32) -> vec2f {
     let sq: f32 = sqrt(disc);
@@ -22,7 +25,7 @@ fn cmi_enters_ahead(roots: vec2f) -> bool { return roots.x >= 0.0 && roots.y > r
 // Error-free a * b = p + e (returned as vec2(p, e)) and a + b = s + e (Dekker's split,
 // no FMA needed; geometry.hpp's two_product and two_sum). The split needs a * 4097 rounded
 // before the subtraction: a compiler that fuses as - (as - a) into fma(a, 4097, -...) loses
-// the exactness (measured: the HLSL twin through spirv-opt, 1.4e-5 off). CM_PRECISE (core.wgsl)
+// the exactness (measured: the HLSL twin through spirv-opt, 1.4e-5 off). CM_PRECISE (core.glsl)
 // forbids that where the language can: `precise` in HLSL, and in GLSL 4.00+ if you define it so.
 fn cmi_two_product(a: f32, b: f32) -> vec2f {
     let p: f32 = a * b;

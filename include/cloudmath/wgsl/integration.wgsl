@@ -2,15 +2,18 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires, before this file: core.wgsl, transmittance.wgsl.
 //
-// cloudmath/wgsl/integration.wgsl: GLSL twin of cloudmath/integration.hpp: the
+// cloudmath/glsl/integration.glsl: GLSL twin of cloudmath/integration.hpp: the
 // energy-conserving step integral (Hillaire 2015) and a front-to-back march accumulator.
 //
 // Use:      CmMarchAccumulator acc = cm_march_accumulator();
 //           for (...) { cm_march_add_segment(acc, S, sigma_t, ds); if (cm_march_is_opaque(acc, 0.01)) break; }
 //           color = background * acc.transmittance + acc.luminance;
 // S is radiance per metre (sigma_s * phase * light); sigma_t in 1/m; ds in m.
+
 // S (1 - exp(-sigma_t ds)) / sigma_t, exactly S ds at sigma_t = 0, no clamp constant.
 fn cm_integrate_scattering(S: f32, sigma_t: f32, ds: f32) -> f32 {
     return S * ds * cm_one_minus_exp_neg_over_x(max(sigma_t * ds, 0.0));

@@ -2,9 +2,11 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires, before this file: core.wgsl, phase.wgsl, transmittance.wgsl.
 //
-// cloudmath/wgsl/multiple_scattering.wgsl: GLSL twin of cloudmath/multiple_scattering.hpp,
+// cloudmath/glsl/multiple_scattering.glsl: GLSL twin of cloudmath/multiple_scattering.hpp,
 // Wrenninge's octaves: sum_{i<N} b^i phase(mu, c^i g) exp(-a^i tau).
 // Letters: a scales extinction, b the contribution, c the eccentricity (b <= a conserves
 // energy); Frostbite's notes swap a and b.

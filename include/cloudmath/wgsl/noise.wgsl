@@ -2,13 +2,16 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires, before this file: core.wgsl.
 //
-// cloudmath/wgsl/noise.wgsl: GLSL twin of cloudmath/noise.hpp: tileable improved Perlin
+// cloudmath/glsl/noise.glsl: GLSL twin of cloudmath/noise.hpp: tileable improved Perlin
 // (2D, 3D, analytic derivatives), Worley, fBm, Nubis Worley fBm, Perlin-Worley, curl noise.
 // p in lattice cells; period = cells per tile (int >= 1); seed a uint (overloads without it
 // use 0). The hashes are uint arithmetic and match the C++ bit for bit; in GLSL ES fragment
 // shaders declare `precision highp int;` so that uint has 32 bits.
+
 // 32-bit mixer ("lowbias32" constants), identical to cloudmath::noise_hash.
 fn cm_noise_hash(x_in: u32) -> u32 {
     var x: u32 = x_in;
@@ -54,8 +57,8 @@ fn cm_hash_to_unit(h: u32) -> f32 { return f32(h >> 8u) * (1.0 / 16777216.0); }
 fn cmi_fade(t: f32) -> f32 { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 fn cmi_fade_derivative(t: f32) -> f32 { return 30.0 * t * t * (t - 1.0) * (t - 1.0); }
 
-const CMI_GRADIENTS3: array<vec3f, 16> = array<vec3f, 16>(vec3f(1.0, 1.0, 0.0), vec3f(-1.0, 1.0, 0.0), vec3f(1.0, -1.0, 0.0), vec3f(-1.0, -1.0, 0.0), vec3f(1.0, 0.0, 1.0), vec3f(-1.0, 0.0, 1.0), vec3f(1.0, 0.0, -1.0), vec3f(-1.0, 0.0, -1.0), vec3f(0.0, 1.0, 1.0), vec3f(0.0, -1.0, 1.0), vec3f(0.0, 1.0, -1.0), vec3f(0.0, -1.0, -1.0), vec3f(1.0, 1.0, 0.0), vec3f(-1.0, 1.0, 0.0), vec3f(0.0, -1.0, 1.0), vec3f(0.0, -1.0, -1.0));
-const CMI_GRADIENTS2: array<vec2f, 8> = array<vec2f, 8>(vec2f(1.0, 0.0), vec2f(-1.0, 0.0), vec2f(0.0, 1.0), vec2f(0.0, -1.0), vec2f(0.70710678, 0.70710678), vec2f(-0.70710678, 0.70710678), vec2f(0.70710678, -0.70710678), vec2f(-0.70710678, -0.70710678));
+var<private> CMI_GRADIENTS3: array<vec3f, 16> = array<vec3f, 16>(vec3f(1.0, 1.0, 0.0), vec3f(-1.0, 1.0, 0.0), vec3f(1.0, -1.0, 0.0), vec3f(-1.0, -1.0, 0.0), vec3f(1.0, 0.0, 1.0), vec3f(-1.0, 0.0, 1.0), vec3f(1.0, 0.0, -1.0), vec3f(-1.0, 0.0, -1.0), vec3f(0.0, 1.0, 1.0), vec3f(0.0, -1.0, 1.0), vec3f(0.0, 1.0, -1.0), vec3f(0.0, -1.0, -1.0), vec3f(1.0, 1.0, 0.0), vec3f(-1.0, 1.0, 0.0), vec3f(0.0, -1.0, 1.0), vec3f(0.0, -1.0, -1.0));
+var<private> CMI_GRADIENTS2: array<vec2f, 8> = array<vec2f, 8>(vec2f(1.0, 0.0), vec2f(-1.0, 0.0), vec2f(0.0, 1.0), vec2f(0.0, -1.0), vec2f(0.70710678, 0.70710678), vec2f(-0.70710678, 0.70710678), vec2f(0.70710678, -0.70710678), vec2f(-0.70710678, -0.70710678));
 fn cmi_gradient3(h: u32) -> vec3f { return CMI_GRADIENTS3[i32(h & 15u)]; }
 fn cmi_gradient2(h: u32) -> vec2f { return CMI_GRADIENTS2[i32(h & 7u)]; }
 

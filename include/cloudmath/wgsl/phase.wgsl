@@ -2,15 +2,18 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires, before this file: core.wgsl.
 //
-// cloudmath/wgsl/phase.wgsl: GLSL twin of cloudmath/phase.hpp (normalised phase functions
+// cloudmath/glsl/phase.glsl: GLSL twin of cloudmath/phase.hpp (normalised phase functions
 // and Henyey-Greenstein sampling). Float only; same forms and clamps as the C++.
 //
 // Convention: mu = dot(view_dir, light_dir), +1 looking into the light (forward).
 // Domain:   mu clamped to [-1, 1], g to [-CM_PHASE_G_MAX, CM_PHASE_G_MAX] (0.9999).
 // Accuracy: the HG-type base 1 + g^2 - 2 g mu is written (1-g)^2 + 2g(1-mu) for g >= 0 and
 //           (1+g)^2 - 2g(1+mu) for g < 0, never pow(x, 1.5): full precision at the peaks.
+
 const CM_PHASE_G_MAX = 0.9999;
 
 // cmi_ functions are internal helpers (the C++ detail namespace); cm_ functions are the
@@ -84,7 +87,7 @@ fn cm_mie_approx_params(d_in: f32) -> CmMieApproxParams {
     var p: CmMieApproxParams;
     if (d <= 0.1) {
         p.g_hg = 13.8 * d * d;
-        p.g_draine = 1.1456 * d * cmi_sin_cos(9.29044 * d).x; // core.wgsl's accurate sin
+        p.g_draine = 1.1456 * d * cmi_sin_cos(9.29044 * d).x; // core.glsl's accurate sin
         p.alpha = 250.0;
         // d^4.3 via exp/log only for d > 0: pow(0, y) is left undefined by some specs.
         p.w_draine = 0.252977 - (select(0.0, 312.983 * exp(4.3 * log(d)), d > 0.0));

@@ -2,14 +2,17 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires, before this file: core.wgsl.
 //
-// cloudmath/wgsl/reprojection.wgsl: GLSL twin of cloudmath/reprojection.hpp: the pixel of
+// cloudmath/glsl/reprojection.glsl: GLSL twin of cloudmath/reprojection.hpp: the pixel of
 // each 4 x 4 block a frame renders (Bayer order), the projection of a point into a previous
 // camera, the bilinear footprint of a history lookup and the running-mean blend weight.
 // Use: uvec2 o = cm_temporal_update_offset(frame);
 //      vec3 uvz = cm_camera_project(p_prev, fwd, right, up, tan_half_fov, aspect);
 //      vec4 fp = cm_texel_bilinear(uvz.xy, vec2(textureSize(history, 0)));  // texelFetch taps
+
 // Rank of (x mod 4, y mod 4) in the 4 x 4 Bayer matrix: 4 [0 2; 3 1](low bits) + (high bits).
 fn cm_bayer_index_4x4(x: u32, y: u32) -> u32 {
     let lo: u32 = (((x ^ y) & 1u) << 1u) | (y & 1u);

@@ -2,15 +2,18 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires, before this file: core.wgsl.
 //
-// cloudmath/wgsl/shadow_map.wgsl: GLSL twin of cloudmath/shadow_map.hpp: the Beer shadow map's
+// cloudmath/glsl/shadow_map.glsl: GLSL twin of cloudmath/shadow_map.hpp: the Beer shadow map's
 // texel built by a march along the sunlight, the optical depth and transmittance it gives at a
 // depth, and the projection of a point into the sun-aligned map.
 // Use: CmBeerShadowAccumulator acc = cm_beer_shadow_accumulator();
 //      cm_beer_shadow_add_step(acc, t, ds, sigma_t);  ...  out_texel = cm_beer_shadow_texel(acc);
 //      vec3 uvd = cm_shadow_map_project(p, origin, right, up, toward_sun, half_extent);
 //      float T = cm_beer_shadow_transmittance(texture(shadow_map, uvd.xy).xyz, uvd.z);
+
 // front > back while the march has met no extinction.
 struct CmBeerShadowAccumulator {
     front: f32,

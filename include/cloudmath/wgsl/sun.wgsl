@@ -2,16 +2,19 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires, before this file: core.wgsl.
 //
-// cloudmath/wgsl/sun.wgsl: GLSL twin of cloudmath/sun.hpp: the Sun's angular radius, the
+// cloudmath/glsl/sun.glsl: GLSL twin of cloudmath/sun.hpp: the Sun's angular radius, the
 // solid angle of a cone and the limb-darkened radiance of the sun disc for an irradiance.
 // Use: sky += sun_color * cm_sun_disc_radiance(1.0, dot(view_dir, sun_dir), CM_SUN_ANGULAR_RADIUS, 0.6);
+
 const CM_SUN_ANGULAR_RADIUS = 4.6524e-3;
 
 // 2 pi (1 - cos r) as 4 pi sin^2(r / 2): full precision for small cones.
 fn cm_cone_solid_angle(angular_radius: f32) -> f32 {
-    let s: f32 = cmi_sin_cos(angular_radius * 0.5).x; // core.wgsl: relative accuracy for small r
+    let s: f32 = cmi_sin_cos(angular_radius * 0.5).x; // core.glsl: relative accuracy for small r
     return 4.0 * CM_PI * s * s;
 }
 

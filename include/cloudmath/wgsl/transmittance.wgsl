@@ -2,10 +2,13 @@
 // Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
 // Parity with the C++ in docs/wgsl_parity.md. WGSL has no overloads: the first GLSL overload
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
+// The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
+// #define configuration and overloads become in WGSL.
 // Requires, before this file: core.wgsl.
 //
-// cloudmath/wgsl/transmittance.wgsl: GLSL twin of cloudmath/transmittance.hpp.
+// cloudmath/glsl/transmittance.glsl: GLSL twin of cloudmath/transmittance.hpp.
 // Optical depth tau >= 0; negative tau is clamped to 0. float and vec3 (RGB) overloads.
+
 // exp(-tau), in [0, 1].
 fn cm_beer_lambert(optical_depth: f32) -> f32 { return exp(-max(optical_depth, 0.0)); }
 fn cm_beer_lambert_v3(optical_depth: vec3f) -> vec3f { return exp(-max(optical_depth, vec3f(0.0))); }
