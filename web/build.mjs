@@ -27,7 +27,7 @@ const wgslSources = {};
 for (const f of wgslNames) wgslSources[f] = readFileSync(join(wgslDir, f), 'utf8');
 const wgslRequires = {};
 for (const f of wgslNames) {
-  const m = /^\/\/ Requires, before this file: ([^.]*(?:\.wgsl[^.]*)*)\.$/m.exec(wgslSources[f]);
+  const m = /^\/\/ Requires, before this file: (.*)\.$/m.exec(wgslSources[f]);
   wgslRequires[f.replace('.wgsl', '')] = m ? m[1].split(', ').map((x) => x.replace('.wgsl', '')) : [];
 }
 

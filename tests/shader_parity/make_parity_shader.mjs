@@ -20,6 +20,7 @@ import { readFileSync, writeFileSync, readdirSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { HOOKS, moduleFiles, translateUnit, wgslType } from '../../tools/shader_translate/translate.mjs';
+import { readGlsl } from '../../tools/shader_translate/generate.mjs';
 
 const root = join(dirname(fileURLToPath(import.meta.url)), '..', '..');
 const arg = (name) => { const i = process.argv.indexOf(name); return i > 0 ? process.argv[i + 1] : null; };
@@ -36,16 +37,15 @@ const cases = dump.cases.filter((c) => c.program === program).sort((x, y) => x.i
 cases.forEach((c, i) => { if (c.index !== i) throw new Error(`case indices of program ${program} are not 0..n-1`); });
 
 const inc = join(root, 'include', 'cloudmath');
-const glslDir = join(inc, 'glsl');
-const sources = {};
-for (const f of readdirSync(glslDir).filter((x) => x.endsWith('.glsl'))) sources[f] = readFileSync(join(glslDir, f), 'utf8');
-const library = moduleFiles('cloudmath.glsl', sources);
+const library = moduleFiles('cloudmath.glsl', readGlsl());
+// The shipped WGSL files, read once (file name -> text).
+const wgslFiles = Object.fromEntries(readdirSync(join(inc, 'wgsl')).map((f) => [f, readFileSync(join(inc, 'wgsl', f), 'utf8')]));
 const configDefines = config ? dump.config_defines : '';
 
 // Settings that WGSL takes as pipeline-overridable constants (override declarations of the
 // shipped files), and cases WGSL cannot express, by the GLSL #define they need.
 const overrides = {};
-for (const f of readdirSync(join(inc, 'wgsl'))) for (const m of readFileSync(join(inc, 'wgsl', f), 'utf8').matchAll(/^override (\w+)/gm)) overrides[m[1]] = true;
+for (const text of Object.values(wgslFiles)) for (const m of text.matchAll(/^override (\w+)/gm)) overrides[m[1]] = true;
 const wgslUnsupported = { CM_CONE_SAMPLES: 'WGSL has no compile-time sample count: the shipped WGSL uses cfg.sample_count (the main cases test it)' };
 const constants = {}, skip = {};
 const defines = [];
@@ -88,14 +88,14 @@ try {
     for (const [macro, h] of Object.entries(HOOKS)) {
       const m = new RegExp(`^#define ${macro} (\\w+)`, 'm').exec(dump.prelude);
       if (!m) continue;
-      const module = readdirSync(join(inc, 'wgsl')).find((f) => f.endsWith('_hooks.wgsl') && readFileSync(join(inc, 'wgsl', f), 'utf8').includes(`fn ${h.fn}(`));
+      const module = Object.keys(wgslFiles).find((f) => f.endsWith('_hooks.wgsl') && wgslFiles[f].includes(`fn ${h.fn}(`));
       const params = h.params.map(([t, n]) => `${n}: ${wgslType(t)}`).join(', ');
       hooked.push(`fn ${h.fn}(${params}) -> ${wgslType(h.ret)} { return ${m[1]}(${h.params.map(([, n]) => n).join(', ')}); }\n`);
-      if (module) hooked.push(`// The shipped ${module}\n` + readFileSync(join(inc, 'wgsl', module), 'utf8'));
+      if (module) hooked.push(`// The shipped ${module}\n` + wgslFiles[module]);
     }
     const test = translateUnit(files, { target, hooksInline: true, emit: ['defines', 'prelude', 'after'] }).text;
     const meta = `// cm_parity: ${JSON.stringify({ constants, skip })}\n`;
-    writeFileSync(outPath, header + meta + '// The shipped WGSL twins: cloudmath/wgsl/cloudmath.wgsl\n' + readFileSync(join(inc, 'wgsl', 'cloudmath.wgsl'), 'utf8') +
+    writeFileSync(outPath, header + meta + '// The shipped WGSL twins: cloudmath/wgsl/cloudmath.wgsl\n' + wgslFiles['cloudmath.wgsl'] +
       '\n' + hooked.join('\n') + '\n// The test\'s own code, translated\n' + test);
   }
 } catch (e) {

@@ -16,7 +16,6 @@
 // - #include "x.glsl" -> #include "x.hlsl", include guards CM_*_GLSL -> CM_*_HLSL;
 // - CM_PRECISE locals keep the macro, which HLSL defines as precise (no fused multiply-add).
 import { isScalar, isVector, dim, vectorOf } from './analysis.mjs';
-import { arrayParts } from './types.mjs';
 import { INDENT, oneLine, withComments } from './emit_common.mjs';
 
 const KEYWORDS = new Set(['sample', 'line', 'point', 'triangle', 'lineadj', 'triangleadj', 'linear', 'centroid', 'nointerpolation',
@@ -113,8 +112,6 @@ export function emitHlsl(unit, analysis, { emit = () => true, flatten = false, c
     const lines = [];
     const prefix = (d.precise ? 'CM_PRECISE ' : '') + (isGlobal ? 'static const ' : d.const ? 'const ' : '');
     for (const x of d.declarators) {
-      const type = x.array !== null ? arrayParts(A.typeOf(x.array)) : null;
-      void type;
       const size = x.array !== null ? `[${expr(x.array)}]` : '';
       const init = x.init ? ` = ${isGlobal ? braces(x.init) : expr(x.init)}` : '';
       lines.push(`${indent}${prefix}${hlslType(d.type)} ${hlslName(x.name)}${size}${init};`);

@@ -12,7 +12,6 @@ import { readFile, mkdtemp, rm, writeFile } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { dirname, extname, join, normalize } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { spawnSync } from 'node:child_process';
 import { chromium } from 'playwright-core';
 
 const web = join(dirname(fileURLToPath(import.meta.url)), '..');
@@ -45,9 +44,6 @@ const threeBlock = (text) => [...text.matchAll(/```js\n([\s\S]*?)```/g)].map((m)
 const webSnippet = threeBlock(await readFile(join(web, 'README.md'), 'utf8'));
 const rootSnippet = threeBlock(await readFile(join(web, '..', 'README.md'), 'utf8'));
 check(webSnippet && webSnippet === rootSnippet, 'README.md shows the three.js snippet of web/README.md unchanged');
-// The page's clouds.wgsl (web/demo/clouds_wgsl.js) is generated from examples/cloud_renderer/shaders/clouds.wgsl.
-const fresh = spawnSync(process.execPath, [join(web, 'demo', 'build_wgsl_demo.mjs'), '--check'], { encoding: 'utf8' });
-check(fresh.status === 0, `web/demo/clouds_wgsl.js is fresh (node web/demo/build_wgsl_demo.mjs --check)${fresh.status ? ': ' + fresh.stderr.trim() : ''}`);
 const userDataDir = await mkdtemp(join(tmpdir(), 'cloudmath-chromium-'));
 // WebGL2 through ANGLE on SwiftShader's Vulkan; WebGPU through Dawn on SwiftShader's Vulkan
 // (--enable-unsafe-webgpu --enable-features=Vulkan --use-webgpu-adapter=swiftshader). Both
