@@ -13,6 +13,7 @@ import { tmpdir } from 'node:os';
 import { dirname, extname, join, normalize } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
+import { webgpuFlags } from './webgpu_page.mjs';
 
 const web = join(dirname(fileURLToPath(import.meta.url)), '..');
 const arg = (name, fallback) => { const i = process.argv.indexOf(name); return i > 0 ? process.argv[i + 1] : fallback; };
@@ -52,7 +53,7 @@ const userDataDir = await mkdtemp(join(tmpdir(), 'cloudmath-chromium-'));
 // ("Could not find SharedImageBackingFactory ... WebgpuSwapChainTexture"), losing the WebGL2
 // context too.
 const flags = ['--headless', '--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
-  '--use-vulkan=swiftshader', '--enable-unsafe-webgpu', '--enable-features=Vulkan', '--use-webgpu-adapter=swiftshader',
+  '--use-vulkan=swiftshader', ...webgpuFlags,
   '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run'];
 let context, threeRevision = '?';
 try {

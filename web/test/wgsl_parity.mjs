@@ -4,16 +4,12 @@
 //
 //   node web/test/wgsl_parity.mjs --cases CASES.json --program K BODY_K.wgsl [--program K BODY_K.wgsl ...]
 //                                 [--markdown FILE] [--chromium PATH]
-//   node web/test/wgsl_parity.mjs --cases CASES.json --main MAIN_BODY.wgsl [--config CONFIG_BODY.wgsl] ...
 //
 // CASES.json: {"programs": [{"config", "cases"}, ...], "cases": [{"function", "components",
 //   "floor", "budget", "config", "program", "index", "inputs": [[a.x,a.y,a.z,a.w,b.x,b.y,b.z,b.w], ...],
 //   "expected": [[x,y,z,w], ...]}, ...]} (non-finite expected values are null).
 // --program K BODY: the cases whose "program" is K run on BODY (make_parity_shader.mjs
 //   --program K), u_case.x = their "index"; every program of the dump needs its body.
-// --main / --config: one body for all the cases with "config" false / true; a case's number is
-//   its "index" where those are unique within its kind, otherwise (a dump split into programs)
-//   its position among its kind's cases in dump order.
 // A body (tests/shader_parity/make_parity_shader.mjs --target wgsl) holds the library, its
 //   helpers and `fn cm_test_case(c: i32, a: vec4f, b: vec4f) -> vec4f`; this script appends
 //   the bindings and the entry point (ENTRY below), so line numbers in messages are the body's.
@@ -29,12 +25,11 @@
 // where want is finite counts as NaN/Inf. Rows per function (budget: the largest of its cases').
 // Exit status: 0 when every row is within its budget and free of NaN/Inf; 1 on any failure
 // (compile error, pipeline or device error, out of budget, NaN/Inf); 2 on usage errors.
-import { createServer } from 'node:http';
 import { readFile, writeFile, rename } from 'node:fs/promises';
 import { basename } from 'node:path';
-import { chromium } from 'playwright-core';
+import { openWebGpuPage } from './webgpu_page.mjs';
 
-const usage = 'usage: node web/test/wgsl_parity.mjs --cases CASES.json (--program K BODY.wgsl ... | --main MAIN_BODY.wgsl [--config CONFIG_BODY.wgsl]) [--markdown FILE] [--chromium PATH]';
+const usage = 'usage: node web/test/wgsl_parity.mjs --cases CASES.json --program K BODY.wgsl ... [--markdown FILE] [--chromium PATH]';
 const args = process.argv.slice(2);
 const opts = { program: new Map() };
 const usageError = (why) => {
@@ -50,12 +45,12 @@ for (let i = 0; i < args.length; ++i) {
     i += 2;
     continue;
   }
-  if (!args[i].startsWith('--') || !['cases', 'main', 'config', 'markdown', 'chromium'].includes(name)) usageError(`unknown argument ${args[i]}`);
+  if (!args[i].startsWith('--') || !['cases', 'markdown', 'chromium'].includes(name)) usageError(`unknown argument ${args[i]}`);
   if (i + 1 >= args.length) usageError(`${args[i]} takes a value`);
   opts[name] = args[++i];
 }
 if (!opts.cases) usageError('no --cases');
-if (opts.program.size ? (opts.main || opts.config) : !opts.main) usageError('give either --program K FILE for every program or --main (and --config)');
+if (!opts.program.size) usageError('give --program K FILE for every program of the dump');
 const executablePath = opts.chromium || '/usr/bin/chromium';
 
 // The bindings and entry point appended to every body. u_case = (case index, evaluations, 0, 0).
@@ -131,32 +126,16 @@ const addProgram = async (name, file, mine) => {
   const source = body + (body.endsWith('\n') ? '' : '\n') + ENTRY;
   programs.push({ name, file, source, constants: meta.constants, bodyLines: body.split('\n').length - (body.endsWith('\n') ? 1 : 0), cases: mine });
 };
-if (opts.program.size) {
-  const numbers = [...new Set(cases.map((c) => c.program))].sort((x, y) => x - y);
-  if (numbers.some((k) => !Number.isInteger(k))) fail(`${opts.cases}: a case has no "program" number`);
-  const missing = numbers.filter((k) => !opts.program.has(k));
-  if (missing.length) fail(`no --program body for program(s) ${missing.join(', ')} of ${opts.cases}`);
-  for (const [k, file] of [...opts.program].sort((x, y) => x[0] - y[0])) {
-    const mine = cases.filter((c) => c.program === k);
-    if (!mine.length) fail(`--program ${k}: ${opts.cases} has no case in program ${k}`);
-    const config = mine.some((c) => c.config);
-    if (config && !mine.every((c) => c.config)) fail(`${opts.cases}: program ${k} mixes configuration and main cases`);
-    await addProgram(`program ${k}${config ? ' (config)' : ''}`, file, mine);
-  }
-}
-for (const [name, isConfig, file] of opts.program.size ? [] : [['main', false, opts.main], ['config', true, opts.config]]) {
-  const mine = cases.filter((c) => c.config === isConfig);
-  if (mine.length === 0) continue;
-  if (!file) fail(`${mine.length} ${name} case(s) in ${opts.cases} but no --${name} body`);
-  // Each case's u_case.x: its "index". A dump that splits a kind into programs of at most
-  // "max_cases_per_program" cases (test_glsl_parity's, for llvmpipe) restarts "index" in each;
-  // one WGSL body per kind then numbers its cases in dump order, 0, 1, 2, ...
-  if (new Set(mine.map((c) => c.index)).size !== mine.length) {
-    console.log(`note: the ${name} cases' "index" repeats (programs of at most ${dump.max_cases_per_program} cases); ` +
-      `numbering them 0..${mine.length - 1} in dump order for the one ${name} WGSL program`);
-    mine.forEach((c, k) => { c.index = k; });
-  }
-  await addProgram(`${name} program`, file, mine);
+const numbers = [...new Set(cases.map((c) => c.program))].sort((x, y) => x - y);
+if (numbers.some((k) => !Number.isInteger(k))) fail(`${opts.cases}: a case has no "program" number`);
+const missing = numbers.filter((k) => !opts.program.has(k));
+if (missing.length) fail(`no --program body for program(s) ${missing.join(', ')} of ${opts.cases}`);
+for (const [k, file] of [...opts.program].sort((x, y) => x[0] - y[0])) {
+  const mine = cases.filter((c) => c.program === k);
+  if (!mine.length) fail(`--program ${k}: ${opts.cases} has no case in program ${k}`);
+  const config = mine.some((c) => c.config);
+  if (config && !mine.every((c) => c.config)) fail(`${opts.cases}: program ${k} mixes configuration and main cases`);
+  await addProgram(`program ${k}${config ? ' (config)' : ''}`, file, mine);
 }
 
 // Inputs as f32, two vec4f per evaluation (a then b), base64 to the page.
@@ -290,35 +269,22 @@ async function runInPage(programs) {
 }
 
 // ---- run -------------------------------------------------------------------------------
-const server = createServer((req, res) => {
-  // One blank page: WebGPU needs a secure context, and http://127.0.0.1 is one.
-  res.writeHead(200, { 'content-type': 'text/html' });
-  res.end('<!doctype html><meta charset="utf-8"><title>cloudmath WGSL parity</title>');
-});
-await new Promise((ok) => server.listen(0, '127.0.0.1', ok));
-const flags = ['--headless', '--no-sandbox', '--enable-unsafe-webgpu', '--enable-features=Vulkan', '--use-webgpu-adapter=swiftshader',
-  '--enable-webgpu-developer-features', '--disable-gpu-watchdog',
-  '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run'];
-let browser, page, result, chromiumVersion = '?';
-const logs = [];
+const extraFlags = ['--enable-webgpu-developer-features', '--disable-gpu-watchdog'];
+let session, result, chromiumVersion = '?', flags = [];
 const t0 = Date.now();
 try {
-  browser = await chromium.launch({ executablePath, headless: true, args: flags });
-  chromiumVersion = browser.version();
-  page = await browser.newPage();
-  page.on('console', (m) => logs.push(`${m.type()}: ${m.text()}`));
-  page.on('pageerror', (e) => logs.push(`pageerror: ${e.message}`));
-  await page.goto(`http://127.0.0.1:${server.address().port}/`);
-  result = await page.evaluate(runInPage, pagePrograms);
+  session = await openWebGpuPage({ executablePath, extraFlags, title: 'cloudmath WGSL parity' });
+  flags = session.flags;
+  chromiumVersion = session.browser.version();
+  result = await session.page.evaluate(runInPage, pagePrograms);
 } catch (e) {
   console.log(`FAIL running the page: ${e && e.stack || e}`);
-  if (logs.length) console.log(logs.join('\n'));
-  if (browser) await browser.close();
-  server.close();
+  if (session && session.logs.length) console.log(session.logs.join('\n'));
+  if (session) await session.close();
   process.exit(1);
 }
-await browser.close();
-server.close();
+const logs = session.logs;
+await session.close();
 
 const failures = [];
 const adapterName = (a) => {

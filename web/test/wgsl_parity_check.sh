@@ -9,7 +9,7 @@
 #   sh wgsl_parity_check.sh detects-error WORK_DIR NODE CHROMIUM
 #     web.wgsl_parity_detects_error: the runner itself can fail. On a small hand-written fixture
 #     (program 0: two main cases, program 1: one configuration case): the correct bodies pass,
-#     given as --program K FILE and as --main / --config; a body with a WGSL
+#     given as --program K FILE; a body with a WGSL
 #     type error fails with the compiler's message and the offending source line; a body that
 #     returns a + 1.0 for one case and Inf for another fails with those rows out of budget and
 #     with NaN/Inf.
@@ -79,13 +79,9 @@ WGSL
   cmp -s "$work/main.wgsl" "$work/main_error.wgsl" && { echo "FAIL: the error fixture was not made"; exit 1; }
   cmp -s "$work/main.wgsl" "$work/main_wrong.wgsl" && { echo "FAIL: the wrong-value fixture was not made"; exit 1; }
 
-  run() {  # BODY LOG [--main]: the runner's exit status, its output in LOG
+  run() {  # BODY LOG: the runner's exit status, its output in LOG
     status=0
-    if [ "${3:-}" = --main ]; then
-      "$node" "$here/wgsl_parity.mjs" --cases "$work/cases.json" --main "$1" --config "$work/config.wgsl" --chromium "$chromium" > "$2" 2>&1 || status=$?
-    else
-      "$node" "$here/wgsl_parity.mjs" --cases "$work/cases.json" --program 0 "$1" --program 1 "$work/config.wgsl" --chromium "$chromium" > "$2" 2>&1 || status=$?
-    fi
+    "$node" "$here/wgsl_parity.mjs" --cases "$work/cases.json" --program 0 "$1" --program 1 "$work/config.wgsl" --chromium "$chromium" > "$2" 2>&1 || status=$?
     return 0
   }
   expect() {  # LOG PATTERN WHAT
@@ -95,10 +91,7 @@ WGSL
   run "$work/main.wgsl" "$work/good.log"
   [ "$status" -eq 0 ] || { echo "FAIL: the correct fixture does not pass (exit $status):"; cat "$work/good.log"; exit 1; }
   expect "$work/good.log" '^PASSED: 3 functions, 3 cases' "the correct fixture"
-  run "$work/main.wgsl" "$work/good_main.log" --main
-  [ "$status" -eq 0 ] || { echo "FAIL: the correct fixture does not pass as --main/--config (exit $status):"; cat "$work/good_main.log"; exit 1; }
-  expect "$work/good_main.log" '^PASSED: 3 functions, 3 cases' "the correct fixture as --main/--config"
-  echo "ok   the correct fixture passes (as --program K FILE and as --main/--config)"
+  echo "ok   the correct fixture passes"
 
   run "$work/main_error.wgsl" "$work/error.log"
   [ "$status" -eq 1 ] || { echo "FAIL: a body with a WGSL error exits $status, not 1:"; cat "$work/error.log"; exit 1; }

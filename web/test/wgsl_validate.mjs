@@ -5,11 +5,8 @@
 //   node web/test/wgsl_validate.mjs [--chromium PATH] [--prepend FILE]... FILE...
 // --prepend: files put before each FILE (the cloudmath WGSL the snippet assumes).
 // Exit 0 when every file compiles; 1 otherwise (messages with their source lines).
-import { createServer } from 'node:http';
-import { readFileSync, mkdtempSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
-import { chromium } from 'playwright-core';
+import { readFileSync } from 'node:fs';
+import { openWebGpuPage } from './webgpu_page.mjs';
 
 const args = process.argv.slice(2);
 let executablePath = '/usr/bin/chromium';
@@ -22,19 +19,10 @@ for (let i = 0; i < args.length; i++) {
 if (!files.length) { console.error('usage: wgsl_validate.mjs [--chromium PATH] [--prepend FILE]... FILE...'); process.exit(2); }
 const before = prepend.map((f) => readFileSync(f, 'utf8')).join('\n');
 
-// navigator.gpu exists only on a secure origin: http://127.0.0.1 is one, about:blank is not.
-const server = createServer((req, res) => { res.writeHead(200, { 'content-type': 'text/html' }); res.end('<!doctype html><title>wgsl</title>'); });
-await new Promise((ok) => server.listen(0, '127.0.0.1', ok));
-const userDataDir = mkdtempSync(join(tmpdir(), 'cloudmath-wgsl-'));
 let failed = 0;
-const context = await chromium.launchPersistentContext(userDataDir, {
-  executablePath, headless: true,
-  args: ['--headless', '--no-sandbox', '--enable-unsafe-webgpu', '--enable-features=Vulkan', '--use-webgpu-adapter=swiftshader',
-    '--disable-background-networking', '--disable-component-update', '--no-first-run'],
-});
+const session = await openWebGpuPage({ executablePath, title: 'wgsl' });
 try {
-  const page = context.pages()[0] || await context.newPage();
-  await page.goto(`http://127.0.0.1:${server.address().port}/`);
+  const { page } = session;
   for (const file of files) {
     const code = `${before}\n${readFileSync(file, 'utf8')}`;
     const result = await page.evaluate(async (code) => {
@@ -67,8 +55,6 @@ try {
     else console.log(`ok   ${file} (${result.messages.length} message(s), ${result.entries} entry point(s) built)`);
   }
 } finally {
-  await context.close();
-  server.close();
-  rmSync(userDataDir, { recursive: true, force: true });
+  await session.close();
 }
 process.exit(failed ? 1 : 0);
