@@ -134,7 +134,7 @@ export function mutatedNames(body, analysis, { runtimeIndexed = false } = {}) {
   const declared = (s) => {
     if (!s || typeof s !== 'object') return;
     if (s.kind === 'decl') for (const d of s.declarators) locals.set(d.name, d.array ? `${s.type}[]` : s.type);
-    for (const v of Object.values(s)) if (Array.isArray(v)) v.forEach(declared); else if (v && typeof v === 'object' && v !== s.expr) declared(v);
+    for (const v of Object.values(s)) if (Array.isArray(v)) v.forEach(declared); else if (v && typeof v === 'object') declared(v);
   };
   if (runtimeIndexed) declared(body);
   const root = (e) => {

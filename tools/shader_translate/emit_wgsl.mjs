@@ -317,13 +317,10 @@ export function emitWgsl(unit, analysis, { emit = () => true, comment = (c) => c
         A.push();
         for (const p of it.params) A.bind(p.name, p.type, p.qual ? { pointer: true } : {});
         mutated = mutatedNames(it.body, A, { runtimeIndexed: true });
-        A.pop();
-        A.push();
         const copies = [];
         const params = it.params.map((p) => {
           const name = wgslName(p.name);
-          if (p.qual) { A.bind(p.name, p.type, { pointer: true }); return `${name}: ptr<function, ${wgslType(p.type)}>`; }
-          A.bind(p.name, p.type);
+          if (p.qual) return `${name}: ptr<function, ${wgslType(p.type)}>`;
           if (mutated.has(p.name)) { copies.push(`${INDENT}var ${name}: ${wgslType(p.type)} = ${name}_in;`); return `${name}_in: ${wgslType(p.type)}`; }
           return `${name}: ${wgslType(p.type)}`;
         });
