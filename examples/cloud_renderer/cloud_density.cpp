@@ -61,9 +61,22 @@ vec4 linear_texture::sample2(vec2 uv, float lod) const {
 
 // GL_LINEAR with GL_REPEAT: cloudmath's texture_trilinear_repeat over this texture's bytes.
 vec4 linear_texture::texel4(int x, int y, int z) const {
-    vec4 v(0.0f);
-    for (int c = 0; c < channels; ++c) v[c] = texel(x, y, z, c);
-    return v;
+    // One address for the texel's channels (texel() per channel recomputed it: this is the
+    // density's inner loop in the path tracer); the same bytes / 255 as texel().
+    const std::uint8_t* t = data + ((static_cast<std::size_t>(z) * static_cast<std::size_t>(size) + static_cast<std::size_t>(y)) *
+                                        static_cast<std::size_t>(size) +
+                                    static_cast<std::size_t>(x)) *
+                                       static_cast<std::size_t>(channels);
+    constexpr float scale = 1.0f / 255.0f;
+    switch (channels) {
+    case 4: return vec4(float(t[0]) * scale, float(t[1]) * scale, float(t[2]) * scale, float(t[3]) * scale);
+    case 3: return vec4(float(t[0]) * scale, float(t[1]) * scale, float(t[2]) * scale, 0.0f);
+    default: {
+        vec4 v(0.0f);
+        for (int c = 0; c < channels; ++c) v[c] = float(t[c]) * scale;
+        return v;
+    }
+    }
 }
 
 vec4 linear_texture::sample3(vec3 uvw) const {

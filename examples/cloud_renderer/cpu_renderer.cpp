@@ -178,6 +178,13 @@ struct pixel_program {
             const float ds = at((float(i) + 1.0f) / nl) - at(float(i) / nl);
             tau += light_extinction(p + toward * at((float(i) + light_offset) / nl), i >= light_far_step, counter, footprint) * ds;
         }
+        // variant::far_map: toward the sun, what lies beyond the capped march, from the map
+        // (its optical depth from the map's plane down to where the march ended).
+        if (v.far_map && seg.y > length_to_exit && glm::dot(toward, k.sun_dir) > 0.0f) {
+            const vec3 uvd = cm::shadow_map_project(p + toward * length_to_exit, k.shadow_origin, k.shadow_right, k.shadow_up,
+                                                    k.sun_dir, k.shadow_half_extent);
+            if (on_map(uvd)) tau += cm::beer_shadow_optical_depth(shadow_lookup(vec2(uvd), counter), uvd.z);
+        }
         return tau;
     }
 

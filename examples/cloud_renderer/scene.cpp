@@ -70,6 +70,12 @@ const std::vector<scene>& presets() {
         towering.layer_top = 8000.0f;
         towering.max_distance = 60000.0f;
         v.push_back(towering);
+        // The low sun of the lighting truth's selection split (docs/lighting_truth.md): a sun 3
+        // degrees up, facing it and with it behind the camera, in other parts of the field than
+        // `horizon`, so that the choice of a low-sun light is not learned from that evaluation
+        // preset.
+        v.push_back(make("low_sun_ahead", "on the ground facing a sun 3 degrees up", 2, 100, 8, 3, 95, 0.3f, 0.7f));
+        v.push_back(make("low_sun_behind", "on the ground, a sun 3 degrees up behind the camera", 2, 20, 12, 3, 200, 0.3f, 0.7f));
         return v;
     }();
     return all;
@@ -277,9 +283,10 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             else if (value == "base") out.far_base = true;
             else return "far must be full or base, not '" + value + "'";
         } else if (key == "reach") {
-            if (value == "capped") out.long_reach = false;
-            else if (value == "band") out.long_reach = true;
-            else return "reach must be capped or band, not '" + value + "'";
+            if (value == "capped") out.long_reach = out.far_map = false;
+            else if (value == "band") out.long_reach = true, out.far_map = false;
+            else if (value == "map") out.long_reach = false, out.far_map = true;
+            else return "reach must be capped, band or map, not '" + value + "'";
         } else if (key == "shadows") {
             if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
         } else {
@@ -298,7 +305,7 @@ std::string variant_spec(const variant& v) {
       << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
       << ",light-spacing=" << (v.light_quadratic ? "quadratic" : "uniform") << ",light-jitter=" << (v.light_jitter ? "on" : "off")
       << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
-      << ",reach=" << (v.long_reach ? "band" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
+      << ",reach=" << (v.long_reach ? "band" : v.far_map ? "map" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
     return s.str();
 }
 

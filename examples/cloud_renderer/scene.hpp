@@ -88,6 +88,10 @@ struct variant {
     // How far the march toward the sun reaches: capped at 6 km (light_march_max), or to where
     // the band ends, up to 30 km (a low sun's path to the layer top).
     bool long_reach = false;
+    // The far field toward the sun (reach=map): beyond the capped march, the Beer shadow map's
+    // optical depth from where the march ends to where the sunlight enters the band (one
+    // bilinear map read), so a low sun's light crosses the whole layer.
+    bool far_map = false;
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
     bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
     bool sun = true;                 // draw the sun disc (sun_disc_radiance) in the background
@@ -154,7 +158,7 @@ inline constexpr float ground_sky_share = 0.4f;
 // True when the variant draws the Beer shadow map: for the ground's shadows or a light
 // estimate (light_mode::map).
 inline bool needs_shadow_map(const variant& v) {
-    return v.shadows || v.light == light_mode::map || v.behind == light_mode::map;
+    return v.shadows || v.light == light_mode::map || v.behind == light_mode::map || v.far_map;
 }
 
 // Every preset, in the order --list-presets prints them; the first is the default.

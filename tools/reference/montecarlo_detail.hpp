@@ -216,6 +216,32 @@ std::vector<Tally> tally_per_item(std::size_t items, std::uint64_t paths, const 
     return totals;
 }
 
+// The same with paths[item] samples for each item (0 allowed: an empty tally): chunks of
+// paths_per_chunk per item with the streams (seed, key + item, chunk), merged in order, so the
+// result depends on the counts and the seed only, not on the thread count.
+template <class Tally, class SampleFn>
+std::vector<Tally> tally_per_item(const std::vector<std::uint64_t>& paths, const run_options& options,
+                                  std::uint64_t key, SampleFn sample) {
+    std::vector<std::size_t> first(paths.size() + 1, 0);  // chunk index where each item starts
+    for (std::size_t item = 0; item < paths.size(); ++item)
+        first[item + 1] = first[item] + static_cast<std::size_t>(chunk_count(paths[item]));
+    std::vector<Tally> tallies(first.back());
+    std::vector<std::size_t> owner(first.back());
+    for (std::size_t item = 0; item < paths.size(); ++item)
+        for (std::size_t k = first[item]; k < first[item + 1]; ++k) owner[k] = item;
+    run_chunks(tallies.size(), options, [&](std::size_t k) {
+        const std::size_t item = owner[k];
+        const std::uint64_t chunk = k - first[item];
+        random_stream rng(options.seed, key + item, chunk);
+        const std::uint64_t n = chunk_size(paths[item], chunk);
+        for (std::uint64_t i = 0; i < n; ++i) sample(item, rng, tallies[k]);
+    });
+    std::vector<Tally> totals(paths.size());
+    for (std::size_t item = 0; item < paths.size(); ++item)
+        for (std::size_t k = first[item]; k < first[item + 1]; ++k) totals[item].merge(tallies[k]);
+    return totals;
+}
+
 }  // namespace detail
 
 }  // namespace cloudmath::reference::mc

@@ -10,7 +10,10 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace mc = cloudmath::reference::mc;
 namespace vt = cloudmath::reference::volume;
@@ -130,6 +133,103 @@ TEST_CASE("results are bit-identical for a seed whatever the thread count") {
         CHECK(one[i].r.std_error == three[i].r.std_error);
     }
     CHECK(one[1].r.mean > 0.0);
+}
+
+TEST_CASE("allocate_paths: Neyman allocation with costs, the target met at the least cost") {
+    // Closed form without the clamps: n_i = lambda sqrt(v_i / c_i) with lambda =
+    // sum sqrt(v_i c_i) / V, and the cost sum n_i c_i = (sum sqrt(v_i c_i))^2 / V.
+    const std::vector<double> v{4.0, 1.0, 0.25, 9.0}, c{1.0, 4.0, 1.0, 9.0};
+    const double target = 0.0123;
+    const vt::path_allocation a = vt::allocate_paths(v, c, target, 2, 1u << 30);
+    double root_sum = 0.0;
+    for (std::size_t i = 0; i < v.size(); ++i) root_sum += std::sqrt(v[i] * c[i]);
+    const double lambda = root_sum / target;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        CAPTURE(i);
+        const double want = lambda * std::sqrt(v[i] / c[i]);
+        CHECK(std::abs(double(a.paths[i]) - want) <= 0.01 * want + 1.0);  // up to the rounding up
+    }
+    CHECK(a.predicted_variance_sum <= target);
+    CHECK(a.predicted_variance_sum > target * 0.999);
+    CHECK(a.predicted_cost == doctest::Approx(root_sum * root_sum / target).epsilon(2e-3));
+    // Any other allocation that meets the target costs at least as much: shift paths between
+    // two rays and restore the target with the fewest paths on the second.
+    const double moved = 0.9 * double(a.paths[0]);
+    const double rest = target - v[0] / moved - v[2] / double(a.paths[2]) - v[3] / double(a.paths[3]);
+    REQUIRE(rest > 0.0);
+    CHECK(moved * c[0] + v[1] / rest * c[1] > double(a.paths[0]) * c[0] + double(a.paths[1]) * c[1]);
+}
+
+TEST_CASE("allocate_paths: bounds, zero variance, an unreachable target and bad input") {
+    const std::vector<double> v{0.0, 1.0, 100.0}, c{1.0, 1.0, 1.0};
+    const vt::path_allocation a = vt::allocate_paths(v, c, 0.5, 16, 1000);
+    CHECK(a.paths[0] == 16);  // no variance: the floor
+    CHECK(a.paths[2] > a.paths[1]);
+    CHECK(a.predicted_variance_sum <= 0.5);
+    // Already met by the floor: the floor everywhere.
+    const vt::path_allocation floor = vt::allocate_paths(v, c, 1e6, 16, 1000);
+    for (const auto n : floor.paths) CHECK(n == 16);
+    // Unreachable: max_paths everywhere but for zero variance... every ray at the cap, and the
+    // shortfall reported.
+    const vt::path_allocation capped = vt::allocate_paths(v, c, 1e-9, 16, 1000);
+    CHECK(capped.paths[1] == 1000);
+    CHECK(capped.paths[2] == 1000);
+    CHECK(capped.predicted_variance_sum == doctest::Approx(101.0 / 1000.0));
+    CHECK_THROWS_AS((void)vt::allocate_paths({1.0}, {1.0, 2.0}, 1.0, 2, 10), std::invalid_argument);
+    CHECK_THROWS_AS((void)vt::allocate_paths({-1.0}, {1.0}, 1.0, 2, 10), std::invalid_argument);
+    CHECK_THROWS_AS((void)vt::allocate_paths({NAN}, {1.0}, 1.0, 2, 10), std::invalid_argument);
+    CHECK_THROWS_AS((void)vt::allocate_paths({1.0}, {0.0}, 1.0, 2, 10), std::invalid_argument);
+    CHECK_THROWS_AS((void)vt::allocate_paths({1.0}, {INFINITY}, 1.0, 2, 10), std::invalid_argument);
+    CHECK_THROWS_AS((void)vt::allocate_paths({1.0}, {1.0}, 0.0, 2, 10), std::invalid_argument);
+    CHECK_THROWS_AS((void)vt::allocate_paths({1.0}, {1.0}, NAN, 2, 10), std::invalid_argument);
+    CHECK_THROWS_AS((void)vt::allocate_paths({1.0}, {1.0}, 1.0, 1, 10), std::invalid_argument);
+    CHECK_THROWS_AS((void)vt::allocate_paths({1.0}, {1.0}, 1.0, 11, 10), std::invalid_argument);
+}
+
+TEST_CASE("per-ray path counts: equal counts reproduce the uniform run; adaptive runs stay unbiased") {
+    const mc::phase_model phase = mc::make_phase("hg:0.85");
+    const mc::sphere_camera cam = mc::make_sphere_camera_line(70.0, 3);
+    std::vector<vt::camera_ray> rays;
+    for (const mc::ray& r : cam.rays) rays.push_back({r.origin, r.direction, 0.0, vt::camera_ray{}.t_end, {}});
+    const vt::homogeneous_sphere sphere(2.0);
+    const vt::lighting light = sun_only(cam.sun_direction);
+    const vt::path_tracer tracer(sphere, phase, 0.99, light);
+    // The same streams: bit-identical, whatever the thread count.
+    const auto uniform = vt::estimate_radiance(tracer, rays, 6000, options(1));
+    const auto counted = vt::estimate_radiance(tracer, rays, std::vector<std::uint64_t>(rays.size(), 6000), options(3));
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        CHECK(counted[i].r.mean == uniform[i].r.mean);
+        CHECK(counted[i].r.std_error == uniform[i].r.std_error);
+    }
+    CHECK_THROWS_AS((void)vt::estimate_radiance(tracer, rays, std::vector<std::uint64_t>{5}, options()), std::invalid_argument);
+
+    // The pilot: its own streams (not the estimate's), a cost of at least 1 per path.
+    const vt::pilot_estimate pilot = vt::estimate_radiance_pilot(tracer, rays, 6000, options());
+    REQUIRE(pilot.cost_per_path.size() == rays.size());
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        CHECK(pilot.radiance[i].r.mean != uniform[i].r.mean);
+        CHECK(pilot.cost_per_path[i] >= 1.0);
+        CHECK(combined_se(pilot.radiance[i].r, uniform[i].r) < 4.0);
+    }
+    CHECK(pilot.cost_per_path[1] > 2.0);  // the middle ray crosses the sphere: lookups counted
+    CHECK_THROWS_AS((void)vt::estimate_radiance_pilot(tracer, rays, 1, options()), std::invalid_argument);
+
+    // Counts from the pilot, then the estimate against montecarlo.hpp's exact free paths.
+    mc::sphere_parameters sp;
+    sp.optical_diameter = 4.0;
+    sp.albedo = 0.99;
+    sp.sun_direction = cam.sun_direction;
+    const auto want = mc::sphere_radiance(sp, phase, cam.rays, 100000, options());
+    std::vector<double> variance;
+    for (const vt::rgb_estimate& e : pilot.radiance) variance.push_back(6000.0 * e.r.std_error * e.r.std_error);
+    double target = 0.0;
+    for (const mc::estimate& w : want) target += 4.0 * w.std_error * w.std_error;  // half the reference's precision
+    const vt::path_allocation plan = vt::allocate_paths(variance, pilot.cost_per_path, target, 64, 1u << 22);
+    const auto got = vt::estimate_radiance(tracer, rays, plan.paths, options());
+    check_against(got, want, "adaptive sphere");
+    double achieved = 0.0;
+    for (const vt::rgb_estimate& e : got) achieved += e.r.std_error * e.r.std_error;
+    CHECK(achieved < 1.3 * target);  // the plan's variance, up to the pilot's own error
 }
 
 namespace {

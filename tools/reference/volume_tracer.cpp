@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace cloudmath::reference::volume {
@@ -14,6 +15,13 @@ namespace {
 
 // Ratio tracking hands over to Russian roulette below this transmittance.
 constexpr double transmittance_roulette = 0.1;
+
+// Extinction lookups made on this thread (the pilot's cost measure).
+thread_local std::uint64_t extinction_lookups = 0;
+
+// Random streams of the pilot run, apart from the estimate's (0x70C0000 + ray).
+constexpr std::uint64_t pilot_key = 0x9170B000000ULL;
+constexpr std::uint64_t estimate_key = 0x70C0000ULL;
 
 void add_scaled(rgb& sum, double s, const rgb& c) {
     sum.r += s * c.r;
@@ -84,6 +92,7 @@ double path_tracer::free_flight(const vec3& p, const vec3& d, double t0, double 
         for (double t = a;;) {
             t += rng.free_path() / majorant;
             if (t >= b) return true;
+            ++extinction_lookups;
             if (rng.uniform() * majorant < medium_.extinction(p + t * d)) {
                 hit = t;
                 return false;
@@ -101,6 +110,7 @@ double path_tracer::transmittance(const vec3& p, const vec3& d, double t1,
         for (double t = a;;) {
             t += rng.free_path() / majorant;
             if (t >= b) return true;
+            ++extinction_lookups;
             tr *= 1.0 - medium_.extinction(p + t * d) / majorant;
             if (tr < transmittance_roulette) {
                 if (rng.uniform() * transmittance_roulette >= tr) {
@@ -170,32 +180,124 @@ rgb path_tracer::sample(const camera_ray& ray, random_stream& rng) const {
 }
 
 // ---------------------------------------------------------------------------------------
+namespace {
+
+struct rgb_tally {
+    moments r, g, b;
+    double lookups = 0.0;
+    void merge(const rgb_tally& o) {
+        r.merge(o.r);
+        g.merge(o.g);
+        b.merge(o.b);
+        lookups += o.lookups;
+    }
+};
+
+// One path of ray `item` into the tally, with its extinction lookups.
+auto sample_into(const path_tracer& tracer, const std::vector<camera_ray>& rays) {
+    return [&tracer, &rays](std::size_t item, random_stream& rng, rgb_tally& t) {
+        const std::uint64_t before = extinction_lookups;
+        const rgb L = tracer.sample(rays[item], rng);
+        t.lookups += static_cast<double>(extinction_lookups - before);
+        t.r.add(L.r);
+        t.g.add(L.g);
+        t.b.add(L.b);
+    };
+}
+
+rgb_estimate make_rgb_estimate(const rgb_tally& t, std::uint64_t paths) {
+    return {make_estimate(t.r, paths), make_estimate(t.g, paths), make_estimate(t.b, paths)};
+}
+
+}  // namespace
+
 std::vector<rgb_estimate> estimate_radiance(const path_tracer& tracer,
                                             const std::vector<camera_ray>& rays,
                                             std::uint64_t paths_per_ray,
                                             const mc::run_options& options) {
-    struct tally {
-        moments r, g, b;
-        void merge(const tally& o) {
-            r.merge(o.r);
-            g.merge(o.g);
-            b.merge(o.b);
-        }
-    };
-    const std::vector<tally> totals = tally_per_item<tally>(
-        rays.size(), paths_per_ray, options, 0x70C0000ULL,
-        [&](std::size_t item, random_stream& rng, tally& t) {
-            const rgb L = tracer.sample(rays[item], rng);
-            t.r.add(L.r);
-            t.g.add(L.g);
-            t.b.add(L.b);
-        });
+    const std::vector<rgb_tally> totals =
+        tally_per_item<rgb_tally>(rays.size(), paths_per_ray, options, estimate_key, sample_into(tracer, rays));
     std::vector<rgb_estimate> out;
     out.reserve(rays.size());
-    for (const tally& t : totals)
-        out.push_back({make_estimate(t.r, paths_per_ray), make_estimate(t.g, paths_per_ray),
-                       make_estimate(t.b, paths_per_ray)});
+    for (const rgb_tally& t : totals) out.push_back(make_rgb_estimate(t, paths_per_ray));
     return out;
+}
+
+std::vector<rgb_estimate> estimate_radiance(const path_tracer& tracer,
+                                            const std::vector<camera_ray>& rays,
+                                            const std::vector<std::uint64_t>& paths_per_ray,
+                                            const mc::run_options& options) {
+    if (paths_per_ray.size() != rays.size())
+        throw std::invalid_argument("estimate_radiance: one path count per ray");
+    const std::vector<rgb_tally> totals =
+        tally_per_item<rgb_tally>(paths_per_ray, options, estimate_key, sample_into(tracer, rays));
+    std::vector<rgb_estimate> out;
+    out.reserve(rays.size());
+    for (std::size_t i = 0; i < totals.size(); ++i) {
+        rgb_estimate e = make_rgb_estimate(totals[i], paths_per_ray[i]);
+        if (paths_per_ray[i] < 2) e.r.std_error = e.g.std_error = e.b.std_error = 0.0;
+        out.push_back(e);
+    }
+    return out;
+}
+
+pilot_estimate estimate_radiance_pilot(const path_tracer& tracer, const std::vector<camera_ray>& rays,
+                                       std::uint64_t paths_per_ray, const mc::run_options& options) {
+    if (paths_per_ray < 2) throw std::invalid_argument("estimate_radiance_pilot: at least 2 paths per ray");
+    const std::vector<rgb_tally> totals =
+        tally_per_item<rgb_tally>(rays.size(), paths_per_ray, options, pilot_key, sample_into(tracer, rays));
+    pilot_estimate out;
+    out.radiance.reserve(rays.size());
+    out.cost_per_path.reserve(rays.size());
+    for (const rgb_tally& t : totals) {
+        out.radiance.push_back(make_rgb_estimate(t, paths_per_ray));
+        out.cost_per_path.push_back(1.0 + t.lookups / static_cast<double>(paths_per_ray));
+    }
+    return out;
+}
+
+path_allocation allocate_paths(const std::vector<double>& variance, const std::vector<double>& cost,
+                               double target_variance_sum, std::uint64_t min_paths, std::uint64_t max_paths) {
+    if (variance.size() != cost.size()) throw std::invalid_argument("allocate_paths: one cost per variance");
+    if (!(target_variance_sum > 0.0) || !std::isfinite(target_variance_sum))
+        throw std::invalid_argument("allocate_paths: the target variance must be positive and finite");
+    if (min_paths < 2 || min_paths > max_paths)
+        throw std::invalid_argument("allocate_paths: 2 <= min_paths <= max_paths");
+    for (std::size_t i = 0; i < variance.size(); ++i) {
+        if (!(variance[i] >= 0.0) || !std::isfinite(variance[i]))
+            throw std::invalid_argument("allocate_paths: variances must be finite and >= 0");
+        if (!(cost[i] > 0.0) || !std::isfinite(cost[i]))
+            throw std::invalid_argument("allocate_paths: costs must be finite and > 0");
+    }
+    const auto lo = static_cast<double>(min_paths), hi = static_cast<double>(max_paths);
+    // n_i(lambda) = clamp(ceil(lambda sqrt(variance_i / cost_i)), min, max): the sum of
+    // variance_i / n_i falls as lambda grows; bisect lambda (in log space) for the target.
+    const auto counts = [&](double lambda) {
+        path_allocation a;
+        a.paths.resize(variance.size());
+        for (std::size_t i = 0; i < variance.size(); ++i) {
+            const double want = variance[i] > 0.0 ? lambda * std::sqrt(variance[i] / cost[i]) : 0.0;
+            const double n = std::clamp(std::ceil(want), lo, hi);
+            a.paths[i] = static_cast<std::uint64_t>(n);
+            a.predicted_variance_sum += variance[i] / n;
+            a.predicted_cost += n * cost[i];
+        }
+        return a;
+    };
+    const path_allocation fewest = counts(0.0);  // min_paths everywhere
+    if (fewest.predicted_variance_sum <= target_variance_sum) return fewest;
+    const path_allocation most = counts(std::numeric_limits<double>::infinity());  // max_paths everywhere
+    if (most.predicted_variance_sum > target_variance_sum) return most;
+    double a = 0.0, b = 1.0;
+    while (counts(b).predicted_variance_sum > target_variance_sum) {
+        a = b;
+        b *= 2.0;
+    }
+    for (int i = 0; i < 200 && b > a * (1.0 + 1e-12); ++i) {
+        const double m = 0.5 * (a + b);
+        (counts(m).predicted_variance_sum > target_variance_sum ? a : b) = m;
+    }
+    return counts(b);
 }
 
 }  // namespace cloudmath::reference::volume

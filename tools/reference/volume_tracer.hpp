@@ -189,6 +189,50 @@ private:
                                                           std::uint64_t paths_per_ray,
                                                           const mc::run_options& options);
 
+// The same with paths_per_ray[i] paths for ray i (a ray given 0 gets mean and standard error
+// 0: callers give every ray at least 2). Same seed and counts -> the same numbers.
+[[nodiscard]] std::vector<rgb_estimate> estimate_radiance(const path_tracer& tracer,
+                                                          const std::vector<camera_ray>& rays,
+                                                          const std::vector<std::uint64_t>& paths_per_ray,
+                                                          const mc::run_options& options);
+
+// ---------------------------------------------------------------------------------------
+// Adaptive sampling in two stages (variance reduction that keeps every pixel unbiased).
+// A pilot run measures each ray's variance per path and its cost per path; allocate_paths
+// then gives each ray the path count that reaches a target total variance at the least
+// cost, and a second run with streams independent of the pilot's makes the estimates. The
+// counts depend on the pilot only, never on the samples they are averaged with, so each
+// ray's mean stays unbiased (a count chosen from the same samples would bias it); the pilot
+// is not averaged in.
+//
+// The pilot: paths_per_ray paths per ray on streams of their own (seed, pilot key); per ray
+// its estimate and its mean cost per path, counted as extinction lookups (deterministic,
+// unlike a clock) plus one for the path itself.
+struct pilot_estimate {
+    std::vector<rgb_estimate> radiance;
+    std::vector<double> cost_per_path;
+};
+[[nodiscard]] pilot_estimate estimate_radiance_pilot(const path_tracer& tracer, const std::vector<camera_ray>& rays,
+                                                     std::uint64_t paths_per_ray, const mc::run_options& options);
+
+// variance[i]: ray i's variance per path (>= 0; summed over what is estimated), cost[i] its
+// cost per path (> 0). Minimises the total cost sum n_i cost_i subject to
+// sum variance_i / n_i <= target_variance_sum: n_i proportional to sqrt(variance_i / cost_i)
+// (Neyman allocation with costs; Cochran, "Sampling Techniques", 3rd ed., 5.5), each in
+// [min_paths, max_paths] (the multiplier found by bisection with those bounds). Throws
+// std::invalid_argument on mismatched sizes, a negative or non-finite variance, a cost that
+// is not positive and finite, target_variance_sum <= 0, or min_paths < 2 or > max_paths.
+// When even max_paths everywhere misses the target, every ray gets max_paths and
+// predicted_variance_sum says by how much.
+struct path_allocation {
+    std::vector<std::uint64_t> paths;
+    double predicted_variance_sum = 0.0;  // sum variance_i / n_i
+    double predicted_cost = 0.0;          // sum n_i cost_i
+};
+[[nodiscard]] path_allocation allocate_paths(const std::vector<double>& variance, const std::vector<double>& cost,
+                                             double target_variance_sum, std::uint64_t min_paths,
+                                             std::uint64_t max_paths);
+
 }  // namespace cloudmath::reference::volume
 
 #endif  // CLOUDMATH_TOOLS_VOLUME_TRACER_HPP

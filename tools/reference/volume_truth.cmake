@@ -39,6 +39,11 @@ if(CLOUDMATH_BUILD_TESTS)
       "$tool" render --preset ground --phase hg:2 --out x.csv 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "bad phase: exit $s, want 2"; exit 1; }
       "$tool" render --preset ground --spp 0 --out x.csv 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "bad spp: exit $s, want 2"; exit 1; }
       "$tool" report --variant "x=phase=nope" 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "bad variant: exit $s, want 2"; exit 1; }
+      for bad in "--noise-target 0.03 --spp 8" "--noise-target 0" "--noise-target 1" "--noise-target nan" \
+                 "--pilot-spp 8" "--noise-target 0.1 --pilot-spp 1" "--noise-target 0.1 --min-spp 9 --max-spp 8"; do
+        "$tool" render --preset ground --out x.csv $bad 2>/dev/null; s=$?
+        [ $s -eq 2 ] || { echo "render $bad: exit $s, want 2"; exit 1; }
+      done
       rm -rf "$out"; mkdir -p "$out/docs/images"
       "$tool" report --data "$out/none" --docs "$out/docs" --cache "$cache" 2>"$out.err"; s=$?
       [ $s -eq 1 ] || { echo "missing truth: exit $s, want 1"; exit 1; }
@@ -47,12 +52,21 @@ if(CLOUDMATH_BUILD_TESTS)
         --out "$out/truth_ground.csv" >/dev/null || { echo "render failed"; exit 1; }
       [ "$(grep -c '^[0-9]' "$out/truth_ground.csv")" -eq 32 ] || { echo "want 32 pixel rows"; exit 1; }
       grep -q '^x,y,r,g,b,se_r,se_g,se_b$' "$out/truth_ground.csv" || { echo "no header"; exit 1; }
+      grep -q '^# allocation: uniform$' "$out/truth_ground.csv" || { echo "no uniform allocation line"; exit 1; }
+      # Adaptive sampling: a pilot, then the paths for a noise floor; the file says so.
+      "$tool" render --preset ground --width 8 --height 4 --noise-target 0.5 --pilot-spp 4 --min-spp 4 --threads 2 \
+        --cache "$cache" --quiet --out "$out/adaptive.csv" >/dev/null || { echo "adaptive render failed"; exit 1; }
+      [ "$(grep -c '^[0-9]' "$out/adaptive.csv")" -eq 32 ] || { echo "adaptive: want 32 pixel rows"; exit 1; }
+      grep -q '^# allocation: adaptive for a noise floor of 50.0% (pilot 4 spp' "$out/adaptive.csv" || { echo "adaptive: no allocation line"; exit 1; }
       "$tool" report --presets ground --variant "default=" --variant "march=light=march" --data "$out" \
         --docs "$out/docs" --cache "$cache" --quiet >/dev/null || { echo "report failed"; exit 1; }
       for f in lighting_truth.md images/truth_ground.png; do
         [ -s "$out/docs/$f" ] || { echo "missing $f"; exit 1; }
       done
       grep -q "| march |" "$out/docs/lighting_truth.md" || { echo "report lacks the variant"; exit 1; }
+      for section in "## Excess error" "## PSNR of the display images" "| variant | rms | excess | bias |"; do
+        grep -qF "$section" "$out/docs/lighting_truth.md" || { echo "report lacks '$section'"; exit 1; }
+      done
       ]=] sh $<TARGET_FILE:cloudmath_volume_truth> "${CMAKE_CURRENT_BINARY_DIR}/volume_truth_cli_test"
         "${CMAKE_CURRENT_BINARY_DIR}/truth_texture_cache")
 endif()

@@ -31,7 +31,8 @@ CR_PARAM(int, u_shadows)          // 0 off, 1 cloud shadows on the ground from t
 CR_PARAM(int, u_occluded_ambient) // sky light inside clouds: 0 flat, 1 through the optical depth above / below
 CR_PARAM(int, u_lod)              // 0 level 0 everywhere, 1 the mip level of the pixel's footprint (cm_texture_lod)
 CR_PARAM(int, u_far_base)         // 1: the light's far samples on the base shape only (cr_coarse_density)
-CR_PARAM(int, u_long_reach)       // the march toward the sun: 0 capped at u_light_march_max, 1 to the band's end (30 km)
+CR_PARAM(int, u_long_reach)       // the march toward the sun: 0 capped at u_light_march_max, 1 to the band's end (30 km),
+                                  // 2 capped, and the shadow map's optical depth beyond (the far field)
 CR_PARAM(int, u_jitter)
 CR_PARAM(int, u_sun_disc)         // 0 no sun disc, 1 the disc at its physical radiance
 CR_PARAM(int, u_haze)             // 0 off, 1 aerial perspective (air between camera and cloud)
@@ -209,13 +210,20 @@ float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode, floa
     cr_far_index = CR_LIGHT_FAR_STEP;
     vec3 up = normalize(vec3(p.x, p.y + (u_planet_radius + u_cam_altitude), p.z));
     vec2 seg = cm_cloud_layer_segment(altitude, dot(toward, up), u_planet_radius, cr_band.x, cr_band.y);
-    float reach = u_long_reach != 0 ? CR_LIGHT_LONG_REACH : u_light_march_max;
+    float reach = u_long_reach == 1 ? CR_LIGHT_LONG_REACH : u_light_march_max;
     float length_to_exit = seg.y > seg.x ? min(seg.y, reach) : 0.0;
     float n = float(u_light_steps);
     float tau = 0.0;
     for (int i = 0; i < u_light_steps; ++i) {
         float ds = cr_light_distance((float(i) + 1.0) / n, length_to_exit) - cr_light_distance(float(i) / n, length_to_exit);
         tau += cr_cone_extinction(p + toward * cr_light_distance((float(i) + light_offset) / n, length_to_exit), i) * ds;
+    }
+    // The far field (u_long_reach 2): toward the sun, what lies beyond the capped march, from
+    // the map (its optical depth from the map's plane down to where the march ended).
+    if (u_long_reach == 2 && seg.y > length_to_exit && dot(toward, u_sun_dir) > 0.0) {
+        vec3 uvd = cm_shadow_map_project(p + toward * length_to_exit, u_shadow_origin, u_shadow_right, u_shadow_up,
+                                         u_sun_dir, u_shadow_half_extent);
+        if (cr_on_map(uvd)) tau += cm_beer_shadow_optical_depth(cr_shadow_lookup(uvd.xy), uvd.z);
     }
     return tau;
 }

@@ -210,13 +210,18 @@ fn cr_light_optical_depth(p: vec3f, altitude: f32, toward: vec3f, mode_in: i32, 
     cr_far_index = CR_LIGHT_FAR_STEP;
     let up = normalize(vec3f(p.x, p.y + (U.u_planet_radius + U.u_cam_altitude), p.z));
     let seg = cm_cloud_layer_segment(altitude, dot(toward, up), U.u_planet_radius, cr_band.x, cr_band.y);
-    let reach = select(U.u_light_march_max, CR_LIGHT_LONG_REACH, U.u_long_reach != 0);
+    let reach = select(U.u_light_march_max, CR_LIGHT_LONG_REACH, U.u_long_reach == 1);
     let length_to_exit = select(0.0, min(seg.y, reach), seg.y > seg.x);
     let n = f32(U.u_light_steps);
     var tau = 0.0;
     for (var i = 0; i < U.u_light_steps; i++) {
         let ds = cr_light_distance((f32(i) + 1.0) / n, length_to_exit) - cr_light_distance(f32(i) / n, length_to_exit);
         tau += cr_cone_extinction(p + toward * cr_light_distance((f32(i) + light_offset) / n, length_to_exit), i) * ds;
+    }
+    if (U.u_long_reach == 2 && seg.y > length_to_exit && dot(toward, U.u_sun_dir) > 0.0) {
+        let uvd = cm_shadow_map_project(p + toward * length_to_exit, U.u_shadow_origin, U.u_shadow_right, U.u_shadow_up,
+                                        U.u_sun_dir, U.u_shadow_half_extent);
+        if (cr_on_map(uvd)) { tau += cm_beer_shadow_optical_depth(cr_shadow_lookup(uvd.xy), uvd.z); }
     }
     return tau;
 }
