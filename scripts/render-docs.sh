@@ -23,7 +23,7 @@ mkdir -p docs/images
 presets=$("$renderer" --list-presets | awk '{ print $1 }')
 # Before: what the renderer drew when the work on its images began (the classic field, the
 # octaves with the cone, flat sky light, no haze, no shadows, no dither, one frame).
-before=(--shape classic --variant lighting=octaves,powder=on,light=cone,ambient=flat,haze=off,shadows=off,dither=off,refine=1)
+before=(--shape classic --variant lighting=octaves,powder=on,light=cone,ambient=flat,haze=off,shadows=off,dither=off,refine=1,reach=capped)
 for p in $presets; do
   "$renderer" --headless --preset "$p" "${common[@]}" --temporal 128 --out "docs/images/clouds_$p.png" >/dev/null
   "$renderer" --headless --preset "$p" "${common[@]}" "${before[@]}" --out "docs/images/before_$p.png" >/dev/null
@@ -43,7 +43,7 @@ temporal_compare=$("$renderer" --compare --preset ground "${common[@]}" --tempor
 # name|variant spec|caption, all on the "horizon" preset (low sun ahead: phase and powder show)
 variants=(
   "default||default: diffusion model, dual-lobe HG, 6-step marches both ways (quadratic, jittered), 64 steps refined where opaque"
-  "octaves|lighting=octaves,powder=on,light=cone,ambient=flat,refine=1|octaves: 3, powder, cone, flat sky light (the previous default)"
+  "octaves|lighting=octaves,powder=on,light=cone,ambient=flat,refine=1,reach=capped|octaves: 3, powder, cone, flat sky light (the previous default)"
   "flat_ambient|ambient=flat|sky light not occluded inside the clouds"
   "hg|phase=hg|phase: HG"
   "mie|phase=mie|phase: Mie fit (15 um droplets)"

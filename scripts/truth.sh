@@ -42,17 +42,19 @@ selection=(sun_behind cumulus stratus low_sun_ahead low_sun_behind)
 # default: the diffusion model (6-step marches toward the sun and away from it, quadratic
 # and jittered, opaque view steps refined, occluded sky light); previous_estimators: the
 # same model with the estimators it had before (no refinement, uniform light steps at their
-# midpoints, the cone behind); cone_behind: the default with the cone behind; octaves: the
+# midpoints, the cone behind, the capped march); cone_behind: the default with the cone behind; octaves: the
 # production octaves it replaced (flat sky light); octaves_march: the octaves given an
 # accurate light march; flat_ambient: the default without the sky light's occlusion;
-# reach_map and reach_band: the far field toward a low sun (the capped march plus the Beer
-# shadow map beyond it; the march's 6 steps stretched to the band's end, up to 30 km).
-variants=(default= previous_estimators=refine=1,light-spacing=uniform,light-jitter=off,behind=cone
-          octaves=lighting=octaves,powder=on,light=cone,ambient=flat,refine=1
+# capped, reach_map and reach_band: the far field toward a low sun other than the default's
+# (reach=far: the capped march plus 4 base-shape steps to the band's end): none (the default
+# before it), the Beer shadow map beyond the capped march, the march's 6 steps stretched to
+# the band's end, up to 30 km.
+variants=(default= previous_estimators=refine=1,light-spacing=uniform,light-jitter=off,behind=cone,reach=capped
+          octaves=lighting=octaves,powder=on,light=cone,ambient=flat,refine=1,reach=capped
           octaves_march=lighting=octaves,powder=on,light=march,light-steps=64,ambient=flat
           single=lighting=octaves,octaves=1,light=cone,ambient=flat mie=phase=mie
           diffusion_cone=light=cone,behind=cone cone_behind=behind=cone flat_ambient=ambient=flat
-          reach_map=reach=map reach_band=reach=band)
+          capped=reach=capped reach_map=reach=map reach_band=reach=band)
 width=160 height=90 noise=0.03
 reports_only=0 build="" check="" cache=() shape=classic only=""
 while [[ $# -gt 0 ]]; do

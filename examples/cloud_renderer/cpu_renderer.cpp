@@ -178,6 +178,16 @@ struct pixel_program {
             const float ds = at((float(i) + 1.0f) / nl) - at(float(i) / nl);
             tau += light_extinction(p + toward * at((float(i) + light_offset) / nl), i >= light_far_step, counter, footprint) * ds;
         }
+        // variant::far_steps: toward the sun, the rest of the band beyond the capped march in
+        // far_step_count uniform steps on the base shape (the near steps keep the detail).
+        if (v.far_steps && seg.y > length_to_exit && glm::dot(toward, k.sun_dir) > 0.0f) {
+            const int nf = far_step_count(v.light_steps);
+            const float span = (std::min(seg.y, light_long_reach) - length_to_exit) / float(nf);
+            for (int j = 0; j < nf; ++j) {
+                const vec3 q = p + toward * (length_to_exit + (float(j) + light_offset) * span);
+                tau += s.extinction * field.coarse_density(q, altitude(q), counter, footprint) * span;
+            }
+        }
         // variant::far_map: toward the sun, what lies beyond the capped march, from the map
         // (its optical depth from the map's plane down to where the march ended).
         if (v.far_map && seg.y > length_to_exit && glm::dot(toward, k.sun_dir) > 0.0f) {

@@ -57,7 +57,7 @@ std::vector<shader_int> variant_values(const variant& v) {
             {"u_occluded_ambient", v.occluded_ambient ? 1 : 0},
             {"u_lod", v.lod ? 1 : 0},
             {"u_far_base", v.far_base ? 1 : 0},
-            {"u_long_reach", v.long_reach ? 1 : v.far_map ? 2 : 0},
+            {"u_long_reach", v.long_reach ? 1 : v.far_map ? 2 : v.far_steps ? 3 : 0},
             {"u_jitter", v.jitter ? 1 : 0},
             {"u_sun_disc", v.sun ? 1 : 0},
             {"u_haze", v.haze ? 1 : 0},

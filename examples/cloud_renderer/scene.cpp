@@ -283,10 +283,11 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             else if (value == "base") out.far_base = true;
             else return "far must be full or base, not '" + value + "'";
         } else if (key == "reach") {
-            if (value == "capped") out.long_reach = out.far_map = false;
-            else if (value == "band") out.long_reach = true, out.far_map = false;
-            else if (value == "map") out.long_reach = false, out.far_map = true;
-            else return "reach must be capped, band or map, not '" + value + "'";
+            out.long_reach = value == "band";
+            out.far_map = value == "map";
+            out.far_steps = value == "far";
+            if (value != "capped" && value != "band" && value != "map" && value != "far")
+                return "reach must be capped, far, band or map, not '" + value + "'";
         } else if (key == "shadows") {
             if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
         } else {
@@ -305,7 +306,7 @@ std::string variant_spec(const variant& v) {
       << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
       << ",light-spacing=" << (v.light_quadratic ? "quadratic" : "uniform") << ",light-jitter=" << (v.light_jitter ? "on" : "off")
       << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
-      << ",reach=" << (v.long_reach ? "band" : v.far_map ? "map" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
+      << ",reach=" << (v.long_reach ? "band" : v.far_map ? "map" : v.far_steps ? "far" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
     return s.str();
 }
 

@@ -98,24 +98,35 @@ TEST_CASE("the variants agree with the CPU too, and compile-time equals run-time
     }
 }
 
-TEST_CASE("the far field toward a low sun (reach=map): darker than the capped march, GPU and CPU alike") {
+TEST_CASE("the far field toward a low sun (reach=far, the default, and reach=map): darker than the capped march, GPU and CPU alike") {
     // A sun 3 degrees up crosses tens of kilometres of the layer; the capped march sees 6 km
-    // of it, reach=map adds the Beer shadow map's optical depth beyond: only less light.
+    // of it, reach=far adds base-shape steps to the band's end and reach=map the Beer shadow
+    // map's optical depth beyond: only less light.
+    REQUIRE(variant{}.far_steps);
+    REQUIRE(far_step_count(6) == 4);
+    REQUIRE(far_step_count(128) == 85);
+    REQUIRE(far_step_count(1) == 1);
     const scene& s = *find_preset("low_sun_ahead");
-    variant capped, far;
-    REQUIRE(apply_variant_spec("shadows=off", capped).empty());
-    REQUIRE(apply_variant_spec("shadows=off,reach=map", far).empty());
-    REQUIRE(needs_shadow_map(far));
-    const image cpu_capped = render_cpu(s, capped, shared().textures, 160, 90);
-    const image cpu_far = render_cpu(s, far, shared().textures, 160, 90);
-    CHECK(statistics(cpu_far).mean_brightness < statistics(cpu_capped).mean_brightness - 0.005);
-    const image g = render_gpu(s, far);
-    CHECK(compare(g, cpu_far).psnr_db >= 35.0);
-    CHECK(compare(g, render_gpu(s, far, true)).psnr_db >= 60.0);  // compile-time variant
-    CHECK(statistics(g).nan_pixels == 0);
-    // At a high sun the band ends within the cap: the far field adds nothing.
     const scene& high = *find_preset("cumulus");
-    CHECK(compare(render_cpu(high, capped, shared().textures, 160, 90), render_cpu(high, far, shared().textures, 160, 90)).psnr_db > 90.0);
+    variant capped;
+    REQUIRE(apply_variant_spec("shadows=off,reach=capped", capped).empty());
+    REQUIRE_FALSE(capped.far_steps);
+    const image cpu_capped = render_cpu(s, capped, shared().textures, 160, 90);
+    for (const char* spec : {"shadows=off,reach=far", "shadows=off,reach=map"}) {
+        CAPTURE(std::string(spec));
+        variant far;
+        REQUIRE(apply_variant_spec(spec, far).empty());
+        CHECK(needs_shadow_map(far) == far.far_map);  // the steps need no map
+        const image cpu_far = render_cpu(s, far, shared().textures, 160, 90);
+        // Display brightness, sky included: 0.0044 darker with reach=far, more with reach=map.
+        CHECK(statistics(cpu_far).mean_brightness < statistics(cpu_capped).mean_brightness - 0.003);
+        const image g = render_gpu(s, far);
+        CHECK(compare(g, cpu_far).psnr_db >= 35.0);
+        CHECK(compare(g, render_gpu(s, far, true)).psnr_db >= 60.0);  // compile-time variant
+        CHECK(statistics(g).nan_pixels == 0);
+        // At a high sun the band ends within the cap: the far field adds nothing.
+        CHECK(compare(render_cpu(high, capped, shared().textures, 160, 90), render_cpu(high, far, shared().textures, 160, 90)).psnr_db > 90.0);
+    }
 }
 
 TEST_CASE("both density fields: GPU and CPU agree, and the detailed field differs from the classic one") {

@@ -108,6 +108,7 @@ fn cm_diffusion_phase(mu: f32, scale: f32) -> f32 { return cr_phase(mu, scale); 
 const CR_SKIP_BLOCK = 4;
 const CR_LIGHT_FAR_STEP = 3;
 const CR_LIGHT_LONG_REACH = 30000.0;
+fn cr_far_steps(light_steps: i32) -> i32 { return select(2 * light_steps / 3, 1, light_steps < 2); }
 const CR_SHADOW_MAP_SIZE = 128;
 const CR_SHADOW_MAP_STEPS = 24;
 const CR_GROUND_SKY_SHARE = 0.4;
@@ -217,6 +218,14 @@ fn cr_light_optical_depth(p: vec3f, altitude: f32, toward: vec3f, mode_in: i32, 
     for (var i = 0; i < U.u_light_steps; i++) {
         let ds = cr_light_distance((f32(i) + 1.0) / n, length_to_exit) - cr_light_distance(f32(i) / n, length_to_exit);
         tau += cr_cone_extinction(p + toward * cr_light_distance((f32(i) + light_offset) / n, length_to_exit), i) * ds;
+    }
+    if (U.u_long_reach == 3 && seg.y > length_to_exit && dot(toward, U.u_sun_dir) > 0.0) {
+        let nf = cr_far_steps(U.u_light_steps);
+        let span = (min(seg.y, CR_LIGHT_LONG_REACH) - length_to_exit) / f32(nf);
+        for (var j = 0; j < nf; j++) {
+            let q = p + toward * (length_to_exit + (f32(j) + light_offset) * span);
+            tau += U.u_extinction * cr_coarse_density(q, cr_altitude(q)) * span;
+        }
     }
     if (U.u_long_reach == 2 && seg.y > length_to_exit && dot(toward, U.u_sun_dir) > 0.0) {
         let uvd = cm_shadow_map_project(p + toward * length_to_exit, U.u_shadow_origin, U.u_shadow_right, U.u_shadow_up,
