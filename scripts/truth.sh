@@ -19,7 +19,14 @@
 #   --only P1,P2                   renders only these presets, keeps the other stored ones,
 #                                  then reruns the report
 #   --noise F                      the noise target (default 0.03)
-# Usage: bash scripts/truth.sh [--reports-only] [--only PRESETS] [--noise F] [--build DIR]
+#   --fit                          first refits diffusion_models::clouds, the renderer's
+#                                  default table, on the selection presets of both fields
+#                                  into docs/data/diffusion_clouds.txt (cloudmath_volume_truth
+#                                  fit-clouds; seconds), then regenerates the model headers
+#                                  (cloudmath_lighting_error fit-diffusion), their HLSL/WGSL
+#                                  twins, the embedded GLSL and the web bundles, and rebuilds
+#                                  the tool before the report
+# Usage: bash scripts/truth.sh [--reports-only] [--fit] [--only PRESETS] [--noise F] [--build DIR]
 #                              [--shape S] [--variant NAME=SPEC ...]
 #        bash scripts/truth.sh --check TOOL [--shape S] [--cache DIR]
 #   --reports-only  keeps docs/data/truth_*.csv, reruns the report
@@ -27,7 +34,8 @@
 #                   stored truth into a temporary directory and fails unless its summary
 #                   table (every variant's rms on every preset) is docs/lighting_truth.md's
 #                   to 0.15 points: the documented errors come from the stored data (ctest
-#                   reference.volume_truth_report)
+#                   reference.volume_truth_report); for the classic field also that
+#                   docs/data/diffusion_clouds.txt is what fit-clouds gives from the stored truths
 #   --build DIR     an existing build tree (configured with the examples) to build the tool
 #                   in; without it build/reference is configured as scripts/reference.sh does
 #   --variant       one more lighting variant for the report (the renderer's --variant
@@ -48,18 +56,21 @@ selection=(sun_behind cumulus stratus low_sun_ahead low_sun_behind)
 # capped, reach_map and reach_band: the far field toward a low sun other than the default's
 # (reach=far: the capped march plus 4 base-shape steps to the band's end): none (the default
 # before it), the Beer shadow map beyond the capped march, the march's 6 steps stretched to
-# the band's end, up to 30 km.
+# the band's end, up to 30 km. fitted_table: the default with the diffusion model's table
+# fitted to homogeneous spheres and slabs (diffusion_models::fitted, the default before the
+# whole-cloud fit diffusion_models::clouds).
 variants=(default= previous_estimators=refine=1,light-spacing=uniform,light-jitter=off,behind=cone,reach=capped
           octaves=lighting=octaves,powder=on,light=cone,ambient=flat,refine=1,reach=capped
           octaves_march=lighting=octaves,powder=on,light=march,light-steps=64,ambient=flat
           single=lighting=octaves,octaves=1,light=cone,ambient=flat mie=phase=mie
           diffusion_cone=light=cone,behind=cone cone_behind=behind=cone flat_ambient=ambient=flat
-          capped=reach=capped reach_map=reach=map reach_band=reach=band)
+          capped=reach=capped reach_map=reach=map reach_band=reach=band fitted_table=table=fitted)
 width=160 height=90 noise=0.03
-reports_only=0 build="" check="" cache=() shape=classic only=""
+reports_only=0 build="" check="" cache=() shape=classic only="" fit=0
 while [[ $# -gt 0 ]]; do
     case "$1" in
         --reports-only) reports_only=1 ;;
+        --fit) fit=1 ;;
         --only) only="${2:?--only needs a comma-separated list of presets}"; shift ;;
         --noise) noise="${2:?--noise needs a fraction}"; shift ;;
         --check) check="${2:?--check needs the tool}"; shift ;;
@@ -103,6 +114,9 @@ if [[ -n $check ]]; then
     tmp=$(mktemp -d)
     trap 'rm -rf "$tmp"' EXIT
     mkdir -p "$tmp/images"
+    if [[ $shape == classic ]]; then
+        "$check" fit-clouds --data docs/data "${cache[@]}" --quiet --check docs/data/diffusion_clouds.txt >/dev/null
+    fi
     "$check" report "${report_args[@]}" --data "$data" --docs "$tmp" >/dev/null
     paste -d '\n' <(summary_rows "$docs/lighting_truth.md") <(summary_rows "$tmp/lighting_truth.md") | awk '
         NR % 2 == 1 { split($0, want, " "); wanted = $0; next }
@@ -124,6 +138,22 @@ fi
 cmake --build "$build" --target cloudmath_volume_truth >/dev/null
 tool="$build/tools/reference/cloudmath_volume_truth"
 mkdir -p "$data" "$docs/images"
+
+if [[ $fit == 1 ]]; then
+    # The whole-cloud table from the stored truths of both fields (their selection presets),
+    # then everything generated from the model headers.
+    "$tool" fit-clouds --data docs/data --quiet --out docs/data/diffusion_clouds.txt >/dev/null
+    cmake --build "$build" --target cloudmath_lighting_error >/dev/null
+    "$build/tools/reference/cloudmath_lighting_error" fit-diffusion \
+        --header include/cloudmath/diffusion_lighting_models.hpp \
+        --glsl include/cloudmath/glsl/diffusion_lighting_models.glsl > docs/data/diffusion_fit.txt.tmp
+    mv docs/data/diffusion_fit.txt.tmp docs/data/diffusion_fit.txt
+    node tools/shader_translate/generate.mjs >/dev/null
+    cmake -P cmake/UpdateGlslEmbedded.cmake >/dev/null
+    node web/build.mjs >/dev/null
+    node web/demo/build_wgsl_demo.mjs >/dev/null
+    cmake --build "$build" --target cloudmath_volume_truth >/dev/null
+fi
 
 if [[ $reports_only == 0 ]]; then
     for p in "${selection[@]}" "${presets[@]}"; do

@@ -43,14 +43,16 @@ struct pixel_program {
     cm::mie_approx_parameters<float> mie;
     float phase_g_mean;  // the diffusion model's g
     vec2 band;           // altitudes of the cloud type's band (height_range_for_type): no density outside
+    const cm::diffusion_model* model;  // the diffusion model's fitted numbers
     std::vector<vec3> shadow_map;  // the Beer shadow map (needs_shadow_map), row j = 0 first
     long shadow_map_reads = 0;     // texture reads of building it (once per frame)
     float map_footprint = 0.0f;    // its texels' width with LOD, else 0
 
-    pixel_program(const scene& sc, const variant& va, const cloud_textures& t)
+    pixel_program(const scene& sc, const variant& va, const cloud_textures& t, const cm::diffusion_model* m = nullptr)
         : s(sc), v(va), k(make_frame_constants(sc)), field(sc, t), mie(cm::mie_approx_params(k.droplet_diameter)),
           phase_g_mean(phase_mean_cosine(k, va.phase)),
-          band(k.band) {
+          band(k.band),
+          model(m != nullptr ? m : va.table == diffusion_table::clouds ? &cm::diffusion_models::clouds : &cm::diffusion_models::fitted) {
         if (needs_shadow_map(v)) {
             if (v.lod) map_footprint = 2.0f * k.shadow_half_extent / float(shadow_map_size);
             shadow_map.resize(static_cast<std::size_t>(shadow_map_size) * static_cast<std::size_t>(shadow_map_size));
@@ -203,7 +205,7 @@ struct pixel_program {
         const auto phase_fn = [this](float m, float scale) { return phase(m, scale); };
         float sun = v.lighting == lighting_model::diffusion
                         ? cm::diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, phase_g_mean, s.albedo,
-                                                        cm::diffusion_models::fitted, phase_fn)
+                                                        *model, phase_fn)
                         : cm::multiple_scattering_with(tau_light, mu, k.ms_a, k.ms_b, k.ms_c, v.octaves, phase_fn);
         if (v.powder) sun *= glm::mix(2.0f * cm::powder(tau_light, 2.0f), 1.0f, 0.5f + 0.5f * mu);
         if (!v.occluded_ambient) return k.sun_radiance * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
@@ -211,6 +213,18 @@ struct pixel_program {
         const float up = std::max(k.sun_dir.y, 0.0f);
         return k.sun_radiance * sun + glm::mix(k.ambient_bottom * cm::diffuse_transmittance(tau_behind * up, phase_g_mean),
                                                k.ambient_top * cm::diffuse_transmittance(tau_light * up, phase_g_mean), h);
+    }
+
+    // One sample's share of the pixel's gradient (shade_linear's grad): its source is
+    // weight * sun_radiance * (diffusion model), linear in the table and peak weights.
+    void add_gradient(float* grad, float weight, float tau_light, float tau_behind, float tau_view, float mu) const {
+        namespace L = cm::diffusion_layout;
+        const cm::detail::diffusion_sample<float> t =
+            cm::detail::diffusion_sample_terms(tau_light, tau_behind, tau_view, mu, phase_g_mean, s.albedo);
+        cm::detail::diffusion_table_corners(t.u, [&](int index, float w) { grad[index] += weight * t.diffuse * w; });
+        for (int ia = 0; ia < L::peak_a_count; ++ia)
+            for (int ic = 0; ic < L::peak_c_count; ++ic)
+                grad[L::table_size + ia * L::peak_c_count + ic] += weight * t.beams[ia] * phase(t.mu, float(L::peak_c[ic]));
     }
 
     // The pixel's footprint at distance t (variant::lod), 0 without LOD (level 0).
@@ -221,7 +235,11 @@ struct pixel_program {
     // main() of the shader for the pixel whose centre is (x + 0.5, y + 0.5), before the
     // tonemap: rgb linear radiance, a opacity. depth (optional): the cloud's
     // transmittance-weighted distance, 0 where the ray meets no cloud (out_depth).
-    vec4 shade_linear(int x, int y, int width, int height, reads* counted = nullptr, float* depth = nullptr) const {
+    // grad (optional, diffusion model): adds d(radiance) / d(fitted number) over sun_radiance
+    // for the model's table then peak weights (diffusion_feature_count), the max(0, ...)
+    // clamps ignored (render_cpu_diffusion_features).
+    vec4 shade_linear(int x, int y, int width, int height, reads* counted = nullptr, float* depth = nullptr,
+                      float* grad = nullptr) const {
         long* view_reads = counted ? &counted->view : nullptr;
         long* light_reads = counted ? &counted->light : nullptr;
         const vec3 dir = pixel_direction(k, x, y, width, height);
@@ -298,6 +316,9 @@ struct pixel_program {
                                                  : 0.0f;
                     const float h = cm::height_fraction(alts, s.layer_bottom, s.layer_top);
                     const vec3 S = (s.albedo * sigma_t) * in_scattering(tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu, h);
+                    if (grad != nullptr) add_gradient(grad, acc.transmittance.r * s.albedo * sigma_t *
+                                                                    cm::integrate_scattering(1.0f, sigma_t, ds),
+                                                      tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu);
                     tau_view += sigma_t * ds;
                     const float before = acc.transmittance.r;  // grey extinction: every channel alike
                     if (v.integration == integration_mode::analytic) {
@@ -399,6 +420,30 @@ texture_read_stats count_texture_reads(const scene& s, const variant& v, const c
 image render_cpu_linear(const scene& s, const variant& v, const cloud_textures& textures, int width, int height,
                         unsigned threads) {
     const pixel_program program(s, v, textures);
+    return render_rows(width, height, threads, [&](int x, int y) { return program.shade_linear(x, y, width, height); });
+}
+
+diffusion_features render_cpu_diffusion_features(const scene& s, const variant& v, const cloud_textures& textures,
+                                                 int width, int height, unsigned threads) {
+    static constexpr cm::diffusion_model zero{};
+    diffusion_features f;
+    f.width = width;
+    f.height = height;
+    f.grad.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * diffusion_feature_count, 0.0f);
+    const pixel_program program(s, v, textures, &zero);
+    const image fixed = render_rows(width, height, threads, [&](int x, int y) {
+        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+        return program.shade_linear(x, y, width, height, nullptr, nullptr, &f.grad[i * diffusion_feature_count]);
+    });
+    f.fixed.reserve(fixed.pixels.size());
+    for (const vec4& c : fixed.pixels) f.fixed.emplace_back(c);
+    f.sun_radiance = make_frame_constants(s).sun_radiance;
+    return f;
+}
+
+image render_cpu_linear_with(const scene& s, const variant& v, const cloud_textures& textures, int width, int height,
+                             const cloudmath::diffusion_model& model, unsigned threads) {
+    const pixel_program program(s, v, textures, &model);
     return render_rows(width, height, threads, [&](int x, int y) { return program.shade_linear(x, y, width, height); });
 }
 

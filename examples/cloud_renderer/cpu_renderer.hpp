@@ -9,7 +9,10 @@
 #include "scene.hpp"
 #include "textures.hpp"
 
+#include <cloudmath/diffusion_lighting.hpp>
+
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include <cstdint>
@@ -38,6 +41,24 @@ texture_read_stats count_texture_reads(const scene& s, const variant& v, const c
 
 image render_cpu_linear(const scene& s, const variant& v, const cloud_textures& textures, int width, int height,
                         unsigned threads = 0);
+
+// The diffusion model's radiance as a linear function of its fitted numbers (the table, then
+// the peak weights of diffusion_lighting.hpp), for fitting them to whole-cloud images: per
+// pixel, linear radiance = fixed + sun_radiance * sum_i theta_i grad[pixel * count + i]
+// (row-major pixels as image), exact but for the model's two max(0, ...) clamps. fixed is
+// the image with every fitted number 0. The variant's lighting must be diffusion.
+inline constexpr int diffusion_feature_count = cloudmath::diffusion_layout::table_size + cloudmath::diffusion_layout::peak_size;
+struct diffusion_features {
+    int width = 0, height = 0;
+    std::vector<glm::vec3> fixed;
+    std::vector<float> grad;
+    glm::vec3 sun_radiance{0.0f};
+};
+diffusion_features render_cpu_diffusion_features(const scene& s, const variant& v, const cloud_textures& textures,
+                                                 int width, int height, unsigned threads = 0);
+// render_cpu_linear with another diffusion model than the default's.
+image render_cpu_linear_with(const scene& s, const variant& v, const cloud_textures& textures, int width, int height,
+                             const cloudmath::diffusion_model& model, unsigned threads = 0);
 
 // The dither's hash of pixel (x, y) on a frame: another hash of the pixel than the march
 // jitter's, new each frame (clouds.frag and temporal_resolve.frag compute the same).

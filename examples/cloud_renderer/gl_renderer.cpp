@@ -39,7 +39,8 @@ struct shader_int {
 };
 std::vector<shader_int> variant_values(const variant& v) {
     return {{"u_phase_model", static_cast<int>(v.phase)},
-            {"u_lighting", static_cast<int>(v.lighting)},
+            // 0 octaves, 1 diffusion with diffusion_models::clouds, 2 with ::fitted
+            {"u_lighting", v.lighting == lighting_model::octaves ? 0 : v.table == diffusion_table::clouds ? 1 : 2},
             {"u_octaves", v.octaves},
             {"u_powder", v.powder ? 1 : 0},
             {"u_light_mode", static_cast<int>(v.light)},

@@ -179,6 +179,7 @@ const char* name(light_mode l) { return l == light_mode::cone ? "cone" : l == li
 const char* name(step_schedule s) { return s == step_schedule::uniform ? "uniform" : "growing"; }
 const char* name(integration_mode i) { return i == integration_mode::analytic ? "analytic" : "naive"; }
 const char* name(lighting_model l) { return l == lighting_model::octaves ? "octaves" : "diffusion"; }
+const char* name(diffusion_table t) { return t == diffusion_table::clouds ? "clouds" : "fitted"; }
 
 float phase_mean_cosine(const frame_constants& k, phase_model p) {
     switch (p) {
@@ -215,6 +216,10 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             if (value == "octaves") out.lighting = lighting_model::octaves;
             else if (value == "diffusion") out.lighting = lighting_model::diffusion;
             else return "lighting must be octaves or diffusion, not '" + value + "'";
+        } else if (key == "table") {
+            if (value == "clouds") out.table = diffusion_table::clouds;
+            else if (value == "fitted") out.table = diffusion_table::fitted;
+            else return "table must be clouds or fitted, not '" + value + "'";
         } else if (key == "phase") {
             if (value == "hg") out.phase = phase_model::hg;
             else if (value == "dual_hg" || value == "dual") out.phase = phase_model::dual_hg;
@@ -292,7 +297,7 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
         } else {
             return "unknown variant key '" + key +
-                   "' (known: phase, lighting, octaves, powder, light, behind, cone-samples, light-steps, light-spacing, light-jitter, integration, steps, refine, schedule, skip, ambient, lod, far, reach, shadows, sun, haze, dither, "
+                   "' (known: phase, lighting, table, octaves, powder, light, behind, cone-samples, light-steps, light-spacing, light-jitter, integration, steps, refine, schedule, skip, ambient, lod, far, reach, shadows, sun, haze, dither, "
                    "jitter)";
         }
     }
@@ -302,7 +307,7 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
 
 std::string variant_spec(const variant& v) {
     std::ostringstream s;
-    s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",octaves=" << v.octaves << ",powder=" << (v.powder ? "on" : "off")
+    s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",table=" << name(v.table) << ",octaves=" << v.octaves << ",powder=" << (v.powder ? "on" : "off")
       << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
       << ",light-spacing=" << (v.light_quadratic ? "quadratic" : "uniform") << ",light-jitter=" << (v.light_jitter ? "on" : "off")
       << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")

@@ -30,10 +30,15 @@ enum class integration_mode { analytic, naive };
 // (march_schedule_distance with frame_constants::march_near_distance).
 enum class step_schedule { uniform, growing };
 // The sun term: Wrenninge's octaves (multiple_scattering.hpp) or the diffusion model
-// (diffusion_lighting.hpp, diffusion_models::fitted), which also needs the optical depth
-// behind the sample (a second light estimate away from the sun, by the cone or a march:
-// `behind`) and from the camera (tracked by the march).
+// (diffusion_lighting.hpp), which also needs the optical depth behind the sample (a second
+// light estimate away from the sun, by the cone or a march: `behind`) and from the camera
+// (tracked by the march).
 enum class lighting_model { octaves, diffusion };
+// The diffusion model's fitted numbers: diffusion_models::clouds (fitted to whole-cloud
+// images of this renderer against their path-traced truth, on the selection presets of
+// both fields: the default) or diffusion_models::fitted (fitted to homogeneous spheres and
+// slabs, the default before). The same cost.
+enum class diffusion_table { clouds, fitted };
 
 // What the issue calls a lighting variant. Defaults: the diffusion model, which is closer to
 // the path-traced truth than the octaves on every preset (docs/lighting_truth.md), with the
@@ -45,6 +50,7 @@ enum class lighting_model { octaves, diffusion };
 struct variant {
     phase_model phase = phase_model::dual_hg;
     lighting_model lighting = lighting_model::diffusion;
+    diffusion_table table = diffusion_table::clouds;  // the diffusion model's numbers
     int octaves = 3;                 // Wrenninge octaves, 1..8
     bool powder = false;             // Schneider's powder term
     light_mode light = light_mode::march;  // the optical depth toward the sun
@@ -227,6 +233,7 @@ const char* name(light_mode l);
 const char* name(step_schedule s);
 const char* name(integration_mode i);
 const char* name(lighting_model l);
+const char* name(diffusion_table t);
 // Mean cosine g of a phase model with the frame's parameters (the diffusion model's g):
 // closed forms for HG, dual-lobe HG, Cornette-Shanks and the Mie fit (HG plus Draine).
 float phase_mean_cosine(const frame_constants& k, phase_model p);

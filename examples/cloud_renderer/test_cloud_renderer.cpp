@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
@@ -88,7 +89,8 @@ TEST_CASE("the variants agree with the CPU too, and compile-time equals run-time
     for (const char* spec : {"phase=mie,light=march,light-steps=8,steps=32", "phase=cs,octaves=1,powder=off,integration=naive,jitter=off",
                              "lighting=octaves,powder=on,light=cone", "lighting=diffusion,phase=mie,behind=march,light-steps=8,steps=32",
                              "schedule=growing", "schedule=uniform,steps=16", "haze=off,dither=off", "skip=on",
-                             "skip=on,schedule=growing,steps=24", "far=base,reach=band", "far=base,light=cone,lod=on"}) {
+                             "skip=on,schedule=growing,steps=24", "far=base,reach=band", "far=base,light=cone,lod=on",
+                             "table=fitted"}) {
         CAPTURE(std::string(spec));
         variant v;
         REQUIRE(apply_variant_spec(spec, v).empty());
@@ -458,6 +460,47 @@ TEST_CASE("cloud shadows: only the ground darkens, by at most the sun's share, G
     CHECK(psnr >= 35.0);
 }
 
+TEST_CASE("the diffusion model's tables: clouds (the default) and fitted differ, and the fit's features are exact") {
+    const scene& s = *find_preset("cumulus");
+    variant clouds, fitted;
+    REQUIRE(apply_variant_spec("haze=off,sun=off,shadows=off", clouds).empty());
+    REQUIRE(apply_variant_spec("haze=off,sun=off,shadows=off,table=fitted", fitted).empty());
+    CHECK(clouds.table == diffusion_table::clouds);
+    CHECK(variant{}.table == diffusion_table::clouds);
+    const int w = 48, h = 27;
+    const image a = render_cpu_linear(s, clouds, shared().textures, w, h);
+    const image b = render_cpu_linear(s, fitted, shared().textures, w, h);
+    // The default table is the whole-cloud fit (render_cpu_linear_with names it explicitly).
+    CHECK(compare(a, render_cpu_linear_with(s, clouds, shared().textures, w, h, cloudmath::diffusion_models::clouds)).max_abs == 0.0);
+    CHECK(compare(b, render_cpu_linear_with(s, clouds, shared().textures, w, h, cloudmath::diffusion_models::fitted)).max_abs == 0.0);
+    CHECK(compare(a, b).max_abs > 0.01);
+    // render_cpu_diffusion_features: fixed + sun_radiance * (features . numbers) is the image
+    // for any model whose clamps stay inactive: the plain diffusion (table 1, peaks >= 0).
+    const cloudmath::diffusion_model& m = cloudmath::diffusion_models::physical;
+    const diffusion_features f = render_cpu_diffusion_features(s, clouds, shared().textures, w, h);
+    const image direct = render_cpu_linear_with(s, clouds, shared().textures, w, h, m);
+    REQUIRE(f.fixed.size() == direct.pixels.size());
+    REQUIRE(f.grad.size() == direct.pixels.size() * std::size_t(diffusion_feature_count));
+    double worst = 0.0, scale = 0.0, feature_sum = 0.0;
+    for (std::size_t p = 0; p < f.fixed.size(); ++p) {
+        double dot = 0.0;
+        for (int i = 0; i < diffusion_feature_count; ++i) {
+            const double theta = i < cloudmath::diffusion_layout::table_size ? double(m.table[i])
+                                                                             : double(m.peak[i - cloudmath::diffusion_layout::table_size]);
+            dot += theta * double(f.grad[p * std::size_t(diffusion_feature_count) + std::size_t(i)]);
+            feature_sum += double(f.grad[p * std::size_t(diffusion_feature_count) + std::size_t(i)]);
+        }
+        for (int c = 0; c < 3; ++c) {
+            const double predicted = double(f.fixed[p][c]) + double(f.sun_radiance[c]) * dot;
+            worst = std::max(worst, std::abs(predicted - double(direct.pixels[p][c])));
+            scale = std::max(scale, std::abs(double(direct.pixels[p][c])));
+        }
+    }
+    MESSAGE("features against the direct render: worst " << worst << " of " << scale);
+    CHECK(feature_sum > 0.0);
+    CHECK(worst <= 1e-4 * scale);
+}
+
 TEST_CASE("command-line errors are clear") {
     const auto parse = [](std::vector<const char*> args) {
         args.insert(args.begin(), "cloudmath_cloud_renderer");
@@ -475,6 +518,7 @@ TEST_CASE("command-line errors are clear") {
     CHECK(parse({"--variant", "phase=rayleigh"}).find("phase must be hg, dual_hg, cs or mie") != std::string::npos);
     CHECK(parse({"--variant", "colour=red"}).find("unknown variant key 'colour'") != std::string::npos);
     CHECK(parse({"--variant", "lighting=lut"}) == "--variant: lighting must be octaves or diffusion, not 'lut'");
+    CHECK(parse({"--variant", "table=mine"}) == "--variant: table must be clouds or fitted, not 'mine'");
     CHECK(parse({"--variant", "behind=shadow"}) == "--variant: behind must be cone, march or map, not 'shadow'");
     CHECK(parse({"--variant", "schedule=log"}) == "--variant: schedule must be uniform or growing, not 'log'");
     CHECK(parse({"--variant", "refine=0"}) == "--variant: refine must be an integer from 1 to 64, not '0'");
@@ -482,9 +526,10 @@ TEST_CASE("command-line errors are clear") {
     CHECK(parse({"--variant", "light-jitter=maybe"}) == "--variant: light-jitter must be on or off, not 'maybe'");
     // Every key round-trips through variant_spec.
     variant v, back;
-    REQUIRE(apply_variant_spec("lighting=octaves,behind=cone,schedule=growing,light=cone,refine=3,light-spacing=uniform,light-jitter=off", v).empty());
+    REQUIRE(apply_variant_spec("lighting=octaves,behind=cone,schedule=growing,light=cone,refine=3,light-spacing=uniform,light-jitter=off,table=fitted", v).empty());
     REQUIRE(apply_variant_spec(variant_spec(v), back).empty());
     CHECK(variant_spec(back) == variant_spec(v));
+    CHECK(back.table == diffusion_table::fitted);
     CHECK(back.behind == light_mode::cone);
     CHECK(back.schedule == step_schedule::growing);
     CHECK(back.refine == 3);

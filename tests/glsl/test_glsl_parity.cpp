@@ -349,9 +349,10 @@ std::vector<parity_case> make_cases() {
                     for (float mu : {-1.0f, -0.2f, 0.6f, 1.0f})
                         for (float g : {0.0f, 0.75f, 0.85f, 0.999f})
                             for (float albedo : {1.0f, 0.99f, 0.5f}) in.push_back({vec4(ts, tb, tv, mu), vec4(g, albedo, 0.0f, 0.0f)});
-        add({"cm_diffusion_scattering", "vec4(cm_diffusion_scattering(a.x, a.y, a.z, a.w, b.x, b.y, CM_DIFFUSION_MODEL_FITTED), cm_diffusion_scattering(a.x, a.y, a.z, a.w, b.x, b.y, CM_DIFFUSION_MODEL_PHYSICAL), 0.0, 0.0)",
+        add({"cm_diffusion_scattering", "vec4(cm_diffusion_scattering(a.x, a.y, a.z, a.w, b.x, b.y, CM_DIFFUSION_MODEL_FITTED), cm_diffusion_scattering(a.x, a.y, a.z, a.w, b.x, b.y, CM_DIFFUSION_MODEL_PHYSICAL), cm_diffusion_scattering(a.x, a.y, a.z, a.w, b.x, b.y, CM_DIFFUSION_MODEL_CLOUDS), 0.0)",
              [](vec4 a, vec4 b) { return vec4(cm::diffusion_scattering(a.x, a.y, a.z, a.w, b.x, b.y, cm::diffusion_models::fitted),
-                                              cm::diffusion_scattering(a.x, a.y, a.z, a.w, b.x, b.y, cm::diffusion_models::physical), 0.0f, 0.0f); }, in, 2, 1e-3f, 1e-4});
+                                              cm::diffusion_scattering(a.x, a.y, a.z, a.w, b.x, b.y, cm::diffusion_models::physical),
+                                              cm::diffusion_scattering(a.x, a.y, a.z, a.w, b.x, b.y, cm::diffusion_models::clouds), 0.0f); }, in, 3, 1e-3f, 1e-4});
         add({"cm_diffusion_scattering_with", "vec4(cm_diffusion_scattering_with(a.x, a.y, a.z, a.w, b.x, b.y, CM_DIFFUSION_MODEL_FITTED), 0.0, 0.0, 0.0)",
              [](vec4 a, vec4 b) { return vec4(cm::diffusion_scattering_with(a.x, a.y, a.z, a.w, b.x, b.y, cm::diffusion_models::fitted, cpp_test_phase), 0.0f, 0.0f, 0.0f); }, in, 1, 1e-3f, 1e-4});
         add({"cm_diffusion_table_coordinates", "cm_diffusion_table_coordinates(a.x, a.y, a.z, a.w, b.x, b.y)",
@@ -372,8 +373,10 @@ std::vector<parity_case> make_cases() {
             for (float v : {0.0f, 0.4f, 1.0f})
                 for (float m : {0.0f, 0.25f, 0.5f, 0.9f, 1.0f})
                     for (float d : {0.0f, 0.6f, 1.0f}) coords.push_back({vec4(u, v, m, d), vec4(0.0f)});
-        add({"cm_diffusion_table_lookup", "vec4(cm_diffusion_table_lookup(CM_DIFFUSION_MODEL_FITTED, a), 0.0, 0.0, 0.0)",
-             [](vec4 a, vec4) { return vec4(cm::diffusion_table_lookup(cm::diffusion_models::fitted, cm::diffusion_coordinates<float>{a.x, a.y, a.z, a.w}), 0.0f, 0.0f, 0.0f); }, coords, 1, 1e-5f});
+        add({"cm_diffusion_table_lookup", "vec4(cm_diffusion_table_lookup(CM_DIFFUSION_MODEL_FITTED, a), cm_diffusion_table_lookup(CM_DIFFUSION_MODEL_CLOUDS, a), 0.0, 0.0)",
+             [](vec4 a, vec4) { const cm::diffusion_coordinates<float> u{a.x, a.y, a.z, a.w};
+                                return vec4(cm::diffusion_table_lookup(cm::diffusion_models::fitted, u),
+                                            cm::diffusion_table_lookup(cm::diffusion_models::clouds, u), 0.0f, 0.0f); }, coords, 2, 1e-5f});
     }
 
     // multiple scattering

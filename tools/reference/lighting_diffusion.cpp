@@ -10,10 +10,13 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
+#include <fstream>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 namespace cloudmath::reference::lighting {
 
@@ -335,9 +338,42 @@ std::vector<std::string> diffusion_holdout_paths(const std::string& dir) {
             dir + "/lighting_holdout_renderer_phase.csv"};
 }
 
+std::string diffusion_clouds_path(const std::string& dir) { return dir + "/diffusion_clouds.txt"; }
+
+diffusion_model read_clouds_model(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error("cannot read the whole-cloud fit " + path + " (bash scripts/truth.sh --fit)");
+    diffusion_model m{};
+    m.name = "clouds";
+    std::vector<bool> seen(diffusion_unknowns, false);
+    std::string line;
+    int line_no = 0;
+    while (std::getline(in, line)) {
+        ++line_no;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (line.empty() || line[0] == '#' || line == "kind,index,value") continue;
+        const auto fail = [&] { throw std::runtime_error(path + ":" + std::to_string(line_no) + ": malformed row '" + line + "'"); };
+        const std::size_t c1 = line.find(','), c2 = line.find(',', c1 == std::string::npos ? c1 : c1 + 1);
+        if (c1 == std::string::npos || c2 == std::string::npos) fail();
+        const std::string kind = line.substr(0, c1);
+        const std::optional<std::uint64_t> index = cloudmath::tools::parse_count(line.substr(c1 + 1, c2 - c1 - 1));
+        const std::optional<double> value = cloudmath::tools::parse_finite(line.substr(c2 + 1));
+        if (!index || !value || (kind != "table" && kind != "peak")) fail();
+        const std::size_t limit = kind == "table" ? std::size_t(L::table_size) : std::size_t(L::peak_size);
+        if (*index >= limit) fail();
+        const std::size_t slot = (kind == "table" ? 0 : std::size_t(L::table_size)) + std::size_t(*index);
+        if (seen[slot]) throw std::runtime_error(path + ":" + std::to_string(line_no) + ": " + kind + " " + std::to_string(*index) + " repeated");
+        seen[slot] = true;
+        (kind == "table" ? m.table[*index] : m.peak[*index]) = static_cast<float>(*value);
+    }
+    if (std::find(seen.begin(), seen.end(), false) != seen.end())
+        throw std::runtime_error(path + ": not every table entry and peak weight is given");
+    return m;
+}
+
 diffusion_run run_diffusion_fit(const std::vector<std::string>& train_paths,
                                 const std::vector<std::string>& holdout_paths,
-                                const diffusion_fit_options& o) {
+                                const diffusion_fit_options& o, const std::string& clouds_path) {
     std::vector<reference_set> train, holdout;
     for (const std::string& p : train_paths) train.push_back(read_reference(p));
     for (const std::string& p : holdout_paths) holdout.push_back(read_reference(p));
@@ -359,6 +395,15 @@ diffusion_run run_diffusion_fit(const std::vector<std::string>& train_paths,
     physical.tau_max = m.tau_max;
     physical.g_min = m.g_min;
     physical.g_max = m.g_max;
+    const bool with_clouds = !clouds_path.empty();
+    diffusion_model clouds{};
+    if (with_clouds) {
+        clouds = read_clouds_model(clouds_path);
+        clouds.tau_min = m.tau_min;
+        clouds.tau_max = m.tau_max;
+        clouds.g_min = m.g_min;
+        clouds.g_max = m.g_max;
+    }
 
     std::ostringstream out;
     out << "diffusion model fitted on " << train.size() << " set(s) (smoothing " << o.smoothing
@@ -383,28 +428,38 @@ diffusion_run run_diffusion_fit(const std::vector<std::string>& train_paths,
         const std::vector<double> Lf = ev.radiance(m), Lp = ev.radiance(physical);
         line("diffusion fitted", Lf, subsets);
         line("diffusion physical", Lp, false);
+        error_summary ec{};
+        if (with_clouds) {
+            const std::vector<double> Lc = ev.radiance(clouds);
+            line("diffusion clouds", Lc, false);
+            ec = measure(set, Lc, select_all());
+        }
         for (const cloudmath::multiple_scattering_preset& p : cloudmath::ms_preset::all) {
             const model_spec spec{attenuation::beer, ev.g(), p.a, p.b, p.c, p.octaves};
             line(std::string("ms_preset::") + p.name, octaves.radiance(spec), false);
         }
-        return std::make_pair(measure(set, Lf, select_all()), measure(set, Lp, select_all()));
+        return std::make_tuple(measure(set, Lf, select_all()), measure(set, Lp, select_all()), ec);
     };
     for (std::size_t i = 0; i < train.size(); ++i) {
         const auto e = report(train[i], "fitted on " + base_name(train_paths[i]), i == 0);
         if (i > 0) continue;
-        m.rms_error = static_cast<float>(e.first.rms);
-        m.max_error = static_cast<float>(e.first.max);
-        physical.rms_error = static_cast<float>(e.second.rms);
-        physical.max_error = static_cast<float>(e.second.max);
+        m.rms_error = static_cast<float>(std::get<0>(e).rms);
+        m.max_error = static_cast<float>(std::get<0>(e).max);
+        physical.rms_error = static_cast<float>(std::get<1>(e).rms);
+        physical.max_error = static_cast<float>(std::get<1>(e).max);
+        clouds.rms_error = static_cast<float>(std::get<2>(e).rms);
+        clouds.max_error = static_cast<float>(std::get<2>(e).max);
     }
     for (std::size_t i = 0; i < holdout.size(); ++i) {
         const auto e = report(holdout[i], "held out " + base_name(holdout_paths[i]), true);
-        m.holdout_rms_error = std::max(m.holdout_rms_error, static_cast<float>(e.first.rms));
-        physical.holdout_rms_error = std::max(physical.holdout_rms_error, static_cast<float>(e.second.rms));
+        m.holdout_rms_error = std::max(m.holdout_rms_error, static_cast<float>(std::get<0>(e).rms));
+        physical.holdout_rms_error = std::max(physical.holdout_rms_error, static_cast<float>(std::get<1>(e).rms));
+        clouds.holdout_rms_error = std::max(clouds.holdout_rms_error, static_cast<float>(std::get<2>(e).rms));
     }
 
     diffusion_run run;
     run.models = {m, physical};
+    if (with_clouds) run.models.push_back(clouds);
     run.report = out.str();
     std::string names;
     for (const std::string& p : train_paths) names += (names.empty() ? "" : ", ") + base_name(p);
@@ -415,6 +470,8 @@ diffusion_run run_diffusion_fit(const std::vector<std::string>& train_paths,
     char opts[96];
     std::snprintf(opts, sizeof opts, "\n// options: smoothing %g, ridge %g", o.smoothing, o.ridge);
     run.provenance += opts;
+    if (with_clouds)
+        run.provenance += "\n// clouds: " + base_name(clouds_path) + " (cloudmath_volume_truth fit-clouds, scripts/truth.sh --fit)";
     return run;
 }
 
@@ -432,7 +489,7 @@ std::string list_of(const float* v, int n, const char* indent, const char* suffi
 }  // namespace
 
 std::string diffusion_models_cpp(const std::vector<diffusion_model>& models,
-                                 const std::string& provenance) {
+                                 const std::string& provenance, std::size_t in_all) {
     std::ostringstream o;
     o << "// cloudmath/diffusion_lighting_models.hpp: the fitted models of diffusion_lighting.hpp.\n"
       << "// Generated by " << provenance << "; do not edit.\n"
@@ -446,8 +503,11 @@ std::string diffusion_models_cpp(const std::vector<diffusion_model>& models,
           << f(m.tau_max) << ", " << f(m.g_min) << ", " << f(m.g_max) << ", " << f(m.rms_error)
           << ", " << f(m.max_error) << ", " << f(m.holdout_rms_error) << "};\n\n";
     }
-    o << "// Every model, the default (most accurate) first.\ninline constexpr diffusion_model all[] = {";
-    for (std::size_t i = 0; i < models.size(); ++i) o << models[i].name << (i + 1 < models.size() ? ", " : "");
+    const std::size_t listed = std::min(in_all, models.size());
+    o << "// Every model of homogeneous media, the default (most accurate) first"
+      << (listed < models.size() ? " (clouds, fitted to whole-cloud images, is not one)" : "")
+      << ".\ninline constexpr diffusion_model all[] = {";
+    for (std::size_t i = 0; i < listed; ++i) o << models[i].name << (i + 1 < listed ? ", " : "");
     o << "};\n\n}  // namespace cloudmath::diffusion_models\n\n#endif  // CLOUDMATH_DIFFUSION_LIGHTING_MODELS_HPP\n";
     return o.str();
 }

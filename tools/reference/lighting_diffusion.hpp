@@ -121,14 +121,26 @@ struct diffusion_fit_rows {
 // the worst held-out rms), beside the octave presets, and returns both models with a text
 // report and the provenance line of the generated headers (file names only, so that the
 // headers do not depend on where the tool ran).
+// With clouds_path (docs/data/diffusion_clouds.txt, cloudmath_volume_truth fit-clouds), the
+// whole-cloud fit joins them as a third model, "clouds", measured on the same sets; it is
+// not in the generated all[] (the models of homogeneous media that lighting_choice ranks).
 struct diffusion_run {
-    std::vector<diffusion_model> models;  // fitted, physical
+    std::vector<diffusion_model> models;  // fitted, physical[, clouds]
+    std::size_t homogeneous = 2;          // the first models, those of all[]
     std::string report;
     std::string provenance;
 };
 [[nodiscard]] diffusion_run run_diffusion_fit(const std::vector<std::string>& train_paths,
                                               const std::vector<std::string>& holdout_paths,
-                                              const diffusion_fit_options& options);
+                                              const diffusion_fit_options& options,
+                                              const std::string& clouds_path = "");
+// The whole-cloud fit's file: lines "table,I,V" (I from 0 to table_size - 1) and "peak,I,V",
+// '#' comments and the header "kind,index,value". The model named "clouds", its errors 0.
+// Throws std::runtime_error naming the path and line for anything else, a missing number
+// or a repeated one.
+[[nodiscard]] diffusion_model read_clouds_model(const std::string& path);
+// The stored whole-cloud fit in directory `data_dir`: data_dir/diffusion_clouds.txt.
+[[nodiscard]] std::string diffusion_clouds_path(const std::string& data_dir);
 
 // Leave-one-set-out cross-validation over the training sets alone (the held-out split is
 // never looked at): for each smoothing and ridge of a small grid, the fit on all sets but
@@ -137,9 +149,11 @@ struct diffusion_run {
 [[nodiscard]] std::string diffusion_cross_validation(const std::vector<std::string>& train_paths);
 
 // C++ and GLSL source of the generated models header (diffusion_lighting_models.hpp and
-// glsl/diffusion_lighting_models.glsl); `models` in order, the first is the default.
+// glsl/diffusion_lighting_models.glsl); `models` in order, the first is the default, the
+// first `in_all` of them listed in the C++ all[].
 [[nodiscard]] std::string diffusion_models_cpp(const std::vector<diffusion_model>& models,
-                                               const std::string& provenance);
+                                               const std::string& provenance,
+                                               std::size_t in_all = static_cast<std::size_t>(-1));
 [[nodiscard]] std::string diffusion_models_glsl(const std::vector<diffusion_model>& models,
                                                 const std::string& provenance);
 

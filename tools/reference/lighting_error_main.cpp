@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <exception>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -77,6 +78,9 @@ const char* const usage_text =
     "                    model's rms_error is measured on) --holdout C.csv,D.csv\n"
     "                    --header PATH.hpp --glsl PATH.glsl\n"
     "                    --smoothing 0.01 --ridge 0.0001\n"
+    "                    --clouds DATA/diffusion_clouds.txt (the whole-cloud fit of\n"
+    "                    cloudmath_volume_truth fit-clouds, measured beside them and written\n"
+    "                    as diffusion_models::clouds; default when the file exists, none: not)\n"
     "                    --cv (instead of fitting: leave-one-set-out cross-validation of\n"
     "                    smoothing and ridge over the training sets alone)\n"
     "  choice     writes the measured-error table of cloudmath/lighting_choice.hpp alone.\n"
@@ -207,7 +211,7 @@ int run_choice(int argc, char** argv) {
 // Fits the diffusion model (lighting_diffusion.hpp: run_diffusion_fit), prints the report
 // and writes the generated headers when asked.
 int run_fit_diffusion(int argc, char** argv) {
-    auto f = parse_flags(argc, argv, {"data", "train", "holdout", "header", "glsl", "smoothing", "ridge"}, {"cv"});
+    auto f = parse_flags(argc, argv, {"data", "train", "holdout", "header", "glsl", "smoothing", "ridge", "clouds"}, {"cv"});
     const std::string data = f.count("data") ? f["data"] : "docs/data";
     lm::diffusion_fit_options o;
     if (f.count("smoothing")) o.smoothing = to_positive("smoothing", f["smoothing"]);
@@ -221,10 +225,14 @@ int run_fit_diffusion(int argc, char** argv) {
         std::cout << lm::diffusion_cross_validation(train);
         return 0;
     }
-    const lm::diffusion_run run = lm::run_diffusion_fit(train, holdout, o);
+    // The whole-cloud fit (diffusion_models::clouds): --clouds PATH, default DATA/diffusion_clouds.txt
+    // when it exists; "none" leaves it out.
+    std::string clouds = f.count("clouds") ? f["clouds"] : lm::diffusion_clouds_path(data);
+    if (clouds == "none" || (!f.count("clouds") && !std::ifstream(clouds).good())) clouds.clear();
+    const lm::diffusion_run run = lm::run_diffusion_fit(train, holdout, o, clouds);
     std::cout << run.report;
     if (f.count("header"))
-        cloudmath::reference::write_text_file_atomically(f["header"], lm::diffusion_models_cpp(run.models, run.provenance));
+        cloudmath::reference::write_text_file_atomically(f["header"], lm::diffusion_models_cpp(run.models, run.provenance, run.homogeneous));
     if (f.count("glsl"))
         cloudmath::reference::write_text_file_atomically(f["glsl"], lm::diffusion_models_glsl(run.models, run.provenance));
     return 0;

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <set>
@@ -186,9 +187,10 @@ std::string read_file(const std::string& path) {
 TEST_CASE("the generated model headers are reproduced from the stored Monte Carlo data") {
     const std::string dir = CLOUDMATH_SOURCE_DIR "/docs/data";
     const lm::diffusion_run run = lm::run_diffusion_fit(lm::diffusion_training_paths(dir),
-                                                        lm::diffusion_holdout_paths(dir), {});
+                                                        lm::diffusion_holdout_paths(dir), {},
+                                                        lm::diffusion_clouds_path(dir));
     MESSAGE(run.report);
-    CHECK(lm::diffusion_models_cpp(run.models, run.provenance) ==
+    CHECK(lm::diffusion_models_cpp(run.models, run.provenance, run.homogeneous) ==
           read_file(CLOUDMATH_SOURCE_DIR "/include/cloudmath/diffusion_lighting_models.hpp"));
     CHECK(lm::diffusion_models_glsl(run.models, run.provenance) ==
           read_file(CLOUDMATH_SOURCE_DIR "/include/cloudmath/glsl/diffusion_lighting_models.glsl"));
@@ -196,4 +198,38 @@ TEST_CASE("the generated model headers are reproduced from the stored Monte Carl
     CHECK(std::string(cloudmath::diffusion_models::fitted.name) == "fitted");
     CHECK(cloudmath::diffusion_models::fitted.rms_error == run.models[0].rms_error);
     CHECK(cloudmath::diffusion_models::fitted.holdout_rms_error == run.models[0].holdout_rms_error);
+}
+
+TEST_CASE("the whole-cloud fit's file: the shipped clouds model, and malformed files are refused") {
+    const std::string dir = CLOUDMATH_SOURCE_DIR "/docs/data";
+    const cloudmath::diffusion_model m = lm::read_clouds_model(lm::diffusion_clouds_path(dir));
+    CHECK(std::string(m.name) == "clouds");
+    for (int i = 0; i < cloudmath::diffusion_layout::table_size; ++i) CHECK(m.table[i] == cloudmath::diffusion_models::clouds.table[i]);
+    for (int i = 0; i < cloudmath::diffusion_layout::peak_size; ++i) CHECK(m.peak[i] == cloudmath::diffusion_models::clouds.peak[i]);
+    // Malformed: each must throw, naming the file.
+    std::string good;
+    for (int i = 0; i < cloudmath::diffusion_layout::table_size; ++i) good += "table," + std::to_string(i) + ",1\n";
+    for (int i = 0; i < cloudmath::diffusion_layout::peak_size; ++i) good += "peak," + std::to_string(i) + ",0\n";
+    const std::string path = "diffusion_clouds_test.txt";
+    const auto write = [&](const std::string& text) {
+        std::ofstream out(path, std::ios::binary);
+        out << "# test\nkind,index,value\n" << text;
+    };
+    write(good);
+    CHECK(lm::read_clouds_model(path).table[7] == 1.0f);
+    for (const std::string& bad : {good + "table,3,2\n", good + "table,135,1\n", good + "peak,6,1\n", good + "beam,0,1\n",
+                                   good + "table,1,nan\n", good + "table,1,0.5x\n", good + "table,-1,1\n", good + "table,1\n",
+                                   good.substr(good.find('\n') + 1)}) {
+        write(bad);
+        std::string message;
+        try {
+            (void)lm::read_clouds_model(path);
+        } catch (const std::runtime_error& e) {
+            message = e.what();
+        }
+        CAPTURE(bad.substr(bad.size() - 16));
+        CHECK(message.find(path) != std::string::npos);
+    }
+    CHECK_THROWS_AS((void)lm::read_clouds_model("no_such_dir/none.txt"), std::runtime_error);
+    std::remove(path.c_str());
 }

@@ -67,6 +67,29 @@ if(CLOUDMATH_BUILD_TESTS)
       for section in "## Excess error" "## PSNR of the display images" "| variant | rms | excess | bias |"; do
         grep -qF "$section" "$out/docs/lighting_truth.md" || { echo "report lacks '$section'"; exit 1; }
       done
+      # fit-clouds: bad command lines -> 2; a fit over two tiny truths writes every number,
+      # --check accepts its own file and rejects a changed one (exit 1).
+      for bad in "--fit classic:ground" "--fit ground,inside" "--fit classic:ground,classic:nowhere" \
+                 "--fit classic:ground,flat:inside" "--ridge -1" "--ridge nan" "--variant lighting=octaves" \
+                 "--fit classic:ground,classic:inside --eval classic:ground"; do
+        "$tool" fit-clouds $bad 2>/dev/null; s=$?
+        [ $s -eq 2 ] || { echo "fit-clouds $bad: exit $s, want 2"; exit 1; }
+      done
+      "$tool" fit-clouds --data "$out/none" --cache "$cache" --quiet 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "none/truth_sun_behind.csv" "$out.err" || { echo "fit-clouds, missing truth: exit $s"; exit 1; }
+      "$tool" render --preset inside --width 8 --height 4 --spp 2 --threads 2 --cache "$cache" --quiet \
+        --out "$out/truth_inside.csv" >/dev/null || { echo "render inside failed"; exit 1; }
+      "$tool" fit-clouds --fit classic:ground,classic:inside --data "$out" --cache "$cache" --quiet \
+        --out "$out/fit.txt" >/dev/null || { echo "fit-clouds failed"; exit 1; }
+      [ "$(grep -c '^table,' "$out/fit.txt")" -eq 135 ] && [ "$(grep -c '^peak,' "$out/fit.txt")" -eq 6 ] ||
+        { echo "fit-clouds: want 135 table and 6 peak rows"; exit 1; }
+      grep -q '^# chosen ridge' "$out/fit.txt" || { echo "fit-clouds: no chosen ridge"; exit 1; }
+      "$tool" fit-clouds --fit classic:ground,classic:inside --data "$out" --cache "$cache" --quiet \
+        --check "$out/fit.txt" >/dev/null 2>&1 || { echo "fit-clouds --check rejects its own fit"; exit 1; }
+      sed 's/^peak,0,.*/peak,0,123/' "$out/fit.txt" >"$out/changed.txt"
+      "$tool" fit-clouds --fit classic:ground,classic:inside --data "$out" --cache "$cache" --quiet \
+        --check "$out/changed.txt" >/dev/null 2>&1; s=$?
+      [ $s -eq 1 ] || { echo "fit-clouds --check accepts a changed fit: exit $s"; exit 1; }
       ]=] sh $<TARGET_FILE:cloudmath_volume_truth> "${CMAKE_CURRENT_BINARY_DIR}/volume_truth_cli_test"
         "${CMAKE_CURRENT_BINARY_DIR}/truth_texture_cache")
 endif()

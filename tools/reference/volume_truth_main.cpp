@@ -686,12 +686,258 @@ int run_report(int argc, char** argv) {
     return 0;
 }
 
+
+// ---------------------------------------------------------------------------------------
+// fit-clouds: the diffusion model's fitted numbers (table and peak weights) by least squares
+// on whole-cloud truth images, each preset weighted by 1 / (its mean^2 x its values), ridge
+// toward the homogeneous-media fit (diffusion_models::fitted); leave-one-preset-out over
+// the fit's presets chooses the ridge.
+struct normal_equations {
+    std::vector<double> A, b;  // count^2, count
+    double c = 0.0;            // sum of squared residuals at theta = 0
+    double rms_at(const std::vector<double>& theta) const {
+        const std::size_t n = b.size();
+        double q = c;
+        for (std::size_t i = 0; i < n; ++i) {
+            double row = 0.0;
+            for (std::size_t j = 0; j < n; ++j) row += A[i * n + j] * theta[j];
+            q += theta[i] * row - 2.0 * theta[i] * b[i];
+        }
+        return std::sqrt(std::max(q, 0.0));
+    }
+};
+
+// Solves (A + lambda I) x = b + lambda x0 by Cholesky (A symmetric positive semidefinite).
+std::vector<double> ridge_solve(std::vector<double> A, std::vector<double> b, double lambda, const std::vector<double>& x0) {
+    const std::size_t n = b.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        A[i * n + i] += lambda;
+        b[i] += lambda * x0[i];
+    }
+    for (std::size_t j = 0; j < n; ++j) {
+        double d = A[j * n + j];
+        for (std::size_t k = 0; k < j; ++k) d -= A[j * n + k] * A[j * n + k];
+        if (!(d > 0.0)) throw std::runtime_error("fit-clouds: normal equations not positive definite");
+        const double l = std::sqrt(d);
+        A[j * n + j] = l;
+        for (std::size_t i = j + 1; i < n; ++i) {
+            double v = A[i * n + j];
+            for (std::size_t k = 0; k < j; ++k) v -= A[i * n + k] * A[j * n + k];
+            A[i * n + j] = v / l;
+        }
+    }
+    std::vector<double> y(n), x(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        double v = b[i];
+        for (std::size_t k = 0; k < i; ++k) v -= A[i * n + k] * y[k];
+        y[i] = v / A[i * n + i];
+    }
+    for (std::size_t i = n; i-- > 0;) {
+        double v = y[i];
+        for (std::size_t k = i + 1; k < n; ++k) v -= A[k * n + i] * x[k];
+        x[i] = v / A[i * n + i];
+    }
+    return x;
+}
+
+// The fit's default presets: the selection split of both fields (scripts/truth.sh).
+const char* const fit_clouds_presets =
+    "classic:sun_behind,classic:cumulus,classic:stratus,classic:low_sun_ahead,classic:low_sun_behind,"
+    "detailed:sun_behind,detailed:cumulus,detailed:stratus,detailed:low_sun_ahead,detailed:low_sun_behind";
+
+int run_fit_clouds(int argc, char** argv) {
+    const flags f(argc, argv, {"--fit", "--eval", "--variant", "--data", "--threads", "--cache", "--ridge", "--out", "--check"},
+                  {"--quiet"});
+    const std::vector<std::string> fit_list = split_list(f.get("--fit", fit_clouds_presets));
+    const std::vector<std::string> eval_list = split_list(f.get("--eval", ""));
+    if (fit_list.size() < 2) throw usage_error("--fit needs at least two shape:preset items (leave-one-out)");
+    cr::variant v;
+    const std::string spec = f.get("--variant", "");
+    const std::string why = cr::apply_variant_spec(spec, v);
+    if (!why.empty()) throw usage_error("--variant: " + why);
+    if (v.lighting != cr::lighting_model::diffusion) throw usage_error("--variant: fit-clouds fits the diffusion model (lighting=diffusion)");
+    v.haze = v.sun = v.shadows = false;  // as the report: the truth has none of them
+    std::vector<double> ridges;
+    for (const std::string& r : split_list(f.get("--ridge", "1e-4,3e-4,1e-3,3e-3,1e-2,3e-2,1e-1,1"))) {
+        const std::optional<double> value = cloudmath::tools::parse_finite(r);
+        if (!value || !(*value > 0.0) || !std::isfinite(*value)) throw usage_error("--ridge values must be positive numbers, not '" + r + "'");
+        ridges.push_back(*value);
+    }
+    if (ridges.empty()) throw usage_error("--ridge lists no value");
+    const auto item_parts = [](const std::string& item) {
+        const std::size_t colon = item.find(':');
+        if (colon == std::string::npos) throw usage_error("'" + item + "' is not shape:preset");
+        return std::make_pair(shape_flag(item.substr(0, colon)), item.substr(colon + 1));
+    };
+    for (const std::string& item : fit_list) (void)preset(item_parts(item).second);
+    for (const std::string& item : eval_list) {
+        (void)preset(item_parts(item).second);
+        if (std::find(fit_list.begin(), fit_list.end(), item) != fit_list.end())
+            throw usage_error("'" + item + "' is in both --fit and --eval: the splits must be disjoint");
+    }
+    const std::string data = f.get("--data", "docs/data");
+    const auto threads = static_cast<unsigned>(f.integer("--threads", 0, 0, 1024));
+    const bool quiet = f.has("--quiet");
+    const auto load = [&](const std::string& item, cr::scene& s, truth_image& t) {
+        const auto [shape, name] = item_parts(item);
+        s = preset(name, shape);
+        const std::string path = data + (shape == cr::cloud_shape::detailed ? "/detailed" : "") + "/truth_" + name + ".csv";
+        t = read_truth(path);
+        const auto it = t.meta.find("shape");
+        if ((it == t.meta.end() ? std::string("classic") : it->second) != cr::name(shape))
+            throw std::runtime_error(path + " was not traced over the " + std::string(cr::name(shape)) + " field");
+    };
+    std::vector<std::pair<cr::scene, truth_image>> fit_data(fit_list.size());
+    for (std::size_t i = 0; i < fit_list.size(); ++i) load(fit_list[i], fit_data[i].first, fit_data[i].second);
+    const cr::cloud_textures textures = load_textures(f, quiet);
+
+    namespace dl = cloudmath::diffusion_layout;
+    constexpr std::size_t n = cr::diffusion_feature_count;
+    std::vector<double> theta0(n);  // the homogeneous-media fit, what the ridge pulls toward
+    for (std::size_t i = 0; i < n; ++i)
+        theta0[i] = i < std::size_t(dl::table_size) ? double(cloudmath::diffusion_models::fitted.table[i])
+                                                    : double(cloudmath::diffusion_models::fitted.peak[i - std::size_t(dl::table_size)]);
+    std::ostringstream text;
+    text << "# cloudmath whole-cloud fit of the diffusion model's table and peak weights\n"
+         << "# (cloudmath_volume_truth fit-clouds, bash scripts/truth.sh --fit; read by cloudmath_lighting_error\n"
+         << "# fit-diffusion into diffusion_models::clouds). Least squares of the renderer's CPU reference\n"
+         << "# (render_cpu_linear, variant '" << spec << "' with sun, haze and shadows off) against the\n"
+         << "# path-traced truth, each preset weighted by 1 / (its mean^2 x its values), ridge toward\n"
+         << "# diffusion_models::fitted; the ridge chosen by leave-one-preset-out over the fitted presets.\n"
+         << "# The evaluation presets (ground, horizon, inside, above) are not read.\n"
+         << "# fitted on: ";
+    for (std::size_t i = 0; i < fit_list.size(); ++i) text << (i ? "," : "") << fit_list[i];
+    text << '\n';
+    std::vector<normal_equations> eqs;
+    for (std::size_t k = 0; k < fit_list.size(); ++k) {
+        const cr::scene& s = fit_data[k].first;
+        const truth_image& t = fit_data[k].second;
+        if (!quiet) std::cerr << "fit-clouds: " << fit_list[k] << '\n';
+        const cr::diffusion_features feat = cr::render_cpu_diffusion_features(s, v, textures, t.width, t.height, threads);
+        normal_equations e;
+        e.A.assign(n * n, 0.0);
+        e.b.assign(n, 0.0);
+        double mean = 0.0;
+        for (const vt::rgb& L : t.radiance) mean += L.r + L.g + L.b;
+        const double count = 3.0 * double(t.radiance.size());
+        mean /= count;
+        if (!(mean > 0.0)) throw std::runtime_error(fit_list[k] + ": the truth image is black");
+        const double w = 1.0 / (mean * mean * count);
+        const glm::dvec3 sun(feat.sun_radiance);
+        const double sun_sq = glm::dot(sun, sun);
+        for (std::size_t px = 0; px < t.radiance.size(); ++px) {
+            const float* g = &feat.grad[px * n];
+            const glm::dvec3 r(t.radiance[px].r - double(feat.fixed[px].r), t.radiance[px].g - double(feat.fixed[px].g),
+                               t.radiance[px].b - double(feat.fixed[px].b));
+            const double sr = glm::dot(sun, r);
+            e.c += w * glm::dot(r, r);
+            for (std::size_t i = 0; i < n; ++i) {
+                if (g[i] == 0.0f) continue;
+                e.b[i] += w * sr * double(g[i]);
+                const double gi = w * sun_sq * double(g[i]);
+                for (std::size_t j = 0; j <= i; ++j) e.A[i * n + j] += gi * double(g[j]);
+            }
+        }
+        for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t j = 0; j < i; ++j) e.A[j * n + i] = e.A[i * n + j];
+        eqs.push_back(std::move(e));
+    }
+    const auto total = [&](std::size_t skip) {
+        normal_equations sum;
+        sum.A.assign(n * n, 0.0);
+        sum.b.assign(n, 0.0);
+        for (std::size_t k = 0; k < eqs.size(); ++k) {
+            if (k == skip) continue;
+            for (std::size_t i = 0; i < n * n; ++i) sum.A[i] += eqs[k].A[i];
+            for (std::size_t i = 0; i < n; ++i) sum.b[i] += eqs[k].b[i];
+        }
+        return sum;
+    };
+    // rms here: the linear model's (the max(0, ...) clamps left out), over the truth's mean,
+    // the truth's noise included.
+    text << "# rms per fitted preset with diffusion_models::fitted:";
+    for (const normal_equations& e : eqs) text << ' ' << percent(e.rms_at(theta0));
+    text << "\n# leave-one-preset-out: ridge, then each preset's rms fitted without it, then their rms\n";
+    double best_lambda = ridges.front(), best_cv = INFINITY;
+    for (double lambda : ridges) {
+        double cv = 0.0;
+        text << "# ridge " << lambda << ":";
+        for (std::size_t q = 0; q < eqs.size(); ++q) {
+            const normal_equations sum = total(q);
+            const double r = eqs[q].rms_at(ridge_solve(sum.A, sum.b, lambda, theta0));
+            cv += r * r / double(eqs.size());
+            text << ' ' << percent(r);
+        }
+        cv = std::sqrt(cv);
+        text << "; " << percent(cv) << '\n';
+        if (cv < best_cv) {
+            best_cv = cv;
+            best_lambda = lambda;
+        }
+    }
+    const normal_equations all = total(eqs.size());
+    const std::vector<double> theta = ridge_solve(all.A, all.b, best_lambda, theta0);
+    text << "# chosen ridge " << best_lambda << "; rms per fitted preset with it:";
+    for (const normal_equations& e : eqs) text << ' ' << percent(e.rms_at(theta));
+    text << "\nkind,index,value\n";
+    char line[96];
+    for (std::size_t i = 0; i < n; ++i) {
+        const bool table = i < std::size_t(dl::table_size);
+        std::snprintf(line, sizeof line, "%s,%zu,%.9g\n", table ? "table" : "peak", table ? i : i - std::size_t(dl::table_size), theta[i]);
+        text << line;
+    }
+    std::cout << text.str();
+    if (f.has("--check")) {
+        // The stored fit is this one: every number within 1e-4 (relative to max(1, |value|)).
+        const std::string path = f.get("--check", "");
+        std::ifstream in(path);
+        if (!in) throw std::runtime_error("cannot read " + path);
+        std::vector<double> stored;
+        std::string row;
+        while (std::getline(in, row)) {
+            const std::size_t c2 = row.rfind(',');
+            if (row.empty() || row[0] == '#' || row.rfind("kind,", 0) == 0 || c2 == std::string::npos) continue;
+            const std::optional<double> value = cloudmath::tools::parse_finite(row.substr(c2 + 1));
+            if (!value) throw std::runtime_error(path + ": malformed row '" + row + "'");
+            stored.push_back(*value);
+        }
+        if (stored.size() != n) throw std::runtime_error(path + ": " + std::to_string(stored.size()) + " numbers, want " + std::to_string(n));
+        double worst = 0.0;
+        for (std::size_t i = 0; i < n; ++i) worst = std::max(worst, std::abs(stored[i] - theta[i]) / std::max(1.0, std::abs(theta[i])));
+        if (!(worst <= 1e-4)) {
+            std::cerr << "fit-clouds --check: " << path << " differs from the refit by " << worst << '\n';
+            return 1;
+        }
+        std::cerr << "fit-clouds --check: " << path << " is reproduced (largest difference " << worst << ")\n";
+    }
+    if (f.has("--out")) cloudmath::reference::write_text_file_atomically(f.get("--out", ""), text.str());
+    // Measured with the library function (clamps and all) on the --eval presets.
+    cloudmath::diffusion_model m{};
+    m.name = "clouds";
+    for (std::size_t i = 0; i < n; ++i) {
+        if (i < std::size_t(dl::table_size)) m.table[i] = float(theta[i]);
+        else m.peak[i - std::size_t(dl::table_size)] = float(theta[i]);
+    }
+    for (const std::string& item : eval_list) {
+        cr::scene s;
+        truth_image t;
+        load(item, s, t);
+        const image_errors before =
+            compare(t, cr::render_cpu_linear_with(s, v, textures, t.width, t.height, cloudmath::diffusion_models::fitted, threads), s.exposure);
+        const image_errors after = compare(t, cr::render_cpu_linear_with(s, v, textures, t.width, t.height, m, threads), s.exposure);
+        std::cout << "eval " << item << ": excess " << percent(before.excess) << " -> " << percent(after.excess) << ", PSNR "
+                  << fixed(before.psnr_db, 1) << " -> " << fixed(after.psnr_db, 1) << " dB, bias " << signed_percent(before.bias)
+                  << " -> " << signed_percent(after.bias) << '\n';
+    }
+    return 0;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
     return cloudmath::reference::run_subcommand_tool("cloudmath_volume_truth", usage_text, argc, argv, [&](const std::string& command) {
         if (command == "render") return run_render(argc, argv);
         if (command == "report") return run_report(argc, argv);
-        throw usage_error("unknown command '" + command + "' (render, report)");
+        if (command == "fit-clouds") return run_fit_clouds(argc, argv);
+        throw usage_error("unknown command '" + command + "' (render, report, fit-clouds)");
     });
 }

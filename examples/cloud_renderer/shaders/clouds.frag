@@ -13,7 +13,8 @@
 
 // The lighting variant (values in scene.hpp's `variant`).
 CR_PARAM(int, u_phase_model)      // 0 HG, 1 dual-lobe HG, 2 Cornette-Shanks, 3 Mie fit
-CR_PARAM(int, u_lighting)         // 0 Wrenninge octaves, 1 diffusion model (diffusion_lighting.glsl)
+CR_PARAM(int, u_lighting)         // 0 Wrenninge octaves, 1 diffusion model (diffusion_lighting.glsl) with
+                                  // CM_DIFFUSION_MODEL_CLOUDS, 2 with CM_DIFFUSION_MODEL_FITTED
 CR_PARAM(int, u_octaves)          // Wrenninge octaves
 CR_PARAM(int, u_powder)           // 0 off, 1 on
 CR_PARAM(int, u_light_mode)       // toward the sun: 0 cone, 1 march over the cloud type's band, 2 shadow map
@@ -248,6 +249,9 @@ float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode, floa
 vec3 cr_in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h) {
     float sun = u_lighting == 1
         ? cm_diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, u_phase_mean_cosine, u_albedo,
+                                       CM_DIFFUSION_MODEL_CLOUDS)
+        : u_lighting == 2
+        ? cm_diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, u_phase_mean_cosine, u_albedo,
                                        CM_DIFFUSION_MODEL_FITTED)
         : cm_multiple_scattering_with(tau_light, mu, u_ms_a, u_ms_b, u_ms_c, u_octaves);
     if (u_powder != 0) {
@@ -396,7 +400,7 @@ void main() {
                 // The light march's offset: new for each light estimate and frame.
                 float lo = u_jitter != 0 && u_light_jitter != 0 ? cm_sample_jitter(pixel_hash, u_frame, light_index++) : 0.5;
                 float tau_light = cr_light_optical_depth(dir * ts, alts, u_sun_dir, u_light_mode, lo);
-                float tau_behind = u_lighting == 1 ? cr_light_optical_depth(dir * ts, alts, -u_sun_dir, u_behind_mode, lo) : 0.0;
+                float tau_behind = u_lighting != 0 ? cr_light_optical_depth(dir * ts, alts, -u_sun_dir, u_behind_mode, lo) : 0.0;
                 float h = cm_height_fraction(alts, u_layer_bottom, u_layer_top);
                 vec3 S = (u_albedo * sigma_t) * cr_in_scattering(tau_light, tau_behind, tau_view + 0.5 * sigma_t * ds, mu, h);
                 tau_view += sigma_t * ds;

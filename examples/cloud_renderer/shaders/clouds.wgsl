@@ -30,7 +30,7 @@
 struct CrUniforms {
     // The lighting variant (values in scene.hpp's `variant`): clouds.frag's CR_PARAM lines.
     u_phase_model: i32,      // 0 HG, 1 dual-lobe HG, 2 Cornette-Shanks, 3 Mie fit
-    u_lighting: i32,         // 0 Wrenninge octaves, 1 diffusion model
+    u_lighting: i32,         // 0 Wrenninge octaves, 1 diffusion model (CM_DIFFUSION_MODEL_CLOUDS), 2 (_FITTED)
     u_octaves: i32,
     u_powder: i32,
     u_light_mode: i32,       // toward the sun: 0 cone, 1 march, 2 shadow map
@@ -239,6 +239,9 @@ fn cr_in_scattering(tau_light: f32, tau_behind: f32, tau_view: f32, mu: f32, h: 
     var sun: f32;
     if (U.u_lighting == 1) {
         sun = cm_diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, U.u_phase_mean_cosine, U.u_albedo,
+                                           CM_DIFFUSION_MODEL_CLOUDS);
+    } else if (U.u_lighting == 2) {
+        sun = cm_diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, U.u_phase_mean_cosine, U.u_albedo,
                                            CM_DIFFUSION_MODEL_FITTED);
     } else {
         sun = cm_multiple_scattering_with(tau_light, mu, U.u_ms_a, U.u_ms_b, U.u_ms_c, U.u_octaves);
@@ -388,7 +391,7 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
                 }
                 let tau_light = cr_light_optical_depth(dir * ts, alts, U.u_sun_dir, U.u_light_mode, lo);
                 var tau_behind = 0.0;
-                if (U.u_lighting == 1) { tau_behind = cr_light_optical_depth(dir * ts, alts, -U.u_sun_dir, U.u_behind_mode, lo); }
+                if (U.u_lighting != 0) { tau_behind = cr_light_optical_depth(dir * ts, alts, -U.u_sun_dir, U.u_behind_mode, lo); }
                 let h = cm_height_fraction(alts, U.u_layer_bottom, U.u_layer_top);
                 let S = (U.u_albedo * sigma_t) * cr_in_scattering(tau_light, tau_behind, tau_view + 0.5 * sigma_t * ds, mu, h);
                 tau_view += sigma_t * ds;
