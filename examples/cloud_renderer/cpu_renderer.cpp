@@ -239,7 +239,7 @@ struct pixel_program {
     // for the model's table then peak weights (diffusion_feature_count), the max(0, ...)
     // clamps ignored (render_cpu_diffusion_features).
     vec4 shade_linear(int x, int y, int width, int height, reads* counted = nullptr, float* depth = nullptr,
-                      float* grad = nullptr) const {
+                      float* grad = nullptr, float* sky = nullptr) const {
         long* view_reads = counted ? &counted->view : nullptr;
         long* light_reads = counted ? &counted->light : nullptr;
         const vec3 dir = pixel_direction(k, x, y, width, height);
@@ -319,6 +319,13 @@ struct pixel_program {
                     if (grad != nullptr) add_gradient(grad, acc.transmittance.r * s.albedo * sigma_t *
                                                                     cm::integrate_scattering(1.0f, sigma_t, ds),
                                                       tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu);
+                    if (sky != nullptr) {
+                        const float w = acc.transmittance.r * s.albedo * sigma_t * cm::integrate_scattering(1.0f, sigma_t, ds);
+                        const float up = std::max(k.sun_dir.y, 0.0f);
+                        const float occluded = v.occluded_ambient ? 1.0f : 0.0f;
+                        sky[0] += w * h * glm::mix(1.0f, cm::diffuse_transmittance(tau_light * up, phase_g_mean), occluded);
+                        sky[1] += w * (1.0f - h) * glm::mix(1.0f, cm::diffuse_transmittance(tau_behind * up, phase_g_mean), occluded);
+                    }
                     tau_view += sigma_t * ds;
                     const float before = acc.transmittance.r;  // grey extinction: every channel alike
                     if (v.integration == integration_mode::analytic) {
@@ -431,10 +438,13 @@ diffusion_features render_cpu_diffusion_features(const scene& s, const variant& 
     f.height = height;
     f.grad.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * diffusion_feature_count, 0.0f);
     const pixel_program program(s, v, textures, &zero);
+    f.sky.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 2, 0.0f);
     const image fixed = render_rows(width, height, threads, [&](int x, int y) {
         const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
-        return program.shade_linear(x, y, width, height, nullptr, nullptr, &f.grad[i * diffusion_feature_count]);
+        return program.shade_linear(x, y, width, height, nullptr, nullptr, &f.grad[i * diffusion_feature_count], &f.sky[i * 2]);
     });
+    f.ambient_top = program.k.ambient_top;
+    f.ambient_bottom = program.k.ambient_bottom;
     f.fixed.reserve(fixed.pixels.size());
     for (const vec4& c : fixed.pixels) f.fixed.emplace_back(c);
     f.sun_radiance = make_frame_constants(s).sun_radiance;

@@ -53,6 +53,10 @@ struct diffusion_features {
     std::vector<glm::vec3> fixed;
     std::vector<float> grad;
     glm::vec3 sun_radiance{0.0f};
+    // The sky light's share (2 per pixel): radiance = ... + ambient_top * sky[2 p] +
+    // ambient_bottom * sky[2 p + 1] (already in fixed).
+    std::vector<float> sky;
+    glm::vec3 ambient_top{0.0f}, ambient_bottom{0.0f};
 };
 diffusion_features render_cpu_diffusion_features(const scene& s, const variant& v, const cloud_textures& textures,
                                                  int width, int height, unsigned threads = 0);

@@ -3,7 +3,9 @@
 // tracer (volume_tracer.hpp, cloud_medium.hpp: the scene definition) into a CSV of linear
 // radiance and standard error per pixel; `report` renders the renderer's CPU reference
 // (render_cpu_linear) for each lighting variant at the same size and writes
-// docs/lighting_truth.md with the errors and side-by-side PNGs.
+// docs/lighting_truth.md with the errors and side-by-side PNGs; `fit-clouds` fits the
+// diffusion model's table to the truths (docs/data/diffusion_clouds.txt, read into
+// diffusion_models::clouds by cloudmath_lighting_error fit-diffusion).
 //
 //   cloudmath_volume_truth render --preset ground --width 160 --height 90 --spp 64
 //       --out docs/data/truth_ground.csv
@@ -81,6 +83,16 @@ const char* const usage_text =
     "           Reads DATA/truth_NAME.csv, writes DOCS/lighting_truth.md and\n"
     "           DOCS/images/truth_NAME.png (truth | first variant | difference) and\n"
     "           truth_NAME_VARIANT.png for the other variants.\n"
+    "  fit-clouds  the diffusion model's table and peak weights (diffusion_lighting.hpp) by least\n"
+    "           squares of the renderer (render_cpu_linear) against stored truths, the ridge\n"
+    "           toward diffusion_models::fitted chosen by leave-one-preset-out; prints the fit\n"
+    "           flags: [--fit SHAPE:PRESET,...] (default: the selection presets of both fields)\n"
+    "                  [--eval SHAPE:PRESET,...] (measured after the fit, disjoint from --fit)\n"
+    "                  [--ridge 1e-4,...,1] [--variant SPEC] [--data docs/data] [--out F.txt]\n"
+    "                  [--check F.txt] (exit 1 unless F's numbers are this fit's to 1e-4)\n"
+    "                  [--sky] (a diagnosis: also fits scales of the sky light's top and bottom,\n"
+    "                  printed, not stored) [--threads 0] [--cache DIR] [--quiet]\n"
+    "           SHAPE:PRESET reads DATA/truth_PRESET.csv (classic) or DATA/detailed/...\n"
     "  --shape: the renderer's density field, classic (default: the stored truth's) or\n"
     "           detailed; report refuses truth files traced over the other field.\n"
     "  --cache: the renderer's texture cache (default $XDG_CACHE_HOME/cloudmath or\n"
@@ -648,13 +660,17 @@ int run_report(int argc, char** argv) {
               "[lighting_research.md](lighting_research.md)). Its light estimators (refined view steps, quadratic\n"
               "jittered light marches both ways) were chosen later for convergence against 1024 view steps\n"
               "(docs/renderer.md), not on this data; its far field toward a low sun (`reach=far`) on all five\n"
-              "selection presets of both fields.\n\n";
+              "selection presets of both fields, and its table (`diffusion_models::clouds`) was fitted to them\n"
+              "(`cloudmath_volume_truth fit-clouds`, data/diffusion_clouds.txt): on the selection presets its\n"
+              "errors are in-sample; the evaluation presets were never read by the fit. The variants other\n"
+              "than `fitted_table` carry the same table.\n\n";
     else if (!selection.empty())
         md << "The renderer's default lighting model was chosen on the classic field's selection presets\n"
               "([../lighting_truth.md](../lighting_truth.md)) and its light estimators for convergence\n"
-              "(docs/renderer.md); on this field only its far field toward a low sun (`reach=far`) was chosen,\n"
-              "on the selection split of both fields: for everything else every preset here, the selection\n"
-              "split's included, is out of sample ([../lighting_research.md](../lighting_research.md)).\n\n";
+              "(docs/renderer.md); its far field toward a low sun (`reach=far`) was chosen, and its table\n"
+              "(`diffusion_models::clouds`) fitted, on the selection split of both fields, this field's\n"
+              "included: the selection presets' errors here are in-sample, the evaluation presets' out of\n"
+              "sample ([../lighting_research.md](../lighting_research.md)).\n\n";
     // One summary table: a value per variant and preset, optionally the truth's noise floor first.
     const auto summary_table = [&](const std::vector<std::vector<double>>& value, bool in_db, bool noise_row) {
         md << "| variant |";
@@ -747,7 +763,8 @@ const char* const fit_clouds_presets =
 
 int run_fit_clouds(int argc, char** argv) {
     const flags f(argc, argv, {"--fit", "--eval", "--variant", "--data", "--threads", "--cache", "--ridge", "--out", "--check"},
-                  {"--quiet"});
+                  {"--quiet", "--sky"});
+    const bool fit_sky = f.has("--sky");
     const std::vector<std::string> fit_list = split_list(f.get("--fit", fit_clouds_presets));
     const std::vector<std::string> eval_list = split_list(f.get("--eval", ""));
     if (fit_list.size() < 2) throw usage_error("--fit needs at least two shape:preset items (leave-one-out)");
@@ -792,9 +809,10 @@ int run_fit_clouds(int argc, char** argv) {
     const cr::cloud_textures textures = load_textures(f, quiet);
 
     namespace dl = cloudmath::diffusion_layout;
-    constexpr std::size_t n = cr::diffusion_feature_count;
-    std::vector<double> theta0(n);  // the homogeneous-media fit, what the ridge pulls toward
-    for (std::size_t i = 0; i < n; ++i)
+    constexpr std::size_t nm = cr::diffusion_feature_count;
+    const std::size_t n = nm + (fit_sky ? 2 : 0);
+    std::vector<double> theta0(n, 0.0);  // the homogeneous-media fit, what the ridge pulls toward
+    for (std::size_t i = 0; i < nm; ++i)
         theta0[i] = i < std::size_t(dl::table_size) ? double(cloudmath::diffusion_models::fitted.table[i])
                                                     : double(cloudmath::diffusion_models::fitted.peak[i - std::size_t(dl::table_size)]);
     std::ostringstream text;
@@ -825,17 +843,29 @@ int run_fit_clouds(int argc, char** argv) {
         const double w = 1.0 / (mean * mean * count);
         const glm::dvec3 sun(feat.sun_radiance);
         const double sun_sq = glm::dot(sun, sun);
+        std::vector<glm::dvec3> a(n);
         for (std::size_t px = 0; px < t.radiance.size(); ++px) {
-            const float* g = &feat.grad[px * n];
+            const float* g = &feat.grad[px * nm];
             const glm::dvec3 r(t.radiance[px].r - double(feat.fixed[px].r), t.radiance[px].g - double(feat.fixed[px].g),
                                t.radiance[px].b - double(feat.fixed[px].b));
-            const double sr = glm::dot(sun, r);
             e.c += w * glm::dot(r, r);
+            if (!fit_sky) {
+                const double sr = glm::dot(sun, r);
+                for (std::size_t i = 0; i < n; ++i) {
+                    if (g[i] == 0.0f) continue;
+                    e.b[i] += w * sr * double(g[i]);
+                    const double gi = w * sun_sq * double(g[i]);
+                    for (std::size_t j = 0; j <= i; ++j) e.A[i * n + j] += gi * double(g[j]);
+                }
+                continue;
+            }
+            for (std::size_t i = 0; i < nm; ++i) a[i] = sun * double(g[i]);
+            a[nm] = glm::dvec3(feat.ambient_top) * double(feat.sky[2 * px]);
+            a[nm + 1] = glm::dvec3(feat.ambient_bottom) * double(feat.sky[2 * px + 1]);
             for (std::size_t i = 0; i < n; ++i) {
-                if (g[i] == 0.0f) continue;
-                e.b[i] += w * sr * double(g[i]);
-                const double gi = w * sun_sq * double(g[i]);
-                for (std::size_t j = 0; j <= i; ++j) e.A[i * n + j] += gi * double(g[j]);
+                if (a[i] == glm::dvec3(0.0)) continue;
+                e.b[i] += w * glm::dot(a[i], r);
+                for (std::size_t j = 0; j <= i; ++j) e.A[i * n + j] += w * glm::dot(a[i], a[j]);
             }
         }
         for (std::size_t i = 0; i < n; ++i)
@@ -880,8 +910,9 @@ int run_fit_clouds(int argc, char** argv) {
     text << "# chosen ridge " << best_lambda << "; rms per fitted preset with it:";
     for (const normal_equations& e : eqs) text << ' ' << percent(e.rms_at(theta));
     text << "\nkind,index,value\n";
+    if (fit_sky) std::cout << "# sky scales - 1: top " << theta[nm] << ", bottom " << theta[nm + 1] << '\n';
     char line[96];
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < nm; ++i) {
         const bool table = i < std::size_t(dl::table_size);
         std::snprintf(line, sizeof line, "%s,%zu,%.9g\n", table ? "table" : "peak", table ? i : i - std::size_t(dl::table_size), theta[i]);
         text << line;
@@ -901,9 +932,9 @@ int run_fit_clouds(int argc, char** argv) {
             if (!value) throw std::runtime_error(path + ": malformed row '" + row + "'");
             stored.push_back(*value);
         }
-        if (stored.size() != n) throw std::runtime_error(path + ": " + std::to_string(stored.size()) + " numbers, want " + std::to_string(n));
+        if (stored.size() != nm) throw std::runtime_error(path + ": " + std::to_string(stored.size()) + " numbers, want " + std::to_string(nm));
         double worst = 0.0;
-        for (std::size_t i = 0; i < n; ++i) worst = std::max(worst, std::abs(stored[i] - theta[i]) / std::max(1.0, std::abs(theta[i])));
+        for (std::size_t i = 0; i < nm; ++i) worst = std::max(worst, std::abs(stored[i] - theta[i]) / std::max(1.0, std::abs(theta[i])));
         if (!(worst <= 1e-4)) {
             std::cerr << "fit-clouds --check: " << path << " differs from the refit by " << worst << '\n';
             return 1;
@@ -914,7 +945,7 @@ int run_fit_clouds(int argc, char** argv) {
     // Measured with the library function (clamps and all) on the --eval presets.
     cloudmath::diffusion_model m{};
     m.name = "clouds";
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < nm; ++i) {
         if (i < std::size_t(dl::table_size)) m.table[i] = float(theta[i]);
         else m.peak[i - std::size_t(dl::table_size)] = float(theta[i]);
     }
