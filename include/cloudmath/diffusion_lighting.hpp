@@ -46,6 +46,15 @@
 //           model states its measured error (diffusion_model below). The fitted weights may
 //           be negative (the fit is unconstrained); the two max(0, ...) keep every result a
 //           radiance, and the errors are measured with them.
+// Models:   diffusion_models::fitted (fitted to homogeneous spheres and slabs: 33% rms on
+//           the reference, 34-51% on the held-out rays; the model for homogeneous media),
+//           diffusion_models::clouds (the same model fitted to whole-cloud images: the example
+//           renderer against its path tracer on 10 selection images, cloudmath_volume_truth
+//           fit-clouds; on the images it never saw 14-20% excess rms at a high sun on the
+//           classic field, 21-26% on the detailed one, against 18-29% and 33-37% with
+//           `fitted`; worse on homogeneous media, 61% on the reference: use it for cloud
+//           fields, docs/lighting_research.md), diffusion_models::physical (no fit: plain
+//           diffusion). diffusion_models::all lists the homogeneous-media models.
 // Inputs:   optical depths >= 0 (negative values count as 0, values above 1e6 as 1e6: past
 //           that nothing changes in float); mu in [-1, 1] (clamped); g clamped to
 //           [-0.999, 0.999] like phase_hg; albedo clamped to [0, 1]. tau_behind = 0 and tau_view = 0 are valid (the

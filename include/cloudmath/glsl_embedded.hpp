@@ -373,8 +373,10 @@ float cm_nubis_density(vec4 base, vec3 detail, float coverage, float cloud_type,
 //                       phase function with eccentricities scaled by `scale` (1, 0.5, 0.8).
 //                       When defined, cm_diffusion_scattering_with(...) is available (the C++
 //                       generic form); g is then that phase function's mean cosine.
-// Models:   CM_DIFFUSION_MODEL_FITTED (the default), CM_DIFFUSION_MODEL_PHYSICAL (plain
-//           diffusion, for comparison), generated in diffusion_lighting_models.glsl.
+// Models:   CM_DIFFUSION_MODEL_FITTED (fitted to homogeneous media), CM_DIFFUSION_MODEL_CLOUDS
+//           (fitted to whole-cloud images: the one for cloud fields, the example renderer's
+//           default), CM_DIFFUSION_MODEL_PHYSICAL (plain diffusion, for comparison), generated
+//           in diffusion_lighting_models.glsl; errors in the C++ header.
 // GLSL 3.30 / ES 3.00: const arrays inside a struct, indexed at run time.
 #ifndef CM_DIFFUSION_LIGHTING_GLSL
 #define CM_DIFFUSION_LIGHTING_GLSL
@@ -418,10 +420,10 @@ float cm_diffusion_chord_fluence(float x, float y, float exp_neg_x, float kappa,
     } else {
         float e1 = exp(-k * a1);
         float e2 = exp(-k * a2);
-        float inv_denominator = 1.0 / cm_one_minus_exp_neg(2.0 * k * W);
-        R1 = e2 * cm_one_minus_exp_neg(2.0 * k * a1) * inv_denominator;
 )cm_glsl"
-     R"cm_glsl(        R2 = e1 * cm_one_minus_exp_neg(2.0 * k * a2) * inv_denominator;
+     R"cm_glsl(        float inv_denominator = 1.0 / cm_one_minus_exp_neg(2.0 * k * W);
+        R1 = e2 * cm_one_minus_exp_neg(2.0 * k * a1) * inv_denominator;
+        R2 = e1 * cm_one_minus_exp_neg(2.0 * k * a2) * inv_denominator;
         kQ1 = k * e2 * (1.0 + e1 * e1) * inv_denominator;
         kQ2 = k * e1 * (1.0 + e2 * e2) * inv_denominator;
     }
@@ -479,10 +481,10 @@ float cmi_diffusion_scattering_phases(float tau_sun, float tau_behind, float tau
     float gc = clamp(g, -0.999, 0.999);
     float w = clamp(albedo, 0.0, 1.0);
     vec2 medium = cm_diffusion_similarity(gc, w);
-    float ts = cmi_diffusion_depth(tau_sun);
-    float x = medium.x * ts;
 )cm_glsl"
-     R"cm_glsl(    float y = medium.x * cmi_diffusion_depth(tau_behind);
+     R"cm_glsl(    float ts = cmi_diffusion_depth(tau_sun);
+    float x = medium.x * ts;
+    float y = medium.x * cmi_diffusion_depth(tau_behind);
     float direct = exp(-ts);
     float e_half = exp(-0.5 * x);
     float e_one = e_half * e_half;

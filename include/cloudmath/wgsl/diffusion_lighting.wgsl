@@ -19,8 +19,10 @@
 //                       phase function with eccentricities scaled by `scale` (1, 0.5, 0.8).
 //                       When defined, cm_diffusion_scattering_with(...) is available (the C++
 //                       generic form); g is then that phase function's mean cosine.
-// Models:   CM_DIFFUSION_MODEL_FITTED (the default), CM_DIFFUSION_MODEL_PHYSICAL (plain
-//           diffusion, for comparison), generated in diffusion_lighting_models.glsl.
+// Models:   CM_DIFFUSION_MODEL_FITTED (fitted to homogeneous media), CM_DIFFUSION_MODEL_CLOUDS
+//           (fitted to whole-cloud images: the one for cloud fields, the example renderer's
+//           default), CM_DIFFUSION_MODEL_PHYSICAL (plain diffusion, for comparison), generated
+//           in diffusion_lighting_models.glsl; errors in the C++ header.
 // GLSL 3.30 / ES 3.00: const arrays inside a struct, indexed at run time.
 
 fn cmi_diffusion_depth(tau: f32) -> f32 { return clamp(tau, 0.0, 1e6); }
