@@ -50,9 +50,9 @@
 //           the reference, 34-51% on the held-out rays; the model for homogeneous media),
 //           diffusion_models::clouds (the same model fitted to whole-cloud images: the example
 //           renderer against its path tracer on 10 selection images, cloudmath_volume_truth
-//           fit-clouds; on the images it never saw 14-20% excess rms at a high sun on the
-//           classic field, 21-26% on the detailed one, against 18-29% and 33-37% with
-//           `fitted`; worse on homogeneous media, 61% on the reference: use it for cloud
+//           fit-clouds; on the images it never saw 15-21% excess rms at a high sun on the
+//           classic field, 22-25% on the detailed one, against 18-29% and 32-33% with
+//           `fitted`; worse on homogeneous media, 59% on the reference: use it for cloud
 //           fields, docs/lighting_research.md), diffusion_models::physical (no fit: plain
 //           diffusion). diffusion_models::all lists the homogeneous-media models.
 // Inputs:   optical depths >= 0 (negative values count as 0, values above 1e6 as 1e6: past

@@ -127,9 +127,11 @@ x,y,r,g,b,se_r,se_g,se_b'
 endif()
 
 if(CLOUDMATH_BUILD_TESTS)
-  # The documented whole-cloud errors (docs/lighting_truth.md's summary table) are what the
-  # renderer's variants give against the stored truth images (docs/data/truth_*.csv): the
-  # report rerun from the stored data by scripts/truth.sh --check (about 10 s).
+  # The documented whole-cloud errors (docs/lighting_truth.md's summary table: the default's
+  # row and the table before it) are what the renderer gives against the stored truth images
+  # (docs/data/truth_*.csv), and the whole-cloud fit (docs/data/diffusion_clouds.txt) is what
+  # the stored truths give: rerun from the stored data by scripts/truth.sh --check (about a
+  # minute each on 2 cores: 8 frames per image).
   add_test(NAME reference.volume_truth_report
     COMMAND bash "${PROJECT_SOURCE_DIR}/scripts/truth.sh" --check $<TARGET_FILE:cloudmath_volume_truth>
             --cache "${CMAKE_CURRENT_BINARY_DIR}/truth_texture_cache")
