@@ -209,10 +209,16 @@ struct pixel_program {
                         : cm::multiple_scattering_with(tau_light, mu, k.ms_a, k.ms_b, k.ms_c, v.octaves, phase_fn);
         if (v.powder) sun *= glm::mix(2.0f * cm::powder(tau_light, 2.0f), 1.0f, 0.5f + 0.5f * mu);
         if (!v.occluded_ambient) return k.sun_radiance * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
-        // Vertical optical depths above and below from the slanted light estimates.
+        const vec2 o = sky_occlusion(tau_light, tau_behind);
+        return k.sun_radiance * sun + glm::mix(k.ambient_bottom * o.y, k.ambient_top * o.x, h);
+    }
+
+    // variant::occluded_ambient: what reaches the sample of the sky light from above (x) and
+    // below (y), diffuse_transmittance of the vertical optical depths estimated from the
+    // slanted light estimates (times the sun's elevation sine).
+    vec2 sky_occlusion(float tau_light, float tau_behind) const {
         const float up = std::max(k.sun_dir.y, 0.0f);
-        return k.sun_radiance * sun + glm::mix(k.ambient_bottom * cm::diffuse_transmittance(tau_behind * up, phase_g_mean),
-                                               k.ambient_top * cm::diffuse_transmittance(tau_light * up, phase_g_mean), h);
+        return {cm::diffuse_transmittance(tau_light * up, phase_g_mean), cm::diffuse_transmittance(tau_behind * up, phase_g_mean)};
     }
 
     // One sample's share of the pixel's gradient (shade_linear's grad): its source is
@@ -237,7 +243,8 @@ struct pixel_program {
     // transmittance-weighted distance, 0 where the ray meets no cloud (out_depth).
     // grad (optional, diffusion model): adds d(radiance) / d(fitted number) over sun_radiance
     // for the model's table then peak weights (diffusion_feature_count), the max(0, ...)
-    // clamps ignored (render_cpu_diffusion_features).
+    // clamps ignored, and to sky (given with grad) the sky light's weights from above and
+    // below (render_cpu_diffusion_features).
     vec4 shade_linear(int x, int y, int width, int height, reads* counted = nullptr, float* depth = nullptr,
                       float* grad = nullptr, float* sky = nullptr) const {
         long* view_reads = counted ? &counted->view : nullptr;
@@ -316,15 +323,13 @@ struct pixel_program {
                                                  : 0.0f;
                     const float h = cm::height_fraction(alts, s.layer_bottom, s.layer_top);
                     const vec3 S = (s.albedo * sigma_t) * in_scattering(tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu, h);
-                    if (grad != nullptr) add_gradient(grad, acc.transmittance.r * s.albedo * sigma_t *
-                                                                    cm::integrate_scattering(1.0f, sigma_t, ds),
-                                                      tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu);
-                    if (sky != nullptr) {
+                    if (grad != nullptr) {
+                        // This step's weight in the pixel per unit source (add_segment's).
                         const float w = acc.transmittance.r * s.albedo * sigma_t * cm::integrate_scattering(1.0f, sigma_t, ds);
-                        const float up = std::max(k.sun_dir.y, 0.0f);
-                        const float occluded = v.occluded_ambient ? 1.0f : 0.0f;
-                        sky[0] += w * h * glm::mix(1.0f, cm::diffuse_transmittance(tau_light * up, phase_g_mean), occluded);
-                        sky[1] += w * (1.0f - h) * glm::mix(1.0f, cm::diffuse_transmittance(tau_behind * up, phase_g_mean), occluded);
+                        add_gradient(grad, w, tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu);
+                        const vec2 o = v.occluded_ambient ? sky_occlusion(tau_light, tau_behind) : vec2(1.0f);
+                        sky[0] += w * h * o.x;
+                        sky[1] += w * (1.0f - h) * o.y;
                     }
                     tau_view += sigma_t * ds;
                     const float before = acc.transmittance.r;  // grey extinction: every channel alike
@@ -445,9 +450,9 @@ diffusion_features render_cpu_diffusion_features(const scene& s, const variant& 
     });
     f.ambient_top = program.k.ambient_top;
     f.ambient_bottom = program.k.ambient_bottom;
+    f.sun_radiance = program.k.sun_radiance;
     f.fixed.reserve(fixed.pixels.size());
     for (const vec4& c : fixed.pixels) f.fixed.emplace_back(c);
-    f.sun_radiance = make_frame_constants(s).sun_radiance;
     return f;
 }
 

@@ -16,7 +16,7 @@ target_link_libraries(cloudmath_volume_tracer_lib PUBLIC cloudmath_montecarlo_li
 
 add_executable(cloudmath_volume_truth volume_truth_main.cpp)
 cloudmath_reference_target(cloudmath_volume_truth)
-target_link_libraries(cloudmath_volume_truth PRIVATE cloudmath_volume_tracer_lib)
+target_link_libraries(cloudmath_volume_truth PRIVATE cloudmath_volume_tracer_lib cloudmath_lighting_lib)  # read_clouds_model
 
 if(CLOUDMATH_BUILD_TESTS)
   cloudmath_reference_test(volume_tracer test_volume_tracer.cpp)

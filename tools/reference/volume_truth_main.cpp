@@ -42,6 +42,7 @@
 #include "cli_main.hpp"
 #include "cloud_medium.hpp"
 #include "cpu_renderer.hpp"
+#include "lighting_diffusion.hpp"
 #include "image.hpp"
 #include "phase_table.hpp"
 #include "strict_number.hpp"
@@ -736,6 +737,15 @@ int run_report(int argc, char** argv) {
 // on whole-cloud truth images, each preset weighted by 1 / (its mean^2 x its values), ridge
 // toward the homogeneous-media fit (diffusion_models::fitted); leave-one-preset-out over
 // the fit's presets chooses the ridge.
+// Fitted number i of a model: its table, then its peak weights (cr::diffusion_feature_count).
+constexpr auto model_table_size = static_cast<std::size_t>(cloudmath::diffusion_layout::table_size);
+float& model_number(cloudmath::diffusion_model& m, std::size_t i) {
+    return i < model_table_size ? m.table[i] : m.peak[i - model_table_size];
+}
+float model_number(const cloudmath::diffusion_model& m, std::size_t i) {
+    return i < model_table_size ? m.table[i] : m.peak[i - model_table_size];
+}
+
 struct normal_equations {
     std::vector<double> A, b;  // count^2, count
     double c = 0.0;            // sum of squared residuals at theta = 0
@@ -837,13 +847,11 @@ int run_fit_clouds(int argc, char** argv) {
     for (std::size_t i = 0; i < fit_list.size(); ++i) load(fit_list[i], fit_data[i].first, fit_data[i].second);
     const cr::cloud_textures textures = load_textures(f, quiet);
 
-    namespace dl = cloudmath::diffusion_layout;
     constexpr std::size_t nm = cr::diffusion_feature_count;
     const std::size_t n = nm + (fit_sky ? 2 : 0);
     std::vector<double> theta0(n, 0.0);  // the homogeneous-media fit, what the ridge pulls toward
     for (std::size_t i = 0; i < nm; ++i)
-        theta0[i] = i < std::size_t(dl::table_size) ? double(cloudmath::diffusion_models::fitted.table[i])
-                                                    : double(cloudmath::diffusion_models::fitted.peak[i - std::size_t(dl::table_size)]);
+        theta0[i] = double(model_number(cloudmath::diffusion_models::fitted, i));
     std::ostringstream text;
     text << "# cloudmath whole-cloud fit of the diffusion model's table and peak weights\n"
          << "# (cloudmath_volume_truth fit-clouds, bash scripts/truth.sh --fit; read by cloudmath_lighting_error\n"
@@ -956,28 +964,20 @@ int run_fit_clouds(int argc, char** argv) {
     if (fit_sky) std::cout << "# sky scales - 1: top " << theta[nm] << ", bottom " << theta[nm + 1] << '\n';
     char line[96];
     for (std::size_t i = 0; i < nm; ++i) {
-        const bool table = i < std::size_t(dl::table_size);
-        std::snprintf(line, sizeof line, "%s,%zu,%.9g\n", table ? "table" : "peak", table ? i : i - std::size_t(dl::table_size), theta[i]);
+        const bool table = i < model_table_size;
+        std::snprintf(line, sizeof line, "%s,%zu,%.9g\n", table ? "table" : "peak", table ? i : i - model_table_size, theta[i]);
         text << line;
     }
     std::cout << text.str();
     if (f.has("--check")) {
-        // The stored fit is this one: every number within 1e-4 (relative to max(1, |value|)).
+        // The stored fit is this one: every number within 1e-4 (relative to max(1, |value|)),
+        // read as fit-diffusion reads it into the headers.
         const std::string path = f.get("--check", "");
-        std::ifstream in(path);
-        if (!in) throw std::runtime_error("cannot read " + path);
-        std::vector<double> stored;
-        std::string row;
-        while (std::getline(in, row)) {
-            const std::size_t c2 = row.rfind(',');
-            if (row.empty() || row[0] == '#' || row.rfind("kind,", 0) == 0 || c2 == std::string::npos) continue;
-            const std::optional<double> value = cloudmath::tools::parse_finite(row.substr(c2 + 1));
-            if (!value) throw std::runtime_error(path + ": malformed row '" + row + "'");
-            stored.push_back(*value);
-        }
-        if (stored.size() != nm) throw std::runtime_error(path + ": " + std::to_string(stored.size()) + " numbers, want " + std::to_string(nm));
+        const cloudmath::diffusion_model stored = cloudmath::reference::lighting::read_clouds_model(path);
         double worst = 0.0;
-        for (std::size_t i = 0; i < nm; ++i) worst = std::max(worst, std::abs(stored[i] - theta[i]) / std::max(1.0, std::abs(theta[i])));
+        for (std::size_t i = 0; i < nm; ++i) {
+            worst = std::max(worst, std::abs(double(model_number(stored, i)) - theta[i]) / std::max(1.0, std::abs(theta[i])));
+        }
         if (!(worst <= 1e-4)) {
             std::cerr << "fit-clouds --check: " << path << " differs from the refit by " << worst << '\n';
             return 1;
@@ -988,10 +988,7 @@ int run_fit_clouds(int argc, char** argv) {
     // Measured with the library function (clamps and all) on the --eval presets.
     cloudmath::diffusion_model m{};
     m.name = "clouds";
-    for (std::size_t i = 0; i < nm; ++i) {
-        if (i < std::size_t(dl::table_size)) m.table[i] = float(theta[i]);
-        else m.peak[i - std::size_t(dl::table_size)] = float(theta[i]);
-    }
+    for (std::size_t i = 0; i < nm; ++i) model_number(m, i) = float(theta[i]);
     for (const std::string& item : eval_list) {
         cr::scene s;
         truth_image t;
