@@ -126,11 +126,14 @@ TEST_CASE_TEMPLATE("fuzz lighting: octaves and the diffusion model inside their 
         const T m = cm::multiple_scattering(tau, mu, g, r.unit(), r.unit(), r.unit(), 1 + int(r.unit() * T(7)));
         CHECK(ok(m));
         CHECK(m >= T(0));
-        const T d = cm::diffusion_scattering(tau, std::fabs(r.any()), std::fabs(r.any()), mu, g, r.unit(),
-                                             cm::diffusion_models::fitted);
-        CAPTURE(tau);
-        CHECK(ok(d));
-        CHECK(d >= T(0));
+        // The homogeneous-media fit and the whole-cloud fit (the example renderer's default).
+        const T tb = std::fabs(r.any()), tv = std::fabs(r.any()), albedo = r.unit();
+        for (const cm::diffusion_model* model : {&cm::diffusion_models::fitted, &cm::diffusion_models::clouds}) {
+            const T d = cm::diffusion_scattering(tau, tb, tv, mu, g, albedo, *model);
+            CAPTURE(tau);
+            CHECK(ok(d));
+            CHECK(d >= T(0));
+        }
     }
 }
 
