@@ -62,6 +62,8 @@ fi
 mkdir -p docs/images
 report=$(build/peer/bench/peer/cloudmath_peer_bench --peer "$peer" "${args[@]}" \
   --cache build/peer/texture-cache --images docs/images)
+cmake --build build/peer --target cloudmath_cloud_renderer >> "$log" 2>&1
+cost=$(bash scripts/shader-cost.sh build/peer/examples/cloud_renderer/cloudmath_cloud_renderer --peer "$peer")
 
 {
   echo "# Our renderer against a peer's: TerrainEngine-OpenGL's volumetric clouds"
@@ -87,6 +89,11 @@ report=$(build/peer/bench/peer/cloudmath_peer_bench --peer "$peer" "${args[@]}" 
   echo "toward the sun at each step in cloud and stops at transmittance 0.1; it relies on a later blur pass"
   echo "(not timed) to hide its 4 x 4 Bayer start offsets, visible in its raw image below. Our reads are counted"
   echo "on the CPU twin of our shader, the peer's on the GPU; each over the pixels that its own renderer marches."
+  echo
+  echo "Static cost of the shaders (\`bash scripts/shader-cost.sh\`): SPIR-V instructions in function bodies after"
+  echo "\`spirv-opt -O\`, texture operations and loops, each counted once where it is written (not a timing):"
+  echo
+  echo "$cost"
   echo
   echo "Images: the peer's \`fragColor\` image clamped to [0, 1] and written as 8-bit values unchanged (it is"
   echo "already a display colour; the engine's post pass adds only a blur, a vignette and the terrain), ours"

@@ -70,6 +70,7 @@ bench=$("$renderer" --bench --preset ground "${common[@]}")
 # Convergence at 160 x 90 on the CPU (the reference takes 1024 view steps and 128-step light
 # marches: about 10 minutes on 2 cores for the seven presets).
 convergence=$("$renderer" --convergence --width 160 --height 90 --cache build/main/texture-cache --quiet)
+cost=$(bash scripts/shader-cost.sh "$renderer")
 
 {
   echo "# The example cloud renderer: scenes, variants and timings"
@@ -145,5 +146,13 @@ convergence=$("$renderer" --convergence --width 160 --height 90 --cache build/ma
   echo "\`cloudmath_cloud_renderer --bench --preset ground --width $width --height $height\`:"
   echo
   echo "$bench" | grep -v '^wrote'
+  echo
+  echo "## Static cost of the fragment shader"
+  echo
+  echo "\`bash scripts/shader-cost.sh $renderer\` (the peer's row: [peer_bench.md](peer_bench.md)). SPIR-V"
+  echo "instructions in function bodies after \`spirv-opt -O\`, texture operations and loops, each counted"
+  echo "once where it is written (a static count, not a timing):"
+  echo
+  echo "$cost"
 } > docs/renderer.md
 echo "render-docs: wrote docs/renderer.md and docs/images/clouds_*.png"

@@ -205,18 +205,21 @@ int run(const options& o) {
     // The previous default drew the classic density field (scene.hpp's cloud_shape).
     scene classic = sc;
     classic.shape = cloud_shape::classic;
-    const auto full_frame = [&](const scene& s, const variant& v, image& img) {
-        return [&ours, &o, sp = &s, vp = &v, ip = &img](double& ms, std::string& w) {
+    // compile_time: the default, one permutation compiled in; false: the run-time uber-shader.
+    const auto full_frame = [&](const scene& s, const variant& v, image& img, bool compile_time) {
+        return [&ours, &o, sp = &s, vp = &v, ip = &img, compile_time](double& ms, std::string& w) {
             frame_timing t;
-            const bool ok = ours->render(*sp, *vp, false, o.width, o.height, *ip, &t, w);
+            const bool ok = ours->render(*sp, *vp, compile_time, o.width, o.height, *ip, &t, w);
             ms = t.wall_ms;
             return ok;
         };
     };
-    timed_row peer_row, ours_default, ours_temporal, ours_octaves;
+    timed_row peer_row, ours_default, ours_temporal, ours_octaves, ours_runtime;
+    image ours_runtime_img;
     peer_row.frame = [&peer](double& ms, std::string& w) { return peer->dispatch(ms, w); };
-    ours_default.frame = full_frame(sc, defaults, ours_default_img);
-    ours_octaves.frame = full_frame(classic, octaves, ours_octaves_img);
+    ours_default.frame = full_frame(sc, defaults, ours_default_img, true);
+    ours_octaves.frame = full_frame(classic, octaves, ours_octaves_img, true);
+    ours_runtime.frame = full_frame(sc, defaults, ours_runtime_img, false);
     // Temporal: frames count up from 0; the first 16 fill the history, 16 onward are timed
     // (both passes: the 1-in-16 shading pass and the resolve).
     std::uint32_t temporal_frame = 0;
@@ -226,13 +229,13 @@ int run(const options& o) {
         scene s = sc;
         s.frame = temporal_frame++;
         frame_timing t;
-        const bool ok = ours->render_temporal(s, defaults, false, o.width, o.height, ours_temporal_img, &t, w);
+        const bool ok = ours->render_temporal(s, defaults, true, o.width, o.height, ours_temporal_img, &t, w);
         ms = t.wall_ms;
         return ok;
     };
     const double load_before = load_average();
-    if (!o.quiet) std::fprintf(stderr, "peer-bench: timing 4 rows, %d rounds\n", o.frames);
-    if (!time_rows({&peer_row, &ours_default, &ours_temporal, &ours_octaves}, o.frames, why)) return fail(why);
+    if (!o.quiet) std::fprintf(stderr, "peer-bench: timing 5 rows, %d rounds\n", o.frames);
+    if (!time_rows({&peer_row, &ours_default, &ours_temporal, &ours_octaves, &ours_runtime}, o.frames, why)) return fail(why);
     const double load_after = load_average();
     if (!peer->read_image(peer_img, why)) return fail(why);
     if (!o.quiet)
@@ -278,9 +281,11 @@ int run(const options& o) {
                 "heading %.0f deg), imposed on both; the peer keeps its own clouds, sky and camera height (800 m).\n\n",
                 sc.name.c_str(), double(sc.yaw), double(sc.pitch), double(sc.fov_y), double(sc.sun_elevation),
                 double(sc.sun_azimuth));
-    std::printf("| Renderer | One frame | ms per frame |\n|---|---|---:|\n");
-    const auto row = [](const char* who, const char* what, const timed_row& r) {
-        std::printf("| %s | %s | %.1f (%.1f-%.1f) |\n", who, what, r.median_ms, r.min_ms, r.max_ms);
+    std::printf("| Renderer | One frame | ms per frame | against the peer |\n|---|---|---:|---:|\n");
+    // The ratio of medians measured in the same interleaved rounds (the number to compare).
+    const auto row = [&peer_row](const char* who, const char* what, const timed_row& r) {
+        std::printf("| %s | %s | %.1f (%.1f-%.1f) | %.2fx |\n", who, what, r.median_ms, r.min_ms, r.max_ms,
+                    r.median_ms / peer_row.median_ms);
     };
     row("peer: TerrainEngine-OpenGL `volumetric_clouds.comp`",
         "one compute dispatch at full resolution (64 view steps, 6-sample light cone; warm-up: 1 dispatch)", peer_row);
@@ -289,6 +294,8 @@ int run(const options& o) {
     char octaves_label[160];
     std::snprintf(octaves_label, sizeof octaves_label, "`gl_renderer::render` with `%s`, `--shape classic` (warm-up: 1 frame)", octaves_spec);
     row("ours: previous default", octaves_label, ours_octaves);
+    row("ours: default, run-time uber-shader", "`gl_renderer::render` with the variant as uniforms (`--run-time`; warm-up: 1 frame)",
+        ours_runtime);
 
     char light_text[320];
     if (reads.light_attributed)

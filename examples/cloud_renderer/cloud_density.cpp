@@ -129,7 +129,10 @@ float cloud_density::coarse_density(vec3 p, float alt, long* texture_reads, floa
 }
 
 float cloud_density::density(vec3 p, float alt, long* texture_reads, float footprint) const {
-    const float covered = base_density(p, alt, texture_reads, footprint);
+    return detail_density(p, alt, base_density(p, alt, texture_reads, footprint), texture_reads, footprint);
+}
+
+float cloud_density::detail_density(vec3 p, float alt, float covered, long* texture_reads, float footprint) const {
     if (covered <= 0.0f) return 0.0f;
     if (texture_reads) *texture_reads += 1;
     const float h = cm::height_fraction(alt, s_.layer_bottom, s_.layer_top);

@@ -62,6 +62,10 @@ public:
     // upper bound of density() from the weather map and the base volume only (2 reads inside
     // the layer, none outside).
     float base_density(glm::vec3 p, float alt, long* texture_reads = nullptr, float footprint = 0.0f) const;
+    // The detail's erosion of the base shape `covered` (base_density's value at p): density()
+    // is detail_density(p, alt, base_density(p, alt)) (cr_detail_density; the detail volume,
+    // and the curl map for the detailed shape, read only where covered > 0).
+    float detail_density(glm::vec3 p, float alt, float covered, long* texture_reads = nullptr, float footprint = 0.0f) const;
     // A cheap stand-in for density() from the base shape alone (cr_coarse_density): the base
     // density, with the detailed shape scaled by density_scale and saturated like density()
     // (2 reads; an upper bound of density()).

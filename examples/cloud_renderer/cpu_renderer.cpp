@@ -9,6 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <thread>
@@ -34,10 +35,22 @@ void bilinear_taps(vec4 fp, int width, int height, Tap tap) {
         }
 }
 
+// A view sample in cloud, recorded by the march for the light pass (clouds.frag's CrLitSample).
+struct lit_sample {
+    float t;              // distance along the view ray
+    float sigma_t;        // extinction
+    float ds;             // length of its step
+    float tau_view;       // optical depth from the camera to the step's middle
+    float transmittance;  // the view's transmittance in front of the step
+};
+
 // The shader's functions (cr_*), with the uniforms as members.
 struct pixel_program {
     const scene& s;
     const variant& v;
+    // Samples the march records before the light pass runs (1..lit_samples): the shader's
+    // CR_LIT_SAMPLES; render_cpu_lit_capacity sets others, which must give the same image.
+    int lit_capacity = lit_samples;
     frame_constants k;
     cloud_density field;
     cm::mie_approx_parameters<float> mie;
@@ -272,78 +285,117 @@ struct pixel_program {
             float tau_view = 0.0f;    // optical depth from the camera to the start of the step
             float depth_sum = 0.0f;   // sum of each step's opacity times its distance
             float step_begin = seg.x; // = at(0), for both schedules
+            float step_end = seg.x;   // the end of view step i, once its sample is taken
             int empty_steps = skip_block;  // empty-space skipping starts by probing
             float last_empty = -1.0f;      // the last view sample (or skipped block's end) with no cloud
             std::uint32_t light_index = 0; // light estimates so far (their jitter's index)
-            for (int i = 0; i < v.view_steps; ++i) {
-                if (v.skip && empty_steps >= skip_block) {
-                    // Probe the next block of steps with the base shape at a jittered point;
-                    // step over it when empty, else march it in full steps.
-                    const int j = std::min(i + skip_block, v.view_steps);
-                    const float tp = at((float(i) + offset * float(j - i)) / n);
-                    const float altp = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, tp);
-                    if (field.base_density(dir * tp, altp, view_reads, footprint_at(tp, height)) <= 0.0f) {
-                        step_begin = at(float(j) / n);
-                        last_empty = step_begin;
-                        i = j - 1;
-                        continue;
-                    }
-                    empty_steps = 0;
-                }
-                const float t = at((float(i) + offset) / n);
-                const float step_end = at((float(i) + 1.0f) / n);
-                const float alt = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, t);
-                const float d = density(dir * t, alt, view_reads, footprint_at(t, height));
-                if (d <= 0.0f) {
-                    last_empty = t;
-                    step_begin = step_end;
-                    ++empty_steps;
-                    continue;
-                }
-                // Refinement (variant::refine): a step thicker than optical depth 1 is
-                // marched again in sub-steps, from the last empty sample when it is the
-                // first step in cloud; its sample above then only told that it has cloud.
-                const float r0 = empty_steps > 0 && last_empty >= 0.0f ? last_empty : step_begin;
-                const int sub = cm::refine_substeps(s.extinction * d * (step_end - r0), v.refine);
-                const float from = sub > 1 ? r0 : step_begin, ds = (step_end - from) / float(sub);
-                empty_steps = 0;
-                bool opaque = false;
-                for (int m = 0; m < sub && !opaque; ++m) {
-                    const float ts = sub > 1 ? from + (float(m) + offset) * ds : t;
-                    const float alts = sub > 1 ? cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, ts) : alt;
-                    const float footprint = footprint_at(ts, height);
-                    const float dm = sub > 1 ? density(dir * ts, alts, view_reads, footprint) : d;
-                    if (dm <= 0.0f) continue;
-                    const float sigma_t = s.extinction * dm;
+            // The light pass (cr_light_samples): each recorded sample's light estimates and
+            // source, added with its transmittance in the march's order.
+            const auto light_samples = [&](const lit_sample* samples, int count) {
+                for (int q = 0; q < count; ++q) {
+                    const lit_sample& e = samples[q];
+                    const float alts = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, e.t);
+                    const float footprint = footprint_at(e.t, height);
                     // The light march's offset: new for each light estimate and frame.
                     const float lo = v.jitter && v.light_jitter ? cm::sample_jitter(pixel_hash, s.frame, light_index++) : 0.5f;
-                    const float tau_light = light_optical_depth(dir * ts, alts, k.sun_dir, v.light, light_reads, footprint, lo);
+                    const float tau_light = light_optical_depth(dir * e.t, alts, k.sun_dir, v.light, light_reads, footprint, lo);
                     const float tau_behind = v.lighting == lighting_model::diffusion
-                                                 ? light_optical_depth(dir * ts, alts, -k.sun_dir, v.behind, light_reads, footprint, lo)
+                                                 ? light_optical_depth(dir * e.t, alts, -k.sun_dir, v.behind, light_reads, footprint, lo)
                                                  : 0.0f;
                     const float h = cm::height_fraction(alts, s.layer_bottom, s.layer_top);
-                    const vec3 S = (s.albedo * sigma_t) * in_scattering(tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu, h);
+                    const vec3 S = (s.albedo * e.sigma_t) * in_scattering(tau_light, tau_behind, e.tau_view, mu, h);
                     if (grad != nullptr) {
                         // This step's weight in the pixel per unit source (add_segment's).
-                        const float w = acc.transmittance.r * s.albedo * sigma_t * cm::integrate_scattering(1.0f, sigma_t, ds);
-                        add_gradient(grad, w, tau_light, tau_behind, tau_view + 0.5f * sigma_t * ds, mu);
+                        const float w = e.transmittance * s.albedo * e.sigma_t * cm::integrate_scattering(1.0f, e.sigma_t, e.ds);
+                        add_gradient(grad, w, tau_light, tau_behind, e.tau_view, mu);
                         const vec2 o = v.occluded_ambient ? sky_occlusion(tau_light, tau_behind) : vec2(1.0f);
                         sky[0] += w * h * o.x;
                         sky[1] += w * (1.0f - h) * o.y;
                     }
-                    tau_view += sigma_t * ds;
-                    const float before = acc.transmittance.r;  // grey extinction: every channel alike
-                    if (v.integration == integration_mode::analytic) {
-                        acc.add_segment(S, sigma_t, ds);
-                    } else {
-                        acc.luminance += acc.transmittance * S * ds;  // the textbook Riemann sum
-                        acc.transmittance *= cm::beer_lambert(sigma_t * ds);
+                    // Energy-conserving (add_segment's source term), or the textbook Riemann
+                    // sum: the source at full strength over the whole step.
+                    acc.luminance += v.integration == integration_mode::analytic
+                                         ? vec3(e.transmittance) * cm::integrate_scattering(S, e.sigma_t, e.ds)
+                                         : vec3(e.transmittance) * S * e.ds;
+                }
+            };
+            // The march: one flat loop with one density sample per turn (clouds.frag's main):
+            // view step i's sample, a probe of the next block (variant::skip), or sub-step m
+            // of the refined step i (variant::refine: a step thicker than optical depth 1 is
+            // marched again in `sub` sub-steps of sub_ds from sub_from, the last empty sample
+            // when it is the first step in cloud). It records the samples in cloud, and the
+            // light pass lights them whenever lit_capacity are recorded and at the end.
+            std::array<lit_sample, lit_samples> recorded{};
+            const int capacity = std::clamp(lit_capacity, 1, lit_samples);
+            int i = 0, m = 0, sub = 0;
+            float sub_from = 0.0f, sub_ds = 0.0f;
+            bool opaque = false;
+            for (;;) {
+                int count = 0;
+                while (!opaque && count < capacity && (m < sub || i < v.view_steps)) {
+                    const bool refining = m < sub;
+                    const bool probe = !refining && v.skip && empty_steps >= skip_block;
+                    const int j = std::min(i + skip_block, v.view_steps);  // the probed block's end
+                    const float t = refining ? sub_from + (float(m) + offset) * sub_ds
+                                    : probe  ? at((float(i) + offset * float(j - i)) / n)
+                                             : at((float(i) + offset) / n);
+                    const float alt = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, t);
+                    const float footprint = footprint_at(t, height);
+                    // The probe reads the base shape alone; one that finds cloud resumes full steps.
+                    const float covered = field.base_density(dir * t, alt, view_reads, footprint);
+                    const float d = probe ? covered : field.detail_density(dir * t, alt, covered, view_reads, footprint);
+                    float ds = 0.0f;
+                    if (probe) {
+                        if (d <= 0.0f) {  // empty: step over the block
+                            step_begin = at(float(j) / n);
+                            last_empty = step_begin;
+                            i = j;
+                        } else {
+                            empty_steps = 0;
+                        }
+                        continue;
                     }
-                    depth_sum += (before - acc.transmittance.r) * ts;
+                    if (refining) {
+                        ds = sub_ds;
+                        if (++m == sub) {
+                            step_begin = step_end;
+                            ++i;
+                        }
+                        if (d <= 0.0f) continue;
+                    } else {
+                        step_end = at((float(i) + 1.0f) / n);
+                        if (d <= 0.0f) {
+                            last_empty = t;
+                            step_begin = step_end;
+                            ++empty_steps;
+                            ++i;
+                            continue;
+                        }
+                        const float r0 = empty_steps > 0 && last_empty >= 0.0f ? last_empty : step_begin;
+                        const int n_sub = cm::refine_substeps(s.extinction * d * (step_end - r0), v.refine);
+                        empty_steps = 0;
+                        if (n_sub > 1) {  // march the step again in sub-steps, from the next turn
+                            sub = n_sub;
+                            m = 0;
+                            sub_from = r0;
+                            sub_ds = (step_end - r0) / float(n_sub);
+                            continue;
+                        }
+                        ds = step_end - step_begin;
+                        step_begin = step_end;
+                        ++i;
+                    }
+                    // A sample in cloud: record it for the light pass, and take its transmittance.
+                    const float sigma_t = s.extinction * d;
+                    const float before = acc.transmittance.r;  // grey extinction: every channel alike
+                    recorded[static_cast<std::size_t>(count++)] = {t, sigma_t, ds, tau_view + 0.5f * sigma_t * ds, before};
+                    tau_view += sigma_t * ds;
+                    acc.transmittance *= cm::beer_lambert(sigma_t * ds);
+                    depth_sum += (before - acc.transmittance.r) * t;
                     opaque = acc.is_opaque(k.min_transmittance);
                 }
-                step_begin = step_end;
-                if (opaque) break;
+                light_samples(recorded.data(), count);
+                if (opaque || count < capacity) break;
             }
             // Aerial perspective: the air between the camera and the cloud's
             // transmittance-weighted depth dims its light and adds the horizon's haze in
@@ -427,6 +479,13 @@ texture_read_stats count_texture_reads(const scene& s, const variant& v, const c
     st.p95 = totals[std::min(totals.size() - 1, static_cast<std::size_t>(0.95 * double(totals.size())))];
     st.light_share = view + light > 0.0 ? light / (view + light) : 0.0;
     return st;
+}
+
+image render_cpu_lit_capacity(const scene& s, const variant& v, const cloud_textures& textures, int width, int height,
+                              int capacity, unsigned threads) {
+    pixel_program program(s, v, textures);
+    program.lit_capacity = capacity;
+    return render_rows(width, height, threads, [&](int x, int y) { return program.shade_linear(x, y, width, height); });
 }
 
 image render_cpu_linear(const scene& s, const variant& v, const cloud_textures& textures, int width, int height,

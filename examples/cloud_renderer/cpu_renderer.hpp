@@ -41,6 +41,10 @@ texture_read_stats count_texture_reads(const scene& s, const variant& v, const c
 
 image render_cpu_linear(const scene& s, const variant& v, const cloud_textures& textures, int width, int height,
                         unsigned threads = 0);
+// render_cpu_linear with the light pass run every `capacity` recorded samples (1..lit_samples)
+// instead of every lit_samples: the same image for any capacity (the overflow rule's test).
+image render_cpu_lit_capacity(const scene& s, const variant& v, const cloud_textures& textures, int width, int height,
+                              int capacity, unsigned threads = 0);
 
 // The diffusion model's radiance as a linear function of its fitted numbers (the table, then
 // the peak weights of diffusion_lighting.hpp), for fitting them to whole-cloud images: per

@@ -37,8 +37,9 @@ struct shader_int {
     const char* name;
     int value;
 };
-std::vector<shader_int> variant_values(const variant& v) {
-    return {{"u_phase_model", static_cast<int>(v.phase)},
+std::vector<shader_int> variant_values(const variant& v, cloud_shape shape) {
+    return {{"u_shape", static_cast<int>(shape)},
+            {"u_phase_model", static_cast<int>(v.phase)},
             // 0 octaves, 1 diffusion with diffusion_models::clouds, 2 with ::fitted
             {"u_lighting", v.lighting == lighting_model::octaves ? 0 : v.table == diffusion_table::clouds ? 1 : 2},
             {"u_octaves", v.octaves},
@@ -76,11 +77,11 @@ std::string with_cloudmath(std::string body) {
 
 }  // namespace
 
-std::string fragment_shader_source(const variant& v, bool compile_time) {
+std::string fragment_shader_source(const variant& v, cloud_shape shape, bool compile_time) {
     std::string head = "#version 410 core\n";
     if (compile_time) {
         head += "#define CR_PARAM(type, name)\n";
-        for (const shader_int& c : variant_values(v))
+        for (const shader_int& c : variant_values(v, shape))
             head += std::string("const int ") + c.name + " = " + std::to_string(c.value) + ";\n";
     } else {
         head += "#define CR_PARAM(type, name) uniform type name;\n";
@@ -126,13 +127,15 @@ struct gl_renderer::state {
         return gl.link(shaders, 2, "shader program", why);
     }
 
-    GLuint program_for(const variant& v, bool compile_time, std::string& why) {
-        const std::string key = compile_time ? variant_spec(v) : std::string();
+    GLuint program_for(const variant& v, cloud_shape shape, bool compile_time, std::string& why) {
+        // One program per permutation (variant and shape) compiled in, one for the uber-shader.
+        const std::string key = compile_time ? variant_spec(v) + (shape == cloud_shape::detailed ? "/detailed" : "/classic")
+                                             : std::string();
         const auto found = programs.find(key);
         if (found != programs.end()) return found->second;
         const GLuint vs = gl.compile(GL_VERTEX_SHADER, vertex_shader_source(), "vertex shader", why);
         if (vs == 0) return 0;
-        const GLuint fs = gl.compile(GL_FRAGMENT_SHADER, fragment_shader_source(v, compile_time), "fragment shader", why);
+        const GLuint fs = gl.compile(GL_FRAGMENT_SHADER, fragment_shader_source(v, shape, compile_time), "fragment shader", why);
         if (fs == 0) {
             gl.DeleteShader(vs);
             return 0;
@@ -297,12 +300,12 @@ struct uniform_setter {
 GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bool compile_time, int width, int height,
                    int temporal_pass, glm::uvec2 offset, std::string& why) {
     const gl_api& gl = st.gl;
-    const GLuint program = st.program_for(v, compile_time, why);
+    const GLuint program = st.program_for(v, sc.shape, compile_time, why);
     if (program == 0) return 0;
     gl.UseProgram(program);
     const uniform_setter u{gl, program};
     if (!compile_time)
-        for (const shader_int& value : variant_values(v)) u.i1(value.name, value.value);
+        for (const shader_int& value : variant_values(v, sc.shape)) u.i1(value.name, value.value);
     const frame_constants k = make_frame_constants(sc);
     u.v2("u_resolution", glm::vec2(float(width), float(height)));
     u.v3("u_forward", k.forward);
@@ -375,7 +378,6 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
         u.i1(t.sampler, t.index);
     }
     u.i1("u_shadow_map", 3);
-    u.i1("u_shape", static_cast<int>(sc.shape));
     u.f1("u_weather_wide_tile", sc.weather_wide_tile);
     u.f1("u_curl_tile", sc.curl_tile);
     u.f1("u_curl_strength", sc.curl_strength);

@@ -16,7 +16,7 @@ namespace cloud_renderer {
 
 // The fragment shader for a variant, as compiled: #version, the variant block (uniforms, or
 // constants when compile_time), the shader file with cloudmath.glsl resolved in.
-std::string fragment_shader_source(const variant& v, bool compile_time);
+std::string fragment_shader_source(const variant& v, cloud_shape shape, bool compile_time);
 std::string vertex_shader_source();
 // shaders/temporal_resolve.frag as compiled (#version, cloudmath.glsl resolved in).
 std::string temporal_resolve_shader_source();

@@ -178,7 +178,7 @@ int run_headless(const options& o) {
     }
     std::printf("GPU: preset %s, %d x %d, %s%s: %.1f ms per frame (host clock to glFinish; GL timestamps %.1f ms); "
                 "first draw %.0f ms (with any shader compilation the driver defers to it)\n",
-                o.sc.name.c_str(), o.width, o.height, variant_spec(o.var).c_str(), o.compile_time ? " (compile-time)" : "",
+                o.sc.name.c_str(), o.width, o.height, variant_spec(o.var).c_str(), o.compile_time ? "" : " (run-time uber-shader)",
                 ft.wall_ms, ft.gpu_ms, first.wall_ms);
     if (o.temporal > 0)
         std::printf("GPU temporal: %d frames, %.1f ms per frame (median after the first 16; both passes)\n", o.temporal,
@@ -255,43 +255,43 @@ int run_compare(const options& o) {
 struct bench_row {
     const char* label;
     const char* spec;
-    bool compile_time;
+    bool compile_time;      // false: the run-time uber-shader (--run-time)
     bool temporal = false;  // the temporal scheme: frames 0..15 fill the history, then the timed ones
     bool classic = false;   // on the classic density field (scene.hpp's cloud_shape), as the previous default drew
 };
 const std::vector<bench_row>& bench_rows() {
     static const std::vector<bench_row> rows = {
         {"reference: 256 steps, light march 32 steps both ways, Mie phase, no jitter",
-         "steps=256,light=march,light-steps=32,behind=march,phase=mie,jitter=off", false},
-        {"default: diffusion model, 64 steps refined where opaque, 6-step marches both ways (quadratic, jittered), dual-lobe HG", "", false},
-        {"default, variant compiled in as constants", "", true},
-        {"temporal scheme: the default on 1 of 16 pixels per frame, resolved from the reprojected history", "", false, true},
-        {"temporal scheme, compiled in as constants", "", true, true},
-        {"phase: HG", "phase=hg", false},
-        {"phase: Cornette-Shanks", "phase=cs", false},
-        {"phase: Mie fit", "phase=mie", false},
+         "steps=256,light=march,light-steps=32,behind=march,phase=mie,jitter=off", true},
+        {"default: diffusion model, 64 steps refined where opaque, 6-step marches both ways (quadratic, jittered), dual-lobe HG", "", true},
+        {"default, run-time uber-shader: the variant as uniforms (--run-time)", "", false},
+        {"temporal scheme: the default on 1 of 16 pixels per frame, resolved from the reprojected history", "", true, true},
+        {"temporal scheme, run-time uber-shader (--run-time)", "", false, true},
+        {"phase: HG", "phase=hg", true},
+        {"phase: Cornette-Shanks", "phase=cs", true},
+        {"phase: Mie fit", "phase=mie", true},
         {"the previous default: octaves (3, powder, cone 6 samples), flat sky light, classic field",
-         previous_default_spec, false, false, true},
-        {"octaves: 3, powder, cone 6 samples, flat sky light", "lighting=octaves,powder=on,light=cone,ambient=flat", false},
-        {"octaves: 1, powder, cone", "lighting=octaves,powder=on,light=cone,ambient=flat,octaves=1", false},
-        {"octaves: 2, powder, cone", "lighting=octaves,powder=on,light=cone,ambient=flat,octaves=2", false},
-        {"octaves: 8, powder, cone", "lighting=octaves,powder=on,light=cone,ambient=flat,octaves=8", false},
-        {"sky light not occluded", "ambient=flat", false},
-        {"octaves: 3, no powder, cone", "lighting=octaves,light=cone", false},
-        {"octaves: 3, powder, light march 6 steps", "lighting=octaves,powder=on", false},
-        {"diffusion model, cone both ways", "light=cone,behind=cone", false},
-        {"diffusion model, cone behind (the default before refinement)", "behind=cone", false},
-        {"no refinement of opaque view steps", "refine=1", false},
-        {"light marches: uniform steps", "light-spacing=uniform", false},
-        {"light marches: midpoints, no jitter", "light-jitter=off", false},
-        {"light march: 3 steps", "light-steps=3", false},
-        {"light march: 12 steps", "light-steps=12", false},
-        {"naive (Riemann) integration", "integration=naive", false},
-        {"view steps: 32", "steps=32", false},
-        {"view steps: 128", "steps=128", false},
-        {"jitter off", "jitter=off", false},
-        {"empty-space skipping (base-shape probe per 4 steps)", "skip=on", false},
-        {"no cloud shadows (no shadow-map pass)", "shadows=off", false},
+         previous_default_spec, true, false, true},
+        {"octaves: 3, powder, cone 6 samples, flat sky light", "lighting=octaves,powder=on,light=cone,ambient=flat", true},
+        {"octaves: 1, powder, cone", "lighting=octaves,powder=on,light=cone,ambient=flat,octaves=1", true},
+        {"octaves: 2, powder, cone", "lighting=octaves,powder=on,light=cone,ambient=flat,octaves=2", true},
+        {"octaves: 8, powder, cone", "lighting=octaves,powder=on,light=cone,ambient=flat,octaves=8", true},
+        {"sky light not occluded", "ambient=flat", true},
+        {"octaves: 3, no powder, cone", "lighting=octaves,light=cone", true},
+        {"octaves: 3, powder, light march 6 steps", "lighting=octaves,powder=on", true},
+        {"diffusion model, cone both ways", "light=cone,behind=cone", true},
+        {"diffusion model, cone behind (the default before refinement)", "behind=cone", true},
+        {"no refinement of opaque view steps", "refine=1", true},
+        {"light marches: uniform steps", "light-spacing=uniform", true},
+        {"light marches: midpoints, no jitter", "light-jitter=off", true},
+        {"light march: 3 steps", "light-steps=3", true},
+        {"light march: 12 steps", "light-steps=12", true},
+        {"naive (Riemann) integration", "integration=naive", true},
+        {"view steps: 32", "steps=32", true},
+        {"view steps: 128", "steps=128", true},
+        {"jitter off", "jitter=off", true},
+        {"empty-space skipping (base-shape probe per 4 steps)", "skip=on", true},
+        {"no cloud shadows (no shadow-map pass)", "shadows=off", true},
     };
     return rows;
 }
@@ -361,7 +361,7 @@ int run_bench(const options& o) {
         if (row.temporal) std::snprintf(p95_text, sizeof p95_text, "-");  // 15 of 16 pixels read nothing
         else std::snprintf(p95_text, sizeof p95_text, "%.0f", reads.p95);
         std::snprintf(line, sizeof line, "| %s | `%s`%s%s%s | %.1f | %.1f | %s | %.0f / %s / %.0f%% |\n", row.label,
-                      *row.spec ? row.spec : "(default)", row.compile_time ? " `--compile-time`" : "",
+                      *row.spec ? row.spec : "(default)", row.compile_time ? "" : " `--run-time`",
                       row.temporal ? " `--temporal`" : "", row.classic ? " `--shape classic`" : "", median, median_gl,
                       psnr_text, reads.mean, p95_text, 100.0 * reads.light_share);
         table << line;
@@ -529,7 +529,7 @@ int main(int argc, char** argv) {
                         s.description.c_str(), double(s.camera_altitude), double(s.pitch), double(s.sun_elevation),
                         double(s.coverage), double(s.cloud_type));
         return 0;
-    case run_mode::dump_shader: std::printf("%s", fragment_shader_source(o.var, o.compile_time).c_str()); return 0;
+    case run_mode::dump_shader: std::printf("%s", fragment_shader_source(o.var, o.sc.shape, o.compile_time).c_str()); return 0;
     case run_mode::headless: return run_headless(o);
     case run_mode::cpu: return run_cpu(o);
     case run_mode::compare: return run_compare(o);

@@ -47,7 +47,10 @@ const char* usage_text() {
            "                      phase=mie,lighting=octaves,octaves=4,powder=on,light=cone,\n"
            "                      behind=cone,light-steps=32,light-spacing=uniform,light-jitter=off,\n"
            "                      cone-samples=6,integration=naive,steps=128,refine=1,jitter=off\n"
-           "  --compile-time      bake the variant into the shader as constants (else uniforms)\n"
+           "  --run-time          the run-time uber-shader: the variant (and the density field's\n"
+           "                      shape) as uniforms, every path compiled in, for quick comparison;\n"
+           "                      the default compiles one permutation per variant as constants\n"
+           "  --compile-time      the default (kept for scripts that name it)\n"
            "  --width N, --height N   image size (default 1280 x 720; 16 to 8192)\n"
            "  --out FILE          PNG to write (default clouds.png; --cpu: clouds_cpu.png;\n"
            "                      --compare: FILE and FILE with _cpu before .png)\n"
@@ -120,6 +123,7 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
         else if (a == "--dump-shader") err = set_mode(run_mode::dump_shader, a);
         else if (a == "--help" || a == "-h") err = set_mode(run_mode::help, a);
         else if (a == "--compile-time") o.compile_time = true;
+        else if (a == "--run-time") o.compile_time = false;
         else if (a == "--quiet") o.quiet = true;
         else if (a == "--preset") {
             std::string v;

@@ -14,7 +14,7 @@ struct options {
     run_mode mode = run_mode::window;
     scene sc = presets().front();
     variant var;
-    bool compile_time = false;   // variant as shader constants instead of uniforms
+    bool compile_time = true;    // variant and shape as shader constants (false: the run-time uber-shader, --run-time)
     int width = 1280, height = 720;
     std::string out;             // PNG path (headless, cpu, compare); empty: the mode's default
     std::string bench_out;       // markdown table of --bench; empty: stdout only

@@ -165,6 +165,11 @@ inline constexpr int far_step_count(int light_steps) { return light_steps < 2 ? 
 
 // Steps per empty-space probe (variant::skip).
 inline constexpr int skip_block = 4;
+// The march records the view samples in cloud, up to this many, and then lights them in a
+// loop of its own (the light pass), out of the view loop; when the buffer fills, the light
+// pass runs and the march goes on from where it stopped (no sample is dropped: the image is
+// the same as lighting each sample where it is found, for any count).
+inline constexpr int lit_samples = 32;
 // The Beer shadow map (variant::shadows): texels per side, midpoint steps per texel, and the
 // share of the ground's light that comes from the sky (what a full shadow leaves).
 inline constexpr int shadow_map_size = 128;

@@ -14,7 +14,7 @@ const char* const key_help =
     "      1-7 presets; M diffusion/octaves; P phase model; O octaves; B powder; L cone/march toward\n"
     "      the sun; K cone/march behind; I integration; J jitter; [ ] view steps;\n"
     "      T temporal scheme on/off (1 of 16 pixels per frame, reprojected history; on at start);\n"
-    "      C uniforms/compile-time; H this help; Esc quit\n";
+    "      C compile-time/run-time uber-shader; H this help; Esc quit\n";
 
 struct window_state {
     options o;
@@ -158,7 +158,7 @@ int run_window(const options& o, const cloud_textures& textures) {
                 ++total_frames;
                 if (o.frames_given && total_frames >= o.frames) glfwSetWindowShouldClose(w, GLFW_TRUE);
                 if (st.changed) {
-                    std::printf("variant %s%s%s\n", variant_spec(st.o.var).c_str(), st.o.compile_time ? " (compile-time)" : "",
+                    std::printf("variant %s%s%s\n", variant_spec(st.o.var).c_str(), st.o.compile_time ? "" : " (run-time uber-shader)",
                                 st.temporal ? " (temporal)" : "");
                     st.changed = false;
                 }

@@ -5,13 +5,16 @@
 //
 // The host (gl_renderer.cpp) prepends, in this order:
 //   #version 410 core
-//   the variant block: for run-time variants `#define CR_PARAM(type, name) uniform type name;`,
-//     for compile-time variants `const int u_phase_model = 3;` ... and an empty CR_PARAM,
-//     so the driver folds the switches away;
+//   the permutation block: by default (what engines ship) one permutation per variant and
+//     shape, `const int u_phase_model = 3;` ... and an empty CR_PARAM, so that the compiler
+//     folds every switch and keeps only the variant's own paths; for the run-time
+//     uber-shader (--run-time, quick comparison) `#define CR_PARAM(type, name) uniform type name;`;
 // and replaces the line `#include "cloudmath.glsl"` below with cloudmath::glsl_source().
 // Frame and units: see scene.hpp (camera at the origin, +y up, metres).
 
-// The lighting variant (values in scene.hpp's `variant`).
+// The permutation: the density field's shape (scene.hpp's cloud_shape: 0 classic, 1 detailed)
+// and the lighting variant (values in scene.hpp's `variant`).
+CR_PARAM(int, u_shape)
 CR_PARAM(int, u_phase_model)      // 0 HG, 1 dual-lobe HG, 2 Cornette-Shanks, 3 Mie fit
 CR_PARAM(int, u_lighting)         // 0 Wrenninge octaves, 1 diffusion model (diffusion_lighting.glsl) with
                                   // CM_DIFFUSION_MODEL_CLOUDS, 2 with CM_DIFFUSION_MODEL_FITTED
@@ -50,7 +53,6 @@ uniform vec3 u_sky_zenith, u_sky_horizon, u_ground;
 uniform float u_sun_angular_radius;
 uniform float u_coverage, u_cloud_type, u_extinction, u_albedo, u_max_distance;
 uniform float u_base_tile, u_detail_tile, u_weather_tile;
-uniform int u_shape;  // scene.hpp's cloud_shape: 0 classic, 1 detailed
 uniform float u_weather_wide_tile, u_curl_tile, u_curl_strength, u_type_spread, u_top_rounding, u_density_scale;
 uniform vec2 u_band;  // altitudes outside which the field has no density (scene.cpp's cloud_band)
 uniform vec2 u_wind;
@@ -128,10 +130,9 @@ float cr_base_density(vec3 p, float altitude) {
     return cm_apply_coverage(shaped, coverage);
 }
 
-// Nubis density at p, step by step so that the detail volume is read only where the base
-// cloud survives coverage (what cm_nubis_density computes in one call).
-float cr_density(vec3 p, float altitude) {
-    float covered = cr_base_density(p, altitude);
+// The detail's erosion of the base shape `covered` (cr_base_density's value at p): the Nubis
+// density. The detail volume is read only where the base cloud survives coverage.
+float cr_detail_density(vec3 p, float altitude, float covered) {
     if (covered <= 0.0) return 0.0;
     float h = cm_height_fraction(altitude, u_layer_bottom, u_layer_top);
     vec3 q = vec3(p.x + u_wind.x, altitude, p.z + u_wind.y);
@@ -146,6 +147,9 @@ float cr_density(vec3 p, float altitude) {
     vec3 detail = textureLod(u_detail, q / u_detail_tile, detail_lod).rgb;
     return cm_erode(covered, cm_nubis_detail_erosion(detail, h));
 }
+
+// Nubis density at p (what cm_nubis_density computes in one call), base then detail.
+float cr_density(vec3 p, float altitude) { return cr_detail_density(p, altitude, cr_base_density(p, altitude)); }
 
 // The base shape alone, scaled and saturated like cr_density: a cheap upper bound of it.
 float cr_coarse_density(vec3 p, float altitude) {
@@ -303,6 +307,40 @@ vec3 cr_background(vec3 dir) {
     return sky;
 }
 
+// A view sample in cloud, recorded by the march for the light pass (cr_light_samples).
+struct CrLitSample {
+    float t;              // distance along the view ray
+    float sigma_t;        // extinction
+    float ds;             // length of its step
+    float tau_view;       // optical depth from the camera to the step's middle
+    float transmittance;  // the view's transmittance in front of the step
+};
+const int CR_LIT_SAMPLES = 32;  // scene.hpp's lit_samples
+CrLitSample cr_lit[CR_LIT_SAMPLES];
+
+// The light pass: the light estimates of the samples the march recorded, in its order, and
+// each one's source added to `luminance` with its transmittance (the same sums as lighting
+// each sample inside the view loop; out of it, no group of pixels pays a light march for a
+// view step that only some of them spend in cloud).
+void cr_light_samples(inout vec3 luminance, int count, vec3 dir, float mu, uint pixel_hash, inout uint light_index) {
+    for (int k = 0; k < count; ++k) {
+        CrLitSample q = cr_lit[k];
+        float alts = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, q.t);
+        cr_footprint = u_lod != 0 ? cm_pixel_footprint(q.t, u_tan_half_fov, u_resolution.y) : 0.0;
+        // The light march's offset: new for each light estimate and frame.
+        float lo = u_jitter != 0 && u_light_jitter != 0 ? cm_sample_jitter(pixel_hash, u_frame, light_index++) : 0.5;
+        float tau_light = cr_light_optical_depth(dir * q.t, alts, u_sun_dir, u_light_mode, lo);
+        float tau_behind = u_lighting != 0 ? cr_light_optical_depth(dir * q.t, alts, -u_sun_dir, u_behind_mode, lo) : 0.0;
+        float h = cm_height_fraction(alts, u_layer_bottom, u_layer_top);
+        vec3 S = (u_albedo * q.sigma_t) * cr_in_scattering(tau_light, tau_behind, q.tau_view, mu, h);
+        // Energy-conserving (cm_march_add_segment's source term), or the textbook Riemann sum,
+        // kept as a variant to show its error: the source at full strength over the whole
+        // step, ignoring the decay within it.
+        luminance += u_integration == 0 ? vec3(q.transmittance) * cm_integrate_scattering(S, q.sigma_t, q.ds)
+                                        : vec3(q.transmittance) * S * q.ds;
+    }
+}
+
 // Distance of fraction u of the view march over [t0, t1] (scene.hpp's step_schedule).
 float cr_march_distance(float u, float t0, float t1) {
     return u_schedule == 1 ? cm_march_schedule_distance(u, t0, t1, u_march_near_distance) : t0 + u * (t1 - t0);
@@ -348,76 +386,87 @@ void main() {
         float tau_view = 0.0;  // optical depth from the camera to the start of the step
         float depth_sum = 0.0;      // sum of each step's opacity times its distance
         float step_begin = seg.x;   // = cr_march_distance(0), for both schedules
+        float step_end = seg.x;     // the end of view step i, once its sample is taken
         int empty_steps = CR_SKIP_BLOCK;  // empty-space skipping starts by probing
         float last_empty = -1.0;    // the last view sample (or skipped block's end) with no cloud
         uint light_index = 0u;      // light estimates so far (their jitter's index)
-        for (int i = 0; i < u_view_steps; ++i) {
-            if (u_skip != 0 && empty_steps >= CR_SKIP_BLOCK) {
-                // Probe the next block of steps with the base shape at a jittered point;
-                // step over it when empty, else march it in full steps.
-                int j = min(i + CR_SKIP_BLOCK, u_view_steps);
-                float tp = cr_march_distance((float(i) + offset * float(j - i)) / n, seg.x, t1);
-                float altp = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, tp);
-                cr_footprint = u_lod != 0 ? cm_pixel_footprint(tp, u_tan_half_fov, u_resolution.y) : 0.0;
-                if (cr_base_density(dir * tp, altp) <= 0.0) {
-                    step_begin = cr_march_distance(float(j) / n, seg.x, t1);
-                    last_empty = step_begin;
-                    i = j - 1;
+        // The march is one flat loop with one density sample per turn: view step i's sample,
+        // a probe of the next block (u_skip), or sub-step m of the refined step i (u_refine:
+        // a step thicker than optical depth 1 is marched again in `sub` sub-steps of length
+        // sub_ds from sub_from, the last empty sample when it is the first step in cloud; its
+        // own sample then only told that it has cloud). No loop is nested in it.
+        int i = 0, m = 0, sub = 0;
+        float sub_from = 0.0, sub_ds = 0.0;
+        bool opaque = false;
+        for (;;) {
+            // March, recording the samples in cloud, until the buffer is full, the ray has
+            // left the band or the cloud is opaque; then light them; go on if the buffer was full.
+            int count = 0;
+            while (!opaque && count < CR_LIT_SAMPLES && (m < sub || i < u_view_steps)) {
+                bool refining = m < sub;
+                bool probe = !refining && u_skip != 0 && empty_steps >= CR_SKIP_BLOCK;
+                int j = min(i + CR_SKIP_BLOCK, u_view_steps);  // the probed block's end
+                float t = refining ? sub_from + (float(m) + offset) * sub_ds
+                        : probe    ? cr_march_distance((float(i) + offset * float(j - i)) / n, seg.x, t1)
+                                   : cr_march_distance((float(i) + offset) / n, seg.x, t1);
+                float altitude = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, t);
+                cr_footprint = u_lod != 0 ? cm_pixel_footprint(t, u_tan_half_fov, u_resolution.y) : 0.0;
+                // The probe reads the base shape alone; a probe that finds cloud resumes full
+                // steps there.
+                float covered = cr_base_density(dir * t, altitude);
+                float density = probe ? covered : cr_detail_density(dir * t, altitude, covered);
+                float ds;
+                if (probe) {
+                    if (density <= 0.0) {  // empty: step over the block
+                        step_begin = cr_march_distance(float(j) / n, seg.x, t1);
+                        last_empty = step_begin;
+                        i = j;
+                    } else {
+                        empty_steps = 0;
+                    }
                     continue;
                 }
-                empty_steps = 0;
-            }
-            float t = cr_march_distance((float(i) + offset) / n, seg.x, t1);
-            float step_end = cr_march_distance((float(i) + 1.0) / n, seg.x, t1);
-            float altitude = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, t);
-            cr_footprint = u_lod != 0 ? cm_pixel_footprint(t, u_tan_half_fov, u_resolution.y) : 0.0;
-            float density = cr_density(dir * t, altitude);
-            if (density <= 0.0) {
-                last_empty = t;
-                step_begin = step_end;
-                ++empty_steps;
-                continue;
-            }
-            // Refinement (u_refine): a step thicker than optical depth 1 is marched again in
-            // sub-steps, from the last empty sample when it is the first step in cloud; its
-            // sample above then only told that it has cloud.
-            float r0 = empty_steps > 0 && last_empty >= 0.0 ? last_empty : step_begin;
-            int sub = cm_refine_substeps(u_extinction * density * (step_end - r0), u_refine);
-            float from = sub > 1 ? r0 : step_begin;
-            float ds = (step_end - from) / float(sub);
-            empty_steps = 0;
-            bool opaque = false;
-            for (int m = 0; m < sub && !opaque; ++m) {
-                float ts = t, alts = altitude, dm = density;
-                if (sub > 1) {
-                    ts = from + (float(m) + offset) * ds;
-                    alts = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, ts);
-                    cr_footprint = u_lod != 0 ? cm_pixel_footprint(ts, u_tan_half_fov, u_resolution.y) : 0.0;
-                    dm = cr_density(dir * ts, alts);
-                }
-                if (dm <= 0.0) continue;
-                float sigma_t = u_extinction * dm;
-                // The light march's offset: new for each light estimate and frame.
-                float lo = u_jitter != 0 && u_light_jitter != 0 ? cm_sample_jitter(pixel_hash, u_frame, light_index++) : 0.5;
-                float tau_light = cr_light_optical_depth(dir * ts, alts, u_sun_dir, u_light_mode, lo);
-                float tau_behind = u_lighting != 0 ? cr_light_optical_depth(dir * ts, alts, -u_sun_dir, u_behind_mode, lo) : 0.0;
-                float h = cm_height_fraction(alts, u_layer_bottom, u_layer_top);
-                vec3 S = (u_albedo * sigma_t) * cr_in_scattering(tau_light, tau_behind, tau_view + 0.5 * sigma_t * ds, mu, h);
-                tau_view += sigma_t * ds;
-                float before = acc.transmittance.r;  // grey extinction: every channel alike
-                if (u_integration == 0) {
-                    cm_march_add_segment(acc, S, sigma_t, ds);
+                if (refining) {
+                    ds = sub_ds;
+                    if (++m == sub) {
+                        step_begin = step_end;
+                        ++i;
+                    }
+                    if (density <= 0.0) continue;
                 } else {
-                    // The textbook Riemann sum, kept as a variant to show its error: the source
-                    // is taken at full strength over the whole step, ignoring the decay within it.
-                    acc.luminance += acc.transmittance * S * ds;
-                    acc.transmittance *= cm_beer_lambert(sigma_t * ds);
+                    step_end = cr_march_distance((float(i) + 1.0) / n, seg.x, t1);
+                    if (density <= 0.0) {
+                        last_empty = t;
+                        step_begin = step_end;
+                        ++empty_steps;
+                        ++i;
+                        continue;
+                    }
+                    float r0 = empty_steps > 0 && last_empty >= 0.0 ? last_empty : step_begin;
+                    int n_sub = cm_refine_substeps(u_extinction * density * (step_end - r0), u_refine);
+                    empty_steps = 0;
+                    if (n_sub > 1) {  // march the step again in sub-steps, from the next turn
+                        sub = n_sub;
+                        m = 0;
+                        sub_from = r0;
+                        sub_ds = (step_end - r0) / float(n_sub);
+                        continue;
+                    }
+                    ds = step_end - step_begin;
+                    step_begin = step_end;
+                    ++i;
                 }
-                depth_sum += (before - acc.transmittance.r) * ts;
+                // A sample in cloud: record it for the light pass, and take its transmittance.
+                float sigma_t = u_extinction * density;
+                float before = acc.transmittance.r;  // grey extinction: every channel alike
+                cr_lit[count++] = CrLitSample(t, sigma_t, ds, tau_view + 0.5 * sigma_t * ds, before);
+                tau_view += sigma_t * ds;
+                acc.transmittance *= cm_beer_lambert(sigma_t * ds);
+                depth_sum += (before - acc.transmittance.r) * t;
                 opaque = cm_march_is_opaque(acc, u_min_transmittance);
             }
-            step_begin = step_end;
-            if (opaque) break;
+            cr_light_samples(acc.luminance, count, dir, mu, pixel_hash, light_index);
+            if (opaque || count < CR_LIT_SAMPLES) break;
         }
         // Aerial perspective at the cloud's transmittance-weighted depth: the air dims its
         // light and adds the horizon's haze in proportion to its opacity.

@@ -24,7 +24,7 @@
 //   otherwise (light_index++ is a statement of its own). Function parameters are immutable
 //   (cr_light_optical_depth copies `mode`); `from` is a reserved word (from_); overloaded
 //   cm_ functions carry their type suffix (cm_aerial_perspective_v3v3v3,
-//   cm_march_add_segment_...), in/out structs are passed as pointers (&acc).
+//   cm_integrate_scattering_v3ff), in/out values are passed as pointers (&acc.luminance, &light_index).
 // - Globals set per pixel are var<private>.
 
 struct CrUniforms {
@@ -137,8 +137,7 @@ fn cr_base_density(p: vec3f, altitude: f32) -> f32 {
     return cm_apply_coverage(shaped, coverage);
 }
 
-fn cr_density(p: vec3f, altitude: f32) -> f32 {
-    let covered = cr_base_density(p, altitude);
+fn cr_detail_density(p: vec3f, altitude: f32, covered: f32) -> f32 {
     if (covered <= 0.0) { return 0.0; }
     let h = cm_height_fraction(altitude, U.u_layer_bottom, U.u_layer_top);
     var q = vec3f(p.x + U.u_wind.x, altitude, p.z + U.u_wind.y);
@@ -152,6 +151,8 @@ fn cr_density(p: vec3f, altitude: f32) -> f32 {
     let detail = textureSampleLevel(u_detail, u_detail_sampler, q / U.u_detail_tile, detail_lod).rgb;
     return cm_erode(covered, cm_nubis_detail_erosion(detail, h));
 }
+
+fn cr_density(p: vec3f, altitude: f32) -> f32 { return cr_detail_density(p, altitude, cr_base_density(p, altitude)); }
 
 fn cr_coarse_density(p: vec3f, altitude: f32) -> f32 {
     let covered = cr_base_density(p, altitude);
@@ -291,6 +292,39 @@ fn cr_background(dir: vec3f) -> vec3f {
     return sky;
 }
 
+struct CrLitSample {
+    t: f32,
+    sigma_t: f32,
+    ds: f32,
+    tau_view: f32,
+    transmittance: f32,
+}
+const CR_LIT_SAMPLES = 32;
+var<private> cr_lit: array<CrLitSample, CR_LIT_SAMPLES>;
+
+fn cr_light_samples(luminance: ptr<function, vec3f>, count: i32, dir: vec3f, mu: f32, pixel_hash: u32, light_index: ptr<function, u32>) {
+    for (var k = 0; k < count; k++) {
+        let q = cr_lit[k];
+        let alts = cm_altitude_along_ray(U.u_cam_altitude, dir.y, U.u_planet_radius, q.t);
+        cr_footprint = select(0.0, cm_pixel_footprint(q.t, U.u_tan_half_fov, U.u_resolution.y), U.u_lod != 0);
+        var lo = 0.5;
+        if (U.u_jitter != 0 && U.u_light_jitter != 0) {
+            lo = cm_sample_jitter(pixel_hash, U.u_frame, *light_index);
+            *light_index += 1u;
+        }
+        let tau_light = cr_light_optical_depth(dir * q.t, alts, U.u_sun_dir, U.u_light_mode, lo);
+        var tau_behind = 0.0;
+        if (U.u_lighting != 0) { tau_behind = cr_light_optical_depth(dir * q.t, alts, -U.u_sun_dir, U.u_behind_mode, lo); }
+        let h = cm_height_fraction(alts, U.u_layer_bottom, U.u_layer_top);
+        let S = (U.u_albedo * q.sigma_t) * cr_in_scattering(tau_light, tau_behind, q.tau_view, mu, h);
+        if (U.u_integration == 0) {
+            *luminance += vec3f(q.transmittance) * cm_integrate_scattering_v3ff(S, q.sigma_t, q.ds);
+        } else {
+            *luminance += vec3f(q.transmittance) * S * q.ds;
+        }
+    }
+}
+
 fn cr_march_distance(u: f32, t0: f32, t1: f32) -> f32 {
     if (U.u_schedule == 1) { return cm_march_schedule_distance(u, t0, t1, U.u_march_near_distance); }
     return t0 + u * (t1 - t0);
@@ -338,75 +372,88 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
         var tau_view = 0.0;
         var depth_sum = 0.0;
         var step_begin = seg.x;
+        var step_end = seg.x;
         var empty_steps = CR_SKIP_BLOCK;
         var last_empty = -1.0;
         var light_index = 0u;
-        for (var i = 0; i < U.u_view_steps; i++) {
-            if (U.u_skip != 0 && empty_steps >= CR_SKIP_BLOCK) {
+        var i = 0;
+        var m = 0;
+        var sub = 0;
+        var sub_from = 0.0;
+        var sub_ds = 0.0;
+        var opaque = false;
+        loop {
+            var count = 0;
+            while (!opaque && count < CR_LIT_SAMPLES && (m < sub || i < U.u_view_steps)) {
+                let refining = m < sub;
+                let probe = !refining && U.u_skip != 0 && empty_steps >= CR_SKIP_BLOCK;
                 let j = min(i + CR_SKIP_BLOCK, U.u_view_steps);
-                let tp = cr_march_distance((f32(i) + offset * f32(j - i)) / n, seg.x, t1);
-                let altp = cm_altitude_along_ray(U.u_cam_altitude, dir.y, U.u_planet_radius, tp);
-                cr_footprint = select(0.0, cm_pixel_footprint(tp, U.u_tan_half_fov, U.u_resolution.y), U.u_lod != 0);
-                if (cr_base_density(dir * tp, altp) <= 0.0) {
-                    step_begin = cr_march_distance(f32(j) / n, seg.x, t1);
-                    last_empty = step_begin;
-                    i = j - 1;
+                var t: f32;
+                if (refining) {
+                    t = sub_from + (f32(m) + offset) * sub_ds;
+                } else if (probe) {
+                    t = cr_march_distance((f32(i) + offset * f32(j - i)) / n, seg.x, t1);
+                } else {
+                    t = cr_march_distance((f32(i) + offset) / n, seg.x, t1);
+                }
+                let altitude = cm_altitude_along_ray(U.u_cam_altitude, dir.y, U.u_planet_radius, t);
+                cr_footprint = select(0.0, cm_pixel_footprint(t, U.u_tan_half_fov, U.u_resolution.y), U.u_lod != 0);
+                let covered = cr_base_density(dir * t, altitude);
+                var density = covered;
+                if (!probe) { density = cr_detail_density(dir * t, altitude, covered); }
+                var ds: f32;
+                if (probe) {
+                    if (density <= 0.0) {
+                        step_begin = cr_march_distance(f32(j) / n, seg.x, t1);
+                        last_empty = step_begin;
+                        i = j;
+                    } else {
+                        empty_steps = 0;
+                    }
                     continue;
                 }
-                empty_steps = 0;
-            }
-            let t = cr_march_distance((f32(i) + offset) / n, seg.x, t1);
-            let step_end = cr_march_distance((f32(i) + 1.0) / n, seg.x, t1);
-            let altitude = cm_altitude_along_ray(U.u_cam_altitude, dir.y, U.u_planet_radius, t);
-            cr_footprint = select(0.0, cm_pixel_footprint(t, U.u_tan_half_fov, U.u_resolution.y), U.u_lod != 0);
-            let density = cr_density(dir * t, altitude);
-            if (density <= 0.0) {
-                last_empty = t;
-                step_begin = step_end;
-                empty_steps++;
-                continue;
-            }
-            let r0 = select(step_begin, last_empty, empty_steps > 0 && last_empty >= 0.0);
-            let sub = cm_refine_substeps(U.u_extinction * density * (step_end - r0), U.u_refine);
-            let from_ = select(step_begin, r0, sub > 1);
-            let ds = (step_end - from_) / f32(sub);
-            empty_steps = 0;
-            var opaque = false;
-            for (var m = 0; m < sub && !opaque; m++) {
-                var ts = t;
-                var alts = altitude;
-                var dm = density;
-                if (sub > 1) {
-                    ts = from_ + (f32(m) + offset) * ds;
-                    alts = cm_altitude_along_ray(U.u_cam_altitude, dir.y, U.u_planet_radius, ts);
-                    cr_footprint = select(0.0, cm_pixel_footprint(ts, U.u_tan_half_fov, U.u_resolution.y), U.u_lod != 0);
-                    dm = cr_density(dir * ts, alts);
-                }
-                if (dm <= 0.0) { continue; }
-                let sigma_t = U.u_extinction * dm;
-                var lo = 0.5;
-                if (U.u_jitter != 0 && U.u_light_jitter != 0) {
-                    lo = cm_sample_jitter(pixel_hash, U.u_frame, light_index);
-                    light_index++;
-                }
-                let tau_light = cr_light_optical_depth(dir * ts, alts, U.u_sun_dir, U.u_light_mode, lo);
-                var tau_behind = 0.0;
-                if (U.u_lighting != 0) { tau_behind = cr_light_optical_depth(dir * ts, alts, -U.u_sun_dir, U.u_behind_mode, lo); }
-                let h = cm_height_fraction(alts, U.u_layer_bottom, U.u_layer_top);
-                let S = (U.u_albedo * sigma_t) * cr_in_scattering(tau_light, tau_behind, tau_view + 0.5 * sigma_t * ds, mu, h);
-                tau_view += sigma_t * ds;
-                let before = acc.transmittance.r;
-                if (U.u_integration == 0) {
-                    cm_march_add_segment_MarchAccumulatorv3ff(&acc, S, sigma_t, ds);
+                if (refining) {
+                    ds = sub_ds;
+                    m++;
+                    if (m == sub) {
+                        step_begin = step_end;
+                        i++;
+                    }
+                    if (density <= 0.0) { continue; }
                 } else {
-                    acc.luminance += acc.transmittance * S * ds;
-                    acc.transmittance *= cm_beer_lambert(sigma_t * ds);
+                    step_end = cr_march_distance((f32(i) + 1.0) / n, seg.x, t1);
+                    if (density <= 0.0) {
+                        last_empty = t;
+                        step_begin = step_end;
+                        empty_steps++;
+                        i++;
+                        continue;
+                    }
+                    let r0 = select(step_begin, last_empty, empty_steps > 0 && last_empty >= 0.0);
+                    let n_sub = cm_refine_substeps(U.u_extinction * density * (step_end - r0), U.u_refine);
+                    empty_steps = 0;
+                    if (n_sub > 1) {
+                        sub = n_sub;
+                        m = 0;
+                        sub_from = r0;
+                        sub_ds = (step_end - r0) / f32(n_sub);
+                        continue;
+                    }
+                    ds = step_end - step_begin;
+                    step_begin = step_end;
+                    i++;
                 }
-                depth_sum += (before - acc.transmittance.r) * ts;
+                let sigma_t = U.u_extinction * density;
+                let before = acc.transmittance.r;
+                cr_lit[count] = CrLitSample(t, sigma_t, ds, tau_view + 0.5 * sigma_t * ds, before);
+                count++;
+                tau_view += sigma_t * ds;
+                acc.transmittance *= cm_beer_lambert(sigma_t * ds);
+                depth_sum += (before - acc.transmittance.r) * t;
                 opaque = cm_march_is_opaque(acc, U.u_min_transmittance);
             }
-            step_begin = step_end;
-            if (opaque) { break; }
+            cr_light_samples(&acc.luminance, count, dir, mu, pixel_hash, &light_index);
+            if (opaque || count < CR_LIT_SAMPLES) { break; }
         }
         let opacity = 1.0 - acc.transmittance.r;
         if (opacity > 0.0) { cloud_depth = depth_sum / opacity; }
