@@ -170,9 +170,19 @@ int run_headless(const options& o) {
     // Twice: drivers compile the shader for the GPU at the first draw (Mesa's llvmpipe JIT
     // takes seconds), so the second draw is the frame time.
     double temporal_ms = 0.0;
-    if (!gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &first, why) ||
-        !gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &ft, why) ||
-        ((o.accumulate > 1 || o.temporal > 0) && !render_gpu_frames(*gpu, o, img, why, &temporal_ms))) {
+    bool ok = true;
+    if (o.accumulate > 1 && o.temporal == 0) {
+        // The accumulated frames are the timed ones: the first (with the compilation) and the last.
+        int f = 0;
+        ok = accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& frame) {
+            return gpu->render(s, o.var, o.compile_time, o.width, o.height, frame, f++ == 0 ? &first : &ft, why);
+        }, img);
+    } else {
+        ok = gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &first, why) &&
+             gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &ft, why) &&
+             (o.temporal == 0 || render_gpu_frames(*gpu, o, img, why, &temporal_ms));
+    }
+    if (!ok) {
         std::fprintf(stderr, "error: %s\n", why.c_str());
         return 1;
     }
