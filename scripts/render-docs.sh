@@ -93,10 +93,13 @@ cost=$(bash scripts/shader-cost.sh "$renderer")
   echo
   echo "## The temporal scheme"
   echo
-  echo "Each frame shades one pixel of every 4 x 4 block (Bayer order, \`temporal_update_offset\`) and"
-  echo "resolves the rest from the full-resolution history, reprojected by the camera's rotation, its"
-  echo "altitude and the wind at the block's cloud depth (\`camera_project\`, \`texel_bilinear\`); shaded"
-  echo "pixels join a running mean of at most 8 samples (\`temporal_blend_weight\`). Frames 7, 15, ..., 47 of"
+  echo "Each frame shades the cloud layer at one pixel of every 4 x 4 block (Bayer order,"
+  echo "\`temporal_update_offset\`) and resolves the rest from the full-resolution history of the layer"
+  echo "(its own light and opacity), reprojected by the camera's rotation, its altitude and the wind at"
+  echo "the block's cloud depth (\`camera_project\`, Catmull-Rom taps clamped to the bilinear ones);"
+  echo "shaded pixels join a running mean of at most 8 samples (\`temporal_blend_weight\`). What lies"
+  echo "behind the layer (sky, sun, ground and the clouds' shadows on it) is drawn at full resolution"
+  echo "every frame and the layer composited over it, so it never lags. Frames 7, 15, ..., 47 of"
   echo "\`--preset ground --temporal 48 --pan 0.5 --drift 30\` (0.5 degrees of pan and 30 m of wind a frame):"
   echo
   echo "| frame 7 | frame 15 | frame 23 |"
@@ -109,14 +112,14 @@ cost=$(bash scripts/shader-cost.sh "$renderer")
   echo "A still camera (CPU, 320 x 180, 128 frames): $still."
   echo "GPU against CPU over the moving sequence at $width x $height: $temporal_compare."
   echo
-  echo "Ghosting: the history is reprojected at the depth of the block's newest sample, so where a"
-  echo "block mixes a near cloud edge and sky (or a far cloud), the pixels whose depth differs from"
-  echo "the sample's move by the wrong parallax: under camera rotation alone depth does not matter"
-  echo "(every depth reprojects to the same direction), under wind and altitude changes it does."
-  echo "Points that were off the previous screen (the edge the camera pans toward) take the bilinear"
-  echo "interpolation of the new samples until their own turn, so a band as wide as 16 frames of"
-  echo "pan is softer than the rest; every reprojection resamples the history bilinearly, which"
-  echo "softens a moving image over time (the 8-sample cap bounds how long a stale value lives)."
+  echo "The resolve keeps a pixel's history only where it is that pixel's: carried by its own motion"
+  echo "(the history's depth there, the sky's at infinity) it must land within one pixel of it; else a"
+  echo "cloud has moved in or out, and the block's new samples fill it. Pixels not yet shaded (the edge"
+  echo "the camera pans toward, and rejected ones) take the new samples interpolated, averaged over"
+  echo "frames (10% of each frame's fill) until their own turn. What remains in motion: a cloud edge"
+  echo "lags by up to 16 frames where its block's newest sample lies on the other side of it, and a"
+  echo "faint 4 x 4 texture shows where single new samples sit among filled pixels, at the edge the"
+  echo "camera pans toward."
   echo
   echo "## Lighting variants (preset \`horizon\`)"
   echo

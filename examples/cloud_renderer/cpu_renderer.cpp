@@ -35,6 +35,27 @@ void bilinear_taps(vec4 fp, int width, int height, Tap tap) {
         }
 }
 
+// Catmull-Rom's 16 taps around footprint fp (the bilinear taps and the ring around them),
+// clamped to the grid: a sharper reconstruction than GL_LINEAR, which, repeated every frame
+// on a moving history, blurs it (temporal_resolve.frag's cr_catmull_rom).
+template <class Tap>
+void catmull_rom_taps(vec4 fp, int width, int height, Tap tap) {
+    const auto weights = [](float f, float* w) {
+        w[0] = f * (-0.5f + f * (1.0f - 0.5f * f));
+        w[1] = 1.0f + f * f * (-2.5f + 1.5f * f);
+        w[2] = f * (0.5f + f * (2.0f - 1.5f * f));
+        w[3] = f * f * (-0.5f + 0.5f * f);
+    };
+    float wx[4], wy[4];
+    weights(fp.z, wx);
+    weights(fp.w, wy);
+    for (int dy = -1; dy < 3; ++dy)
+        for (int dx = -1; dx < 3; ++dx) {
+            const int tx = std::clamp(int(fp.x) + dx, 0, width - 1), ty = std::clamp(int(fp.y) + dy, 0, height - 1);
+            tap(static_cast<std::size_t>(ty) * static_cast<std::size_t>(width) + static_cast<std::size_t>(tx), wx[dx + 1] * wy[dy + 1]);
+        }
+}
+
 // A view sample in cloud, recorded by the march for the light pass (clouds.frag's CrLitSample).
 struct lit_sample {
     float t;              // distance along the view ray
@@ -257,9 +278,11 @@ struct pixel_program {
     // grad (optional, diffusion model): adds d(radiance) / d(fitted number) over sun_radiance
     // for the model's table then peak weights (diffusion_feature_count), the max(0, ...)
     // clamps ignored, and to sky (given with grad) the sky light's weights from above and
-    // below (render_cpu_diffusion_features).
+    // below (render_cpu_diffusion_features). layer_only: rgb is the cloud layer's own light
+    // (haze included), without what lies behind it (the temporal scheme's shading pass, pass 1:
+    // the resolve composites behind() at full resolution every frame).
     vec4 shade_linear(int x, int y, int width, int height, reads* counted = nullptr, float* depth = nullptr,
-                      float* grad = nullptr, float* sky = nullptr) const {
+                      float* grad = nullptr, float* sky = nullptr, bool layer_only = false) const {
         long* view_reads = counted ? &counted->view : nullptr;
         long* light_reads = counted ? &counted->light : nullptr;
         const vec3 dir = pixel_direction(k, x, y, width, height);
@@ -268,10 +291,11 @@ struct pixel_program {
         cm::march_accumulator<vec3, vec3> acc;
         // The view stretch: from where the ray enters the layer, at most max_distance. The
         // march covers the part of it inside the cloud type's altitude band (no density outside).
-        const vec2 layer = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, s.layer_bottom, s.layer_top);
-        const vec2 in_band = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, band.x, band.y);
-        const vec2 seg(std::max(layer.x, in_band.x), std::min(std::min(layer.y, layer.x + s.max_distance), in_band.y));
-        if (counted) counted->in_layer = layer.y > layer.x;
+        const vec2 seg = view_stretch(dir);
+        if (counted) {
+            const vec2 layer = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, s.layer_bottom, s.layer_top);
+            counted->in_layer = layer.y > layer.x;
+        }
         if (seg.y > seg.x) {
             const float t1 = seg.y;
             const std::uint32_t pixel_hash = cm::noise_hash(static_cast<std::uint32_t>(x) + static_cast<std::uint32_t>(y) * 8192u);
@@ -407,11 +431,25 @@ struct pixel_program {
                 acc.luminance = cm::aerial_perspective(acc.luminance, k.sky_horizon * opacity, tau_air);
             }
         }
-        const vec3 behind = background(s, k, dir, v.sun) * (v.shadows ? ground_shadow(dir) : 1.0f);
-        const vec3 color = behind * acc.transmittance + acc.luminance;
         const vec3 t = acc.transmittance;
-        return vec4(color, 1.0f - (t.r + t.g + t.b) / 3.0f);
+        const float alpha = 1.0f - (t.r + t.g + t.b) / 3.0f;
+        if (layer_only) return vec4(acc.luminance, alpha);
+        const vec3 color = behind(dir) * acc.transmittance + acc.luminance;
+        return vec4(color, alpha);
     }
+
+    // The view stretch: from where the ray enters the layer, at most max_distance, the part
+    // of it inside the cloud type's altitude band (no density outside); empty (y <= x) where
+    // the ray meets no cloud at all.
+    vec2 view_stretch(vec3 dir) const {
+        const vec2 layer = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, s.layer_bottom, s.layer_top);
+        const vec2 in_band = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, band.x, band.y);
+        return vec2(std::max(layer.x, in_band.x), std::min(std::min(layer.y, layer.x + s.max_distance), in_band.y));
+    }
+
+    // What lies behind the cloud layer along dir: the sky, or the ground with the clouds'
+    // shadows (cr_background).
+    vec3 behind(vec3 dir) const { return background(s, k, dir, v.sun) * (v.shadows ? ground_shadow(dir) : 1.0f); }
 
     // main() of the shader: the display colour, dithered for the 8-bit store.
     vec4 shade(int x, int y, int width, int height) const {
@@ -545,7 +583,8 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
     std::vector<pixel_program::reads> counts(fresh.size());
     (void)render_rows(lw, lh, threads, [&](int i, int j) {
         const std::size_t b = static_cast<std::size_t>(j) * static_cast<std::size_t>(lw) + static_cast<std::size_t>(i);
-        fresh[b] = program.shade_linear(4 * i + int(offset.x), 4 * j + int(offset.y), w, h, &counts[b], &fresh_depth[b]);
+        fresh[b] = program.shade_linear(4 * i + int(offset.x), 4 * j + int(offset.y), w, h, &counts[b], &fresh_depth[b],
+                                        nullptr, nullptr, true);
         return vec4(0.0f);
     });
 
@@ -562,41 +601,76 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
         const std::size_t b = static_cast<std::size_t>(y / 4) * static_cast<std::size_t>(lw) + static_cast<std::size_t>(x / 4);
         const bool is_fresh = (x & 3) == int(offset.x) && (y & 3) == int(offset.y);
         const float depth = fresh_depth[b] > 0.0f ? fresh_depth[b] : 1e7f;
-        const vec3 uvz = cm::camera_project(pixel_direction(k, x, y, w, h) * depth + motion, pk.forward, pk.right, pk.up,
-                                            pk.tan_half_fov, aspect);
-        const bool valid = has_history_ && uvz.z > 0.0f && uvz.x >= 0.0f && uvz.x <= 1.0f && uvz.y >= 0.0f && uvz.y <= 1.0f;
+        const vec3 dir = pixel_direction(k, x, y, w, h);
+        // The background pass (clouds.frag's pass 3), at full resolution every frame: what
+        // lies behind the layer, and whether the ray meets the cloud band at all.
+        const vec3 behind = program.behind(dir);
+        const vec2 stretch = program.view_stretch(dir);
+        const vec3 uvz = cm::camera_project(dir * depth + motion, pk.forward, pk.right, pk.up, pk.tan_half_fov, aspect);
+        bool valid = has_history_ && uvz.z > 0.0f && uvz.x >= 0.0f && uvz.x <= 1.0f && uvz.y >= 0.0f && uvz.y <= 1.0f;
+        if (valid) {
+            // The history there must be this pixel's: carried by its own motion (its nearest
+            // texel's depth, the sky's at 1e7), it lands within temporal_reprojection_tolerance
+            // of this pixel; else a cloud has moved in or out, and the new samples fill it.
+            const int tx = std::clamp(int(uvz.x * float(w)), 0, w - 1), ty = std::clamp(int(uvz.y * float(h)), 0, h - 1);
+            const float stored = aux_[static_cast<std::size_t>(ty) * static_cast<std::size_t>(w) + static_cast<std::size_t>(tx)].x;
+            const vec2 ndc = vec2(uvz) * 2.0f - 1.0f;
+            const vec3 was = glm::normalize(pk.forward + pk.right * (ndc.x * aspect * pk.tan_half_fov) + pk.up * (ndc.y * pk.tan_half_fov));
+            const vec3 now = cm::camera_project(was * (stored > 0.0f ? stored : 1e7f) - motion, k.forward, k.right, k.up,
+                                                k.tan_half_fov, aspect);
+            const vec2 miss(now.x * float(w) - (float(x) + 0.5f), now.y * float(h) - (float(y) + 0.5f));
+            valid = now.z > 0.0f && glm::dot(miss, miss) <= temporal_reprojection_tolerance * temporal_reprojection_tolerance;
+        }
         vec4 hc(0.0f);
         vec2 ha(0.0f);
         if (valid) {
-            // Bilinear taps clamped to the image (a point on screen always has its texels).
-            bilinear_taps(cm::texel_bilinear(vec2(uvz), vec2(float(w), float(h))), w, h, [&](std::size_t ti, float weight) {
-                hc += color_[ti] * weight;
+            // Catmull-Rom taps clamped to the range of the bilinear ones (no ringing), the
+            // depth and sample count bilinear.
+            const vec4 fp = cm::texel_bilinear(vec2(uvz), vec2(float(w), float(h)));
+            vec4 lo(INFINITY), hi(-INFINITY);
+            bilinear_taps(fp, w, h, [&](std::size_t ti, float weight) {
                 ha += aux_[ti] * weight;
+                lo = glm::min(lo, color_[ti]);
+                hi = glm::max(hi, color_[ti]);
             });
+            catmull_rom_taps(fp, w, h, [&](std::size_t ti, float weight) { hc += color_[ti] * weight; });
+            hc = glm::clamp(hc, lo, hi);
         }
+        // The fill: this frame's new samples (at 4 (i, j) + offset) interpolated likewise.
+        const vec2 q = (vec2(float(x), float(y)) - vec2(offset)) * 0.25f;
+        const vec4 fq(std::floor(q.x), std::floor(q.y), q.x - std::floor(q.x), q.y - std::floor(q.y));
+        vec4 fill(0.0f), fill_lo(INFINITY), fill_hi(-INFINITY);
+        bilinear_taps(fq, lw, lh, [&](std::size_t j, float) {
+            fill_lo = glm::min(fill_lo, fresh[j]);
+            fill_hi = glm::max(fill_hi, fresh[j]);
+        });
+        catmull_rom_taps(fq, lw, lh, [&](std::size_t j, float weight) { fill += fresh[j] * weight; });
+        fill = glm::clamp(fill, fill_lo, fill_hi);
         vec4 c;
         vec2 a;
         if (is_fresh) {
             const float weight = valid ? cm::temporal_blend_weight(ha.y, float(max_samples_)) : 1.0f;
             c = glm::mix(hc, fresh[b], weight);
             a = vec2(fresh_depth[b], valid ? std::min(ha.y, float(max_samples_) - 1.0f) + 1.0f : 1.0f);
-        } else if (valid) {
+        } else if (valid && ha.y >= 0.5f) {
             c = hc;
             a = ha;
+        } else if (valid) {
+            // Not shaded yet (0 samples: filled): the fills of successive frames, each from
+            // other pixels of the block, averaged until this pixel's own turn replaces them.
+            c = glm::mix(hc, fill, temporal_fill_blend);
+            a = vec2(fresh_depth[b], 0.0f);
         } else {
-            // No history (first frame, or the point was off the previous screen): the new
-            // samples interpolated bilinearly (they sit at 4 (i, j) + offset) until this
-            // pixel's turn; 0 samples, so its own sample replaces this one.
-            const vec2 q = (vec2(float(x), float(y)) - vec2(offset)) * 0.25f;
-            const vec2 q0(std::floor(q.x), std::floor(q.y));
-            c = vec4(0.0f);
-            bilinear_taps(vec4(q0, q - q0), lw, lh, [&](std::size_t j, float weight) { c += fresh[j] * weight; });
+            // No history (first frame, off the previous screen, or not this pixel's).
+            c = fill;
             a = vec2(fresh_depth[b], 0.0f);
         }
+        if (!(stretch.y > stretch.x)) c = vec4(0.0f);  // a ray that meets no cloud carries none
         const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
         color[i] = c;
         aux[i] = a;
-        vec3 shown = tonemap(vec3(c), s.exposure);
+        // Display: the layer over what lies behind it, clouds.frag's tonemap and dither.
+        vec3 shown = tonemap(behind * (1.0f - c.a) + vec3(c), s.exposure);
         if (v.dither) shown += cm::triangular_dither(dither_hash(x, y, s.frame)) * (1.0f / 255.0f);
         return vec4(shown, c.a);
     });

@@ -112,6 +112,7 @@ struct gl_renderer::state {
     struct temporal_targets {
         int width = 0, height = 0;
         GLuint fresh_fbo = 0, fresh[2] = {0, 0};
+        GLuint background_fbo = 0, background = 0;  // clouds.frag's pass 3: what lies behind the layer
         GLuint history_fbo[2] = {0, 0}, history[2][2] = {{0, 0}, {0, 0}}, display = 0;
         GLuint resolve_program = 0;
         int current = 0;          // the history the next resolve reads
@@ -165,6 +166,8 @@ struct gl_renderer::state {
         if (t.fresh_fbo) gl.DeleteFramebuffers(1, &t.fresh_fbo);
         if (t.history_fbo[0]) gl.DeleteFramebuffers(2, t.history_fbo);
         if (t.fresh[0]) gl.DeleteTextures(2, t.fresh);
+        if (t.background_fbo) gl.DeleteFramebuffers(1, &t.background_fbo);
+        if (t.background) gl.DeleteTextures(1, &t.background);
         for (GLuint* h : t.history)
             if (h[0]) gl.DeleteTextures(2, h);
         if (t.display) gl.DeleteTextures(1, &t.display);
@@ -470,6 +473,8 @@ bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std:
         gl.GenTextures(2, t.history[0]);
         gl.GenTextures(2, t.history[1]);
         gl.GenTextures(1, &t.display);
+        gl.GenFramebuffers(1, &t.background_fbo);
+        gl.GenTextures(1, &t.background);
     }
     const int lw = (width + 3) / 4, lh = (height + 3) / 4;
     make_target(gl, t.fresh[0], GL_RGBA32F, GL_RGBA, lw, lh);
@@ -479,6 +484,10 @@ bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std:
     gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.fresh[0], 0);
     gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, t.fresh[1], 0);
     bool complete = gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    make_target(gl, t.background, GL_RGBA32F, GL_RGBA, width, height);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, t.background_fbo);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.background, 0);
+    complete = complete && gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
     for (int i = 0; i < 2; ++i) {
         make_target(gl, t.history[i][0], GL_RGBA32F, GL_RGBA, width, height);
         make_target(gl, t.history[i][1], GL_RG32F, GL_RG, width, height);
@@ -555,11 +564,14 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
     u.u2("u_update_offset", offset);
     u.i1("u_has_history", t.has_history ? 1 : 0);
     u.f1("u_max_samples", float(temporal_max_samples));
+    u.f1("u_tolerance", temporal_reprojection_tolerance);
+    u.f1("u_fill_blend", temporal_fill_blend);
     u.f1("u_exposure", sc.exposure);
     gl.Uniform1ui(u.loc("u_frame"), sc.frame);
     u.i1("u_dither", v.dither ? 1 : 0);
-    const char* samplers[4] = {"u_fresh", "u_fresh_depth", "u_history", "u_history_aux"};
-    const GLuint inputs[4] = {t.fresh[0], t.fresh[1], t.history[t.current][0], t.history[t.current][1]};
+    const char* samplers[5] = {"u_fresh", "u_fresh_depth", "u_history", "u_history_aux", "u_background"};
+    const GLuint inputs[5] = {t.fresh[0], t.fresh[1], t.history[t.current][0], t.history[t.current][1], t.background};
+    const uniform_setter cu{gl, clouds};
     const int out = 1 - t.current;
 
     bool shadow_ok = true;
@@ -570,8 +582,14 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
         gl.DrawBuffers(2, two);
         gl.Viewport(0, 0, lw, lh);
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        // The background pass (clouds.frag's pass 3) at full resolution.
+        cu.i1("u_pass", 3);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, t.background_fbo);
+        gl.DrawBuffers(1, two);
+        gl.Viewport(0, 0, width, height);
+        gl.DrawArrays(GL_TRIANGLES, 0, 3);
         gl.UseProgram(r);
-        for (int i = 0; i < 4; ++i) {
+        for (int i = 0; i < 5; ++i) {
             gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + i));
             gl.BindTexture(GL_TEXTURE_2D, inputs[i]);
             u.i1(samplers[i], i);

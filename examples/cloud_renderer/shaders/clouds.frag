@@ -77,12 +77,14 @@ uniform sampler2D u_shadow_map;  // CR_SHADOW_MAP_SIZE^2 RGBA32F: (front, mean e
 // The pass: 0 a full frame. 1 the shading pass of the temporal scheme
 // (temporal_resolve.frag), one pixel of every 4 x 4 block: the output pixel (i, j) shades the
 // image's pixel (4 i, 4 j) + u_update_offset (u_resolution stays the full image's size) and
-// writes linear radiance and the cloud's depth, for the resolve pass to blend and tonemap.
-// 2 the Beer shadow map: output pixel (i, j) is texel (i, j) (cr_shadow_texel).
+// writes the cloud layer's own linear radiance and opacity and the cloud's depth, for the
+// resolve pass to blend, composite and tonemap. 2 the Beer shadow map: output pixel (i, j) is
+// texel (i, j) (cr_shadow_texel). 3 the temporal scheme's background at full resolution.
 uniform int u_pass;
 uniform uvec2 u_update_offset;
 
-layout(location = 0) out vec4 out_color;   // rgb: display colour in [0, 1] (pass 1: linear radiance); a: cloud opacity
+layout(location = 0) out vec4 out_color;   // rgb: display colour in [0, 1] (pass 1: the layer's linear radiance,
+                                           // pass 3: what lies behind it); a: cloud opacity (pass 3: 1 where the ray meets the band)
 layout(location = 1) out float out_depth;  // pass 1: the cloud's transmittance-weighted distance, 0 for none
 
 // cloudmath calls these back (declared before the include, defined below).
@@ -355,7 +357,7 @@ uint cr_pixel_hash(vec2 pixel) { return cm_noise_hash(uint(pixel.x) + uint(pixel
 
 void main() {
     // The centre of the image pixel this invocation shades.
-    vec2 pixel = u_pass != 0 ? floor(gl_FragCoord.xy) * 4.0 + vec2(u_update_offset) + 0.5 : gl_FragCoord.xy;
+    vec2 pixel = u_pass == 1 ? floor(gl_FragCoord.xy) * 4.0 + vec2(u_update_offset) + 0.5 : gl_FragCoord.xy;
     vec2 ndc = pixel / u_resolution * 2.0 - 1.0;
     float aspect = u_resolution.x / u_resolution.y;
     vec3 dir = normalize(u_forward + u_right * (ndc.x * aspect * u_tan_half_fov) + u_up * (ndc.y * u_tan_half_fov));
@@ -370,13 +372,23 @@ void main() {
         return;
     }
 
-    CmMarchAccumulator acc = cm_march_accumulator();
-    float cloud_depth = 0.0;  // transmittance-weighted distance of the cloud, 0 for none
     // The view stretch: from where the ray enters the layer, at most u_max_distance. The
     // march covers the part of it inside the cloud type's altitude band (no density outside).
     vec2 layer = cm_cloud_layer_segment(u_cam_altitude, dir.y, u_planet_radius, u_layer_bottom, u_layer_top);
     vec2 in_band = cm_cloud_layer_segment(u_cam_altitude, dir.y, u_planet_radius, cr_band.x, cr_band.y);
     vec2 seg = vec2(max(layer.x, in_band.x), min(min(layer.y, layer.x + u_max_distance), in_band.y));
+    if (u_pass == 3) {
+        // The temporal scheme's background, at full resolution every frame: what lies behind
+        // the cloud layer, and whether the ray meets the band at all (a ray that does not
+        // carries no cloud). The resolve composites the reprojected layer over it, so the sky,
+        // the ground and the clouds' moving shadows on it never lag.
+        out_color = vec4(cr_background(dir), seg.y > seg.x ? 1.0 : 0.0);
+        out_depth = 0.0;
+        return;
+    }
+
+    CmMarchAccumulator acc = cm_march_accumulator();
+    float cloud_depth = 0.0;  // transmittance-weighted distance of the cloud, 0 for none
     if (seg.y > seg.x) {
         float t1 = seg.y;
         uint pixel_hash = cr_pixel_hash(pixel);
@@ -477,13 +489,13 @@ void main() {
             acc.luminance = cm_aerial_perspective(acc.luminance, u_sky_horizon * opacity, tau_air);
         }
     }
-    vec3 color = cr_background(dir) * acc.transmittance + acc.luminance;
     float alpha = 1.0 - (acc.transmittance.r + acc.transmittance.g + acc.transmittance.b) / 3.0;
     out_depth = cloud_depth;
-    if (u_pass != 0) {
-        out_color = vec4(color, alpha);
+    if (u_pass == 1) {
+        out_color = vec4(acc.luminance, alpha);  // the layer alone: pass 3 gives what lies behind it
         return;
     }
+    vec3 color = cr_background(dir) * acc.transmittance + acc.luminance;
     vec3 display = cr_tonemap(color);
     if (u_dither != 0) {
         // Triangular dither of one 8-bit step (no banding in the sky's slow gradients); its

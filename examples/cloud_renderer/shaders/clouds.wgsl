@@ -345,7 +345,7 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
     var out: CrOutput;
     // gl_FragCoord.xy: y up from the bottom row, pixel centres at .5.
     let frag_coord = vec2f(position.x, U.u_resolution.y - position.y);
-    let pixel = select(frag_coord, floor(frag_coord) * 4.0 + vec2f(U.u_update_offset) + 0.5, U.u_pass != 0);
+    let pixel = select(frag_coord, floor(frag_coord) * 4.0 + vec2f(U.u_update_offset) + 0.5, U.u_pass == 1);
     let ndc = pixel / U.u_resolution * 2.0 - 1.0;
     let aspect = U.u_resolution.x / U.u_resolution.y;
     let dir = normalize(U.u_forward + U.u_right * (ndc.x * aspect * U.u_tan_half_fov) + U.u_up * (ndc.y * U.u_tan_half_fov));
@@ -358,11 +358,17 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
         return out;
     }
 
-    var acc = cm_march_accumulator();
-    var cloud_depth = 0.0;
     let layer = cm_cloud_layer_segment(U.u_cam_altitude, dir.y, U.u_planet_radius, U.u_layer_bottom, U.u_layer_top);
     let in_band = cm_cloud_layer_segment(U.u_cam_altitude, dir.y, U.u_planet_radius, cr_band.x, cr_band.y);
     let seg = vec2f(max(layer.x, in_band.x), min(min(layer.y, layer.x + U.u_max_distance), in_band.y));
+    if (U.u_pass == 3) {
+        out.out_color = vec4f(cr_background(dir), select(0.0, 1.0, seg.y > seg.x));
+        out.out_depth = 0.0;
+        return out;
+    }
+
+    var acc = cm_march_accumulator();
+    var cloud_depth = 0.0;
     if (seg.y > seg.x) {
         let t1 = seg.y;
         let pixel_hash = cr_pixel_hash(pixel);
@@ -462,13 +468,13 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
             acc.luminance = cm_aerial_perspective_v3v3v3(acc.luminance, U.u_sky_horizon * opacity, tau_air);
         }
     }
-    let color = cr_background(dir) * acc.transmittance + acc.luminance;
     let alpha = 1.0 - (acc.transmittance.r + acc.transmittance.g + acc.transmittance.b) / 3.0;
     out.out_depth = cloud_depth;
-    if (U.u_pass != 0) {
-        out.out_color = vec4f(color, alpha);
+    if (U.u_pass == 1) {
+        out.out_color = vec4f(acc.luminance, alpha);
         return out;
     }
+    let color = cr_background(dir) * acc.transmittance + acc.luminance;
     var display = cr_tonemap(color);
     if (U.u_dither != 0) {
         let index = u32(frag_coord.x) + u32(frag_coord.y) * 8192u;

@@ -1,10 +1,12 @@
 // temporal_resolve.frag: the second pass of the temporal scheme (cpu_renderer.hpp,
-// cpu_temporal_renderer, is its C++ twin, line for line). clouds.frag with u_temporal_pass = 1
-// has shaded one pixel of every 4 x 4 block into u_fresh (linear radiance, opacity) and
-// u_fresh_depth; this pass writes the full-resolution image: the shaded pixels blended into
-// their reprojected history (a running mean of at most u_max_samples), the other 15 taken
-// from the history where their point was on the previous screen, and the block's new sample
-// where it was not. Outputs the new history and the display colour.
+// cpu_temporal_renderer, is its C++ twin, line for line). clouds.frag with u_pass = 1 has
+// shaded the cloud layer at one pixel of every 4 x 4 block into u_fresh (its own linear
+// radiance, opacity) and u_fresh_depth, and with u_pass = 3 what lies behind the layer at
+// every pixel into u_background. This pass writes the full-resolution layer: the shaded
+// pixels blended into their reprojected history (a running mean of at most u_max_samples),
+// the other 15 taken from the history where their point was on the previous screen and the
+// history there is theirs, and filled from the block's new samples where it is not. Outputs
+// the new history and the display colour: the layer over the background, tonemapped.
 //
 // The host (gl_renderer.cpp) prepends `#version 410 core` and resolves the include below.
 
@@ -16,6 +18,8 @@ uniform vec3 u_motion;            // where a point of this frame was, camera-rel
 uniform uvec2 u_update_offset;    // the pixel of each block shaded this frame
 uniform int u_has_history;        // 0 on the first frame
 uniform float u_max_samples;
+uniform float u_tolerance;        // scene.hpp's temporal_reprojection_tolerance (pixels)
+uniform float u_fill_blend;       // ... temporal_fill_blend
 uniform float u_exposure;
 uniform uint u_frame;
 uniform int u_dither;
@@ -24,6 +28,7 @@ uniform sampler2D u_fresh;         // quarter resolution: rgb linear radiance, a
 uniform sampler2D u_fresh_depth;   // quarter resolution: cloud depth (0: none)
 uniform sampler2D u_history;       // full resolution: rgb linear radiance, a opacity
 uniform sampler2D u_history_aux;   // full resolution: depth, samples in the running mean
+uniform sampler2D u_background;    // full resolution: rgb what lies behind the layer, a 1 where the ray meets the band
 
 layout(location = 0) out vec4 out_history;
 layout(location = 1) out vec2 out_aux;
@@ -42,6 +47,31 @@ vec4 cr_bilinear(sampler2D t, vec4 fp, ivec2 last) {
     return sum;
 }
 
+// Catmull-Rom's 16 taps of t around footprint fp (the bilinear taps and the ring around them),
+// clamped to texels [0, last], the result clamped to the range of the four bilinear taps (no
+// ringing): a sharper reconstruction than GL_LINEAR, which, repeated every frame on a moving
+// history, blurs it (cpu_renderer.cpp's catmull_rom_taps).
+vec4 cr_catmull_rom(sampler2D t, vec4 fp, ivec2 last) {
+    vec2 f = fp.zw;
+    vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
+    vec2 w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
+    vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f));
+    vec2 w3 = f * f * (-0.5 + 0.5 * f);
+    vec4 sum = vec4(0.0), lo = vec4(1e30), hi = vec4(-1e30);
+    for (int dy = -1; dy < 3; ++dy)
+        for (int dx = -1; dx < 3; ++dx) {
+            vec4 texel = texelFetch(t, clamp(ivec2(fp.xy) + ivec2(dx, dy), ivec2(0), last), 0);
+            float wx = dx == -1 ? w0.x : dx == 0 ? w1.x : dx == 1 ? w2.x : w3.x;
+            float wy = dy == -1 ? w0.y : dy == 0 ? w1.y : dy == 1 ? w2.y : w3.y;
+            sum += texel * (wx * wy);
+            if (dx >= 0 && dx <= 1 && dy >= 0 && dy <= 1) {
+                lo = min(lo, texel);
+                hi = max(hi, texel);
+            }
+        }
+    return clamp(sum, lo, hi);
+}
+
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     ivec2 size = ivec2(u_resolution);
@@ -50,6 +80,7 @@ void main() {
     float fresh_depth = texelFetch(u_fresh_depth, block, 0).r;
     bool is_fresh = uvec2(p & 3) == u_update_offset;
     float depth = fresh_depth > 0.0 ? fresh_depth : 1e7;
+    vec4 behind = texelFetch(u_background, p, 0);
 
     // The pixel's ray (clouds.frag), at the block's depth, moved into the previous camera.
     vec2 ndc = gl_FragCoord.xy / u_resolution * 2.0 - 1.0;
@@ -57,36 +88,55 @@ void main() {
     vec3 dir = normalize(u_forward + u_right * (ndc.x * aspect * u_tan_half_fov) + u_up * (ndc.y * u_tan_half_fov));
     vec3 uvz = cm_camera_project(dir * depth + u_motion, u_prev_forward, u_prev_right, u_prev_up, u_prev_tan_half_fov, aspect);
     bool valid = u_has_history != 0 && uvz.z > 0.0 && uvz.x >= 0.0 && uvz.x <= 1.0 && uvz.y >= 0.0 && uvz.y <= 1.0;
+    if (valid) {
+        // The history there must be this pixel's: carried by its own motion (its nearest
+        // texel's depth, the sky's at 1e7), it lands within u_tolerance of this pixel; else a
+        // cloud has moved in or out, and the new samples fill it.
+        ivec2 nearest = clamp(ivec2(uvz.xy * u_resolution), ivec2(0), size - 1);
+        float stored = texelFetch(u_history_aux, nearest, 0).r;
+        vec2 was_ndc = uvz.xy * 2.0 - 1.0;
+        vec3 was = normalize(u_prev_forward + u_prev_right * (was_ndc.x * aspect * u_prev_tan_half_fov) +
+                             u_prev_up * (was_ndc.y * u_prev_tan_half_fov));
+        vec3 now = cm_camera_project(was * (stored > 0.0 ? stored : 1e7) - u_motion, u_forward, u_right, u_up, u_tan_half_fov, aspect);
+        vec2 miss = now.xy * u_resolution - (vec2(p) + 0.5);
+        valid = now.z > 0.0 && dot(miss, miss) <= u_tolerance * u_tolerance;
+    }
     vec4 hc = vec4(0.0);
     vec2 ha = vec2(0.0);
     if (valid) {
-        // Bilinear taps clamped to the image (a point on screen always has its texels).
+        // Catmull-Rom for the layer, bilinear for the depth and the sample count.
         vec4 fp = cm_texel_bilinear(uvz.xy, u_resolution);
-        hc = cr_bilinear(u_history, fp, size - 1);
+        hc = cr_catmull_rom(u_history, fp, size - 1);
         ha = cr_bilinear(u_history_aux, fp, size - 1).xy;
     }
+    // The fill: this frame's new samples (at 4 (i, j) + offset) interpolated likewise.
+    vec2 q = (vec2(p) - vec2(u_update_offset)) * 0.25;
+    vec2 q0 = floor(q);
+    vec4 fill = cr_catmull_rom(u_fresh, vec4(q0, q - q0), (size + 3) / 4 - 1);
     vec4 c;
     vec2 a;
     if (is_fresh) {
         float weight = valid ? cm_temporal_blend_weight(ha.y, u_max_samples) : 1.0;
         c = mix(hc, fresh, weight);
         a = vec2(fresh_depth, valid ? min(ha.y, u_max_samples - 1.0) + 1.0 : 1.0);
-    } else if (valid) {
+    } else if (valid && ha.y >= 0.5) {
         c = hc;
         a = ha;
+    } else if (valid) {
+        // Not shaded yet (0 samples: filled): the fills of successive frames, each from other
+        // pixels of the block, averaged until this pixel's own turn replaces them.
+        c = mix(hc, fill, u_fill_blend);
+        a = vec2(fresh_depth, 0.0);
     } else {
-        // No history (first frame, or the point was off the previous screen): the new
-        // samples interpolated bilinearly (they sit at 4 (i, j) + offset) until this
-        // pixel's turn; 0 samples, so its own sample replaces this one.
-        vec2 q = (vec2(p) - vec2(u_update_offset)) * 0.25;
-        vec2 q0 = floor(q);
-        c = cr_bilinear(u_fresh, vec4(q0, q - q0), (size + 3) / 4 - 1);
+        // No history (first frame, off the previous screen, or not this pixel's).
+        c = fill;
         a = vec2(fresh_depth, 0.0);
     }
+    if (behind.a == 0.0) c = vec4(0.0);  // a ray that meets no cloud carries none
     out_history = c;
     out_aux = a;
-    // Display: clouds.frag's tonemap and dither.
-    vec3 shown = pow(vec3(1.0) - exp(-c.rgb * u_exposure), vec3(1.0 / 2.2));
+    // Display: the layer over what lies behind it, clouds.frag's tonemap and dither.
+    vec3 shown = pow(vec3(1.0) - exp(-(behind.rgb * (1.0 - c.a) + c.rgb) * u_exposure), vec3(1.0 / 2.2));
     if (u_dither != 0) {
         uint index = uint(p.x) + uint(p.y) * 8192u;
         shown += cm_triangular_dither(cm_noise_hash(cm_noise_hash(index) + u_frame * 0x9e3779b9u)) * (1.0 / 255.0);
