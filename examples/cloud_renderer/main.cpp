@@ -183,16 +183,16 @@ int run_headless(const options& o) {
         std::vector<frame_timing> rest;
         int f = 0;
         ok = accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& frame) {
-            frame_timing t;
-            const bool drawn = gpu->render(s, o.var, o.compile_time, o.width, o.height, frame, &t, why);
-            if (f++ == 0) first = t;
-            else rest.push_back(t);
+            frame_timing timing;
+            const bool drawn = gpu->render(s, o.var, o.compile_time, o.width, o.height, frame, &timing, why);
+            if (f++ == 0) first = timing;
+            else rest.push_back(timing);
             return drawn;
         }, img);
         std::vector<double> wall, gl;
-        for (const frame_timing& t : rest) {
-            wall.push_back(t.wall_ms);
-            gl.push_back(t.gpu_ms);
+        for (const frame_timing& r : rest) {
+            wall.push_back(r.wall_ms);
+            gl.push_back(r.gpu_ms);
         }
         std::sort(wall.begin(), wall.end());
         std::sort(gl.begin(), gl.end());
