@@ -354,6 +354,7 @@ struct pixel_program {
             int i = 0, m = 0, sub = 0;
             float sub_from = 0.0f, sub_ds = 0.0f;
             bool opaque = false;
+            bool resumed = false;  // the last probe found cloud: the steps before it were empty
             for (;;) {
                 int count = 0;
                 while (!opaque && count < capacity && (m < sub || i < v.view_steps)) {
@@ -361,11 +362,13 @@ struct pixel_program {
                     const bool probe = !refining && v.skip && empty_steps >= skip_block;
                     const int j = std::min(i + skip_block, v.view_steps);  // the probed block's end
                     const float t = refining ? sub_from + (float(m) + offset) * sub_ds
-                                    : probe  ? at((float(i) + offset * float(j - i)) / n)
+                                    : probe  ? at(float(j) / n)
                                              : at((float(i) + offset) / n);
                     const float alt = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, t);
                     const float footprint = footprint_at(t, height);
-                    // The probe reads the base shape alone; one that finds cloud resumes full steps.
+                    // The probe reads the base shape alone at the block's end: a cloud that begins
+                    // inside the block and reaches past it is found, its front marched in full
+                    // steps (a probe inside the block skipped the fronts that lay before it).
                     const float covered = field.base_density(dir * t, alt, view_reads, footprint);
                     const float d = probe ? covered : field.detail_density(dir * t, alt, covered, view_reads, footprint);
                     float ds = 0.0f;
@@ -374,8 +377,9 @@ struct pixel_program {
                             step_begin = at(float(j) / n);
                             last_empty = step_begin;
                             i = j;
-                        } else {
+                        } else {  // cloud: march the block, refining from the last empty sample
                             empty_steps = 0;
+                            resumed = true;
                         }
                         continue;
                     }
@@ -395,7 +399,8 @@ struct pixel_program {
                             ++i;
                             continue;
                         }
-                        const float r0 = empty_steps > 0 && last_empty >= 0.0f ? last_empty : step_begin;
+                        const float r0 = (empty_steps > 0 || resumed) && last_empty >= 0.0f ? last_empty : step_begin;
+                        resumed = false;
                         const int n_sub = cm::refine_substeps(s.extinction * d * (step_end - r0), v.refine);
                         empty_steps = 0;
                         if (n_sub > 1) {  // march the step again in sub-steps, from the next turn

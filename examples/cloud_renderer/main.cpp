@@ -443,6 +443,7 @@ int run_convergence(const options& o) {
         {"the variant, temporal scheme: frame 127 of a still camera", "temporal"},
         {"the other step schedule", o.var.schedule == step_schedule::uniform ? "schedule=growing" : "schedule=uniform"},
         {"the other texture LOD setting", o.var.lod ? "lod=off" : "lod=on"},
+        {"the other empty-space skipping setting", o.var.skip ? "skip=off" : "skip=on"},
         {"4x the view steps", "steps=" + std::to_string(std::min(1024, 4 * o.var.view_steps))},
         {"no refinement of opaque view steps", "refine=1"},
         {"the light marches' previous steps: uniform, at their midpoints", "light-spacing=uniform,light-jitter=off"},

@@ -73,8 +73,10 @@ struct variant {
     int refine = 16;
     // Empty-space skipping: after skip_block empty steps, the march probes the next
     // skip_block steps with one sample of the base shape (weather map and base volume, no
-    // detail, no light) and steps over them when it is empty; a probe that finds cloud
-    // resumes full steps there.
+    // detail, no light) at their end and steps over them when it is empty; a probe that finds
+    // cloud marches them in full steps. At the block's end, the probe finds every cloud that
+    // begins inside the block and reaches past it (a probe inside the block skipped the cloud
+    // fronts before it: 40-42 dB from the image without skipping, against 45-47 dB now).
     bool skip = false;
     // Cloud shadows on the ground from a Beer shadow map (shadow_map.hpp) of
     // shadow_map_size^2 texels, each a shadow_map_steps march along the sunlight.

@@ -410,6 +410,7 @@ void main() {
         int i = 0, m = 0, sub = 0;
         float sub_from = 0.0, sub_ds = 0.0;
         bool opaque = false;
+        bool resumed = false;  // the last probe found cloud: the steps before it were empty
         for (;;) {
             // March, recording the samples in cloud, until the buffer is full, the ray has
             // left the band or the cloud is opaque; then light them; go on if the buffer was full.
@@ -419,12 +420,13 @@ void main() {
                 bool probe = !refining && u_skip != 0 && empty_steps >= CR_SKIP_BLOCK;
                 int j = min(i + CR_SKIP_BLOCK, u_view_steps);  // the probed block's end
                 float t = refining ? sub_from + (float(m) + offset) * sub_ds
-                        : probe    ? cr_march_distance((float(i) + offset * float(j - i)) / n, seg.x, t1)
+                        : probe    ? cr_march_distance(float(j) / n, seg.x, t1)
                                    : cr_march_distance((float(i) + offset) / n, seg.x, t1);
                 float altitude = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, t);
                 cr_footprint = u_lod != 0 ? cm_pixel_footprint(t, u_tan_half_fov, u_resolution.y) : 0.0;
-                // The probe reads the base shape alone; a probe that finds cloud resumes full
-                // steps there.
+                // The probe reads the base shape alone at the block's end: a cloud that begins
+                // inside the block and reaches past it is found, its front marched in full steps
+                // (a probe inside the block skipped the fronts that lay before it).
                 float covered = cr_base_density(dir * t, altitude);
                 float density = probe ? covered : cr_detail_density(dir * t, altitude, covered);
                 float ds;
@@ -433,8 +435,9 @@ void main() {
                         step_begin = cr_march_distance(float(j) / n, seg.x, t1);
                         last_empty = step_begin;
                         i = j;
-                    } else {
+                    } else {  // cloud: march the block, refining from the last empty sample
                         empty_steps = 0;
+                        resumed = true;
                     }
                     continue;
                 }
@@ -454,7 +457,8 @@ void main() {
                         ++i;
                         continue;
                     }
-                    float r0 = empty_steps > 0 && last_empty >= 0.0 ? last_empty : step_begin;
+                    float r0 = (empty_steps > 0 || resumed) && last_empty >= 0.0 ? last_empty : step_begin;
+                    resumed = false;
                     int n_sub = cm_refine_substeps(u_extinction * density * (step_end - r0), u_refine);
                     empty_steps = 0;
                     if (n_sub > 1) {  // march the step again in sub-steps, from the next turn

@@ -388,6 +388,7 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
         var sub_from = 0.0;
         var sub_ds = 0.0;
         var opaque = false;
+        var resumed = false;
         loop {
             var count = 0;
             while (!opaque && count < CR_LIT_SAMPLES && (m < sub || i < U.u_view_steps)) {
@@ -398,7 +399,7 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
                 if (refining) {
                     t = sub_from + (f32(m) + offset) * sub_ds;
                 } else if (probe) {
-                    t = cr_march_distance((f32(i) + offset * f32(j - i)) / n, seg.x, t1);
+                    t = cr_march_distance(f32(j) / n, seg.x, t1);
                 } else {
                     t = cr_march_distance((f32(i) + offset) / n, seg.x, t1);
                 }
@@ -415,6 +416,7 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
                         i = j;
                     } else {
                         empty_steps = 0;
+                        resumed = true;
                     }
                     continue;
                 }
@@ -435,7 +437,8 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
                         i++;
                         continue;
                     }
-                    let r0 = select(step_begin, last_empty, empty_steps > 0 && last_empty >= 0.0);
+                    let r0 = select(step_begin, last_empty, (empty_steps > 0 || resumed) && last_empty >= 0.0);
+                    resumed = false;
                     let n_sub = cm_refine_substeps(U.u_extinction * density * (step_end - r0), U.u_refine);
                     empty_steps = 0;
                     if (n_sub > 1) {
