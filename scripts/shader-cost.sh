@@ -56,7 +56,7 @@ row() {
 "$renderer" --dump-shader --run-time > "$work/runtime.frag"
 echo "| Shader | SPIR-V instructions | texture operations | loops |"
 echo "|---|---:|---:|---:|"
-row "ours: the default, one permutation compiled in (all three passes: frame, temporal shading, shadow map)" frag "$work/default.frag"
+row "ours: the default, one permutation compiled in (every pass: frame, shadow map, temporal shading and background)" frag "$work/default.frag"
 row "ours: the run-time uber-shader (\`--run-time\`: every variant's paths)" frag "$work/runtime.frag"
 if [[ -n "$peer" ]]; then
   [[ -r "$peer/shaders/volumetric_clouds.comp" ]] || { echo "shader-cost: $peer/shaders/volumetric_clouds.comp not found" >&2; exit 2; }

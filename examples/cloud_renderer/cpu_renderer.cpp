@@ -621,7 +621,9 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
             const float stored = aux_[static_cast<std::size_t>(ty) * static_cast<std::size_t>(w) + static_cast<std::size_t>(tx)].x;
             const vec2 ndc = vec2(uvz) * 2.0f - 1.0f;
             const vec3 was = glm::normalize(pk.forward + pk.right * (ndc.x * aspect * pk.tan_half_fov) + pk.up * (ndc.y * pk.tan_half_fov));
-            const vec3 now = cm::camera_project(was * (stored > 0.0f ? stored : 1e7f) - motion, k.forward, k.right, k.up,
+            // Under a metre is the sky's 0 blended by bilinear taps (a depth mixed across a cloud's
+            // edge): the sky's infinity, not a point at the camera.
+            const vec3 now = cm::camera_project(was * (stored >= 1.0f ? stored : 1e7f) - motion, k.forward, k.right, k.up,
                                                 k.tan_half_fov, aspect);
             const vec2 miss(now.x * float(w) - (float(x) + 0.5f), now.y * float(h) - (float(y) + 0.5f));
             valid = now.z > 0.0f && glm::dot(miss, miss) <= temporal_reprojection_tolerance * temporal_reprojection_tolerance;

@@ -14,8 +14,10 @@ const demo = (window.cloudmathDemo = { ready: false, error: null, parity: [], im
 const params = new URLSearchParams(location.search);
 const baseSize = Number(params.get('base') || 64);  // base noise volume edge (the desktop renderer: 128)
 const status = (text) => { document.getElementById('status').textContent = text; };
-// The names of clouds.frag's uniforms (its CR_PARAM and uniform lines).
-const cloudsFragUniforms = new Set([...cloudsFrag.matchAll(/^CR_PARAM\(\w+,\s*(\w+)\)/gm)].map((m) => m[1]));
+// The names of clouds.frag's permutation switches (its CR_PARAM lines: compiled in as
+// constants) and of all its uniforms (those and its uniform lines).
+const cloudsFragSwitches = [...cloudsFrag.matchAll(/^CR_PARAM\(\w+,\s*(\w+)\)/gm)].map((m) => m[1]);
+const cloudsFragUniforms = new Set(cloudsFragSwitches);
 for (const m of cloudsFrag.matchAll(/^uniform\s+\w+\s+([^;]+);/gm)) for (const n of m[1].split(',')) cloudsFragUniforms.add(n.trim());
 
 const canvas = document.getElementById('view');
@@ -170,12 +172,20 @@ function bakeTextures(keepTexels) {
 }
 
 // ------------------------------------------------------------------------------------------
-// The cloud pass: clouds.frag with run-time variant uniforms (CR_PARAM) and the package's
-// resolver for its #include "cloudmath.glsl".
+// The cloud pass: clouds.frag with the package's resolver for its #include "cloudmath.glsl",
+// one program per permutation as engines ship it (the desktop renderer's default): the
+// switches (CR_PARAM) compiled in as constants, so the compiler keeps only the variant's own
+// paths; a program is compiled the first time its permutation is drawn.
 let clouds = null, textures = null, target = null;
-function setupClouds() {
-  const source = header + '#define CR_PARAM(type, name) uniform type name;\n' + resolve(cloudsFrag);
-  clouds = program(source, 'clouds.frag');
+const cloudPrograms = new Map();
+function useClouds(values) {
+  const constants = cloudsFragSwitches.map((name) => `const int ${name} = ${Math.trunc(values[name] ?? 0)};\n`).join('');
+  if (!cloudPrograms.has(constants))
+    cloudPrograms.set(constants, program(header + '#define CR_PARAM(type, name)\n' + constants + resolve(cloudsFrag), 'clouds.frag'));
+  clouds = cloudPrograms.get(constants);
+}
+function setupClouds(values) {
+  useClouds(values);
   target = { fbo: gl.createFramebuffer(), tex: gl.createTexture() };
   gl.bindTexture(gl.TEXTURE_2D, target.tex);
   gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA8, canvas.width, canvas.height);
@@ -218,6 +228,7 @@ function cloudUniforms(state) {
 }
 
 function render(values) {
+  useClouds(values);
   gl.useProgram(clouds);
   // Each value by the type the program declares (a uniform the compiler dropped is skipped).
   const active = new Map();
@@ -337,15 +348,14 @@ async function main() {
   textures = bakeTextures(!!navigator.gpu);  // keeps the texels for WebGPU
   gl.finish();
   demo.bakeMs = performance.now() - t0;
-  status('compiling the cloud shader...');
-  t0 = performance.now();
-  setupClouds();
-  demo.compileMs = performance.now() - t0;
-
   const state = { scene: params.get('scene') || 'cumulus', variant: params.get('variant') || 'default', ms: params.get('ms') || 'production' };
   const preset = () => scenePresets.find((x) => x.name === state.scene);
   state.sunElevation = Number(params.get('sun') ?? preset().sunElevation);
   state.coverage = Number(params.get('coverage') ?? preset().coverage);
+  status('compiling the cloud shader...');
+  t0 = performance.now();
+  setupClouds(cloudUniforms(state));
+  demo.compileMs = performance.now() - t0;
   const sun = document.getElementById('sun'), coverage = document.getElementById('coverage');
   const draw = () => {
     sun.value = state.sunElevation; coverage.value = state.coverage;

@@ -97,7 +97,9 @@ void main() {
         vec2 was_ndc = uvz.xy * 2.0 - 1.0;
         vec3 was = normalize(u_prev_forward + u_prev_right * (was_ndc.x * aspect * u_prev_tan_half_fov) +
                              u_prev_up * (was_ndc.y * u_prev_tan_half_fov));
-        vec3 now = cm_camera_project(was * (stored > 0.0 ? stored : 1e7) - u_motion, u_forward, u_right, u_up, u_tan_half_fov, aspect);
+        // Under a metre is the sky's 0 blended by bilinear taps (a depth mixed across a cloud's
+        // edge): the sky's infinity, not a point at the camera.
+        vec3 now = cm_camera_project(was * (stored >= 1.0 ? stored : 1e7) - u_motion, u_forward, u_right, u_up, u_tan_half_fov, aspect);
         vec2 miss = now.xy * u_resolution - (vec2(p) + 0.5);
         valid = now.z > 0.0 && dot(miss, miss) <= u_tolerance * u_tolerance;
     }
