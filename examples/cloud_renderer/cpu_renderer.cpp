@@ -643,16 +643,19 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
             catmull_rom_taps(fp, w, h, [&](std::size_t ti, float weight) { hc += color_[ti] * weight; });
             hc = glm::clamp(hc, lo, hi);
         }
-        // The fill: this frame's new samples (at 4 (i, j) + offset) interpolated likewise.
-        const vec2 q = (vec2(float(x), float(y)) - vec2(offset)) * 0.25f;
-        const vec4 fq(std::floor(q.x), std::floor(q.y), q.x - std::floor(q.x), q.y - std::floor(q.y));
-        vec4 fill(0.0f), fill_lo(INFINITY), fill_hi(-INFINITY);
-        bilinear_taps(fq, lw, lh, [&](std::size_t j, float) {
-            fill_lo = glm::min(fill_lo, fresh[j]);
-            fill_hi = glm::max(fill_hi, fresh[j]);
-        });
-        catmull_rom_taps(fq, lw, lh, [&](std::size_t j, float weight) { fill += fresh[j] * weight; });
-        fill = glm::clamp(fill, fill_lo, fill_hi);
+        // The fill (where it is needed): this frame's new samples (at 4 (i, j) + offset)
+        // interpolated likewise.
+        const auto fill = [&] {
+            const vec2 q = (vec2(float(x), float(y)) - vec2(offset)) * 0.25f;
+            const vec4 fq(std::floor(q.x), std::floor(q.y), q.x - std::floor(q.x), q.y - std::floor(q.y));
+            vec4 sum(0.0f), lo(INFINITY), hi(-INFINITY);
+            bilinear_taps(fq, lw, lh, [&](std::size_t j, float) {
+                lo = glm::min(lo, fresh[j]);
+                hi = glm::max(hi, fresh[j]);
+            });
+            catmull_rom_taps(fq, lw, lh, [&](std::size_t j, float weight) { sum += fresh[j] * weight; });
+            return glm::clamp(sum, lo, hi);
+        };
         vec4 c;
         vec2 a;
         if (is_fresh) {
@@ -665,11 +668,11 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
         } else if (valid) {
             // Not shaded yet (0 samples: filled): the fills of successive frames, each from
             // other pixels of the block, averaged until this pixel's own turn replaces them.
-            c = glm::mix(hc, fill, temporal_fill_blend);
+            c = glm::mix(hc, fill(), temporal_fill_blend);
             a = vec2(fresh_depth[b], 0.0f);
         } else {
             // No history (first frame, off the previous screen, or not this pixel's).
-            c = fill;
+            c = fill();
             a = vec2(fresh_depth[b], 0.0f);
         }
         if (!(stretch.y > stretch.x)) c = vec4(0.0f);  // a ray that meets no cloud carries none

@@ -361,7 +361,6 @@ void main() {
     vec2 ndc = pixel / u_resolution * 2.0 - 1.0;
     float aspect = u_resolution.x / u_resolution.y;
     vec3 dir = normalize(u_forward + u_right * (ndc.x * aspect * u_tan_half_fov) + u_up * (ndc.y * u_tan_half_fov));
-    cr_mie = cm_mie_approx_params(u_droplet_diameter);
     // The classic shape's band is the cloud type's range (what scene.cpp's cloud_band gives
     // for it, computed here so that hosts without u_band, the web demo, need not).
     cr_band = u_shape == 1 ? u_band : cm_height_range_for_type(u_cloud_type) * (u_layer_top - u_layer_bottom) + u_layer_bottom;
@@ -387,6 +386,7 @@ void main() {
         return;
     }
 
+    cr_mie = cm_mie_approx_params(u_droplet_diameter);  // after the passes that light nothing
     CmMarchAccumulator acc = cm_march_accumulator();
     float cloud_depth = 0.0;  // transmittance-weighted distance of the cloud, 0 for none
     if (seg.y > seg.x) {

@@ -349,7 +349,6 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
     let ndc = pixel / U.u_resolution * 2.0 - 1.0;
     let aspect = U.u_resolution.x / U.u_resolution.y;
     let dir = normalize(U.u_forward + U.u_right * (ndc.x * aspect * U.u_tan_half_fov) + U.u_up * (ndc.y * U.u_tan_half_fov));
-    cr_mie = cm_mie_approx_params(U.u_droplet_diameter);
     cr_band = select(cm_height_range_for_type(U.u_cloud_type) * (U.u_layer_top - U.u_layer_bottom) + U.u_layer_bottom, U.u_band, U.u_shape == 1);
     if (U.u_pass == 2) {
         cr_footprint = select(0.0, 2.0 * U.u_shadow_half_extent / f32(CR_SHADOW_MAP_SIZE), U.u_lod != 0);
@@ -367,6 +366,7 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
         return out;
     }
 
+    cr_mie = cm_mie_approx_params(U.u_droplet_diameter);
     var acc = cm_march_accumulator();
     var cloud_depth = 0.0;
     if (seg.y > seg.x) {
