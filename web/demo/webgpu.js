@@ -92,12 +92,10 @@ export async function createClouds(gpu, canvas, texels, present2d = false) {
     tex(1, '3d'), smp(2), tex(3, '3d'), smp(4), tex(5, '2d'), smp(6), tex(7, '2d'), smp(8), tex(9, '2d'), smp(10),
     tex(11, '2d', 'unfilterable-float'),
   ] });
-  const pipeline = await device.createRenderPipelineAsync({
-    layout: device.createPipelineLayout({ bindGroupLayouts: [bindGroupLayout] }),
-    vertex: { module, entryPoint: 'cr_vertex' },
-    fragment: { module, entryPoint: 'cr_fragment', targets: [{ format: 'rgba8unorm' }, { format: 'r32float' }] },
-    primitive: { topology: 'triangle-list' },
-  });
+  // One pipeline per permutation (clouds.wgsl's override constants), made the first time its
+  // permutation is drawn (pipelineFor).
+  const pipelineLayout = device.createPipelineLayout({ bindGroupLayouts: [bindGroupLayout] });
+  const overrides = [...source.matchAll(/^override\s+(\w+)\s*:/gm)].map((m) => m[1]);
 
   // The baked noise, texel for texel; samplers as the WebGL2 textures' parameters (linear,
   // repeat, one level).
@@ -143,8 +141,8 @@ export async function createClouds(gpu, canvas, texels, present2d = false) {
   }
   const scopeError = await device.popErrorScope();
   if (scopeError) throw new Error(`WebGPU validation: ${scopeError.message}`);
-  return { gpu, pipeline, bindGroup, uniformBuffer, layout, color, depth, readBuffer, bytesPerRow, context, context2d, width, height, errors,
-    warnings: messages };
+  return { gpu, module, pipelineLayout, overrides, pipelines: new Map(), bindGroup, uniformBuffer, layout, color, depth, readBuffer,
+    bytesPerRow, context, context2d, width, height, errors, warnings: messages };
 }
 
 // Packs { u_name: number | number[] } into the uniform struct; a member without a value is 0
@@ -178,14 +176,33 @@ export function renderClouds(c, values, show = true) {
   return run;
 }
 
+// The pipeline of the permutation in values (its override constants; an unset one is 0, as an
+// unset uniform), and the values that go to the uniform struct.
+async function pipelineFor(c, values) {
+  const constants = {}, uniforms = {};
+  for (const [name, v] of Object.entries(values)) (c.overrides.includes(name) ? constants : uniforms)[name] = v;
+  for (const name of c.overrides) constants[name] = Math.trunc(constants[name] ?? 0);
+  const key = c.overrides.map((name) => constants[name]).join(',');
+  if (!c.pipelines.has(key)) {
+    c.pipelines.set(key, await c.gpu.device.createRenderPipelineAsync({
+      layout: c.pipelineLayout,
+      vertex: { module: c.module, entryPoint: 'cr_vertex' },
+      fragment: { module: c.module, entryPoint: 'cr_fragment', constants, targets: [{ format: 'rgba8unorm' }, { format: 'r32float' }] },
+      primitive: { topology: 'triangle-list' },
+    }));
+  }
+  return { pipeline: c.pipelines.get(key), uniforms };
+}
+
 async function renderOnce(c, values, show) {
   const { device } = c.gpu;
-  device.queue.writeBuffer(c.uniformBuffer, 0, packUniforms(c.layout, values));
+  const { pipeline, uniforms } = await pipelineFor(c, values);
+  device.queue.writeBuffer(c.uniformBuffer, 0, packUniforms(c.layout, uniforms));
   const encoder = device.createCommandEncoder();
   const pass = encoder.beginRenderPass({ colorAttachments: [
     { view: c.color.createView(), loadOp: 'clear', storeOp: 'store', clearValue: [0, 0, 0, 0] },
     { view: c.depth.createView(), loadOp: 'clear', storeOp: 'store', clearValue: [0, 0, 0, 0] }] });
-  pass.setPipeline(c.pipeline);
+  pass.setPipeline(pipeline);
   pass.setBindGroup(0, c.bindGroup);
   pass.draw(3);
   pass.end();

@@ -6,11 +6,12 @@
 // The host (web/demo/webgpu.js) puts in front of it include/cloudmath/wgsl/cloudmath.wgsl (the
 // library without hooks) and the *_hooks.wgsl files (cm_cone_optical_depth,
 // cm_multiple_scattering_with, cm_diffusion_scattering_with), which call the hooks defined
-// below; the run-time variant switches stay uniforms (there is no compile-time variant block).
+// below; the variant switches are pipeline-overridable constants (webgpu.js makes one pipeline per
+// permutation, as the desktop renderer compiles one program per permutation).
 //
 // What differs from clouds.frag, all forced by WGSL:
 // - Uniforms are the members of one uniform struct, U, with the GLSL names: u_x is U.u_x.
-//   The variant switches (CR_PARAM) are members too, always run-time values.
+//   The variant switches (CR_PARAM) are `override` constants with the GLSL names.
 // - Each sampler2D / sampler3D is a texture and a sampler binding (u_x, u_x_sampler);
 //   textureLod -> textureSampleLevel, textureSize(t, 0) -> textureDimensions(t),
 //   texelFetch -> textureLoad. u_shadow_map (RGBA32F, read with textureLoad only) has no sampler.
@@ -27,33 +28,36 @@
 //   cm_integrate_scattering_v3ff), in/out values are passed as pointers (&acc.luminance, &light_index).
 // - Globals set per pixel are var<private>.
 
-struct CrUniforms {
-    // The lighting variant (values in scene.hpp's `variant`): clouds.frag's CR_PARAM lines.
-    u_phase_model: i32,      // 0 HG, 1 dual-lobe HG, 2 Cornette-Shanks, 3 Mie fit
-    u_lighting: i32,         // 0 Wrenninge octaves, 1 diffusion model (CM_DIFFUSION_MODEL_CLOUDS), 2 (_FITTED)
-    u_octaves: i32,
-    u_powder: i32,
-    u_light_mode: i32,       // toward the sun: 0 cone, 1 march, 2 shadow map
-    u_behind_mode: i32,      // behind the sample (diffusion model): 0 cone, 1 march, 2 shadow map
-    u_cone_samples: i32,
-    u_light_steps: i32,
-    u_light_quadratic: i32,
-    u_light_jitter: i32,
-    u_refine: i32,
-    u_integration: i32,      // 0 energy-conserving (analytic), 1 naive Riemann sum
-    u_view_steps: i32,
-    u_schedule: i32,
-    u_skip: i32,
-    u_shadows: i32,
-    u_occluded_ambient: i32,
-    u_lod: i32,
-    u_far_base: i32,
-    u_long_reach: i32,
-    u_jitter: i32,
-    u_sun_disc: i32,
-    u_haze: i32,
-    u_dither: i32,
+// The permutation (clouds.frag's CR_PARAM lines): pipeline-overridable constants, one pipeline
+// per variant and density field, so the compiler folds every switch (values in scene.hpp's
+// `variant`; u_shape 0 classic, 1 detailed).
+override u_shape: i32;
+override u_phase_model: i32;
+override u_lighting: i32;
+override u_octaves: i32;
+override u_powder: i32;
+override u_light_mode: i32;
+override u_behind_mode: i32;
+override u_cone_samples: i32;
+override u_light_steps: i32;
+override u_light_quadratic: i32;
+override u_light_jitter: i32;
+override u_refine: i32;
+override u_integration: i32;
+override u_view_steps: i32;
+override u_schedule: i32;
+override u_skip: i32;
+override u_shadows: i32;
+override u_occluded_ambient: i32;
+override u_lod: i32;
+override u_far_base: i32;
+override u_long_reach: i32;
+override u_jitter: i32;
+override u_sun_disc: i32;
+override u_haze: i32;
+override u_dither: i32;
 
+struct CrUniforms {
     // The scene (scene.hpp's `scene` and `frame_constants`).
     u_resolution: vec2f,
     u_forward: vec3f, u_right: vec3f, u_up: vec3f,
@@ -64,7 +68,6 @@ struct CrUniforms {
     u_sun_angular_radius: f32,
     u_coverage: f32, u_cloud_type: f32, u_extinction: f32, u_albedo: f32, u_max_distance: f32,
     u_base_tile: f32, u_detail_tile: f32, u_weather_tile: f32,
-    u_shape: i32,
     u_weather_wide_tile: f32, u_curl_tile: f32, u_curl_strength: f32, u_type_spread: f32, u_top_rounding: f32, u_density_scale: f32,
     u_band: vec2f,
     u_wind: vec2f,
@@ -123,7 +126,7 @@ fn cr_base_density(p: vec3f, altitude: f32) -> f32 {
     let h = cm_height_fraction(altitude, U.u_layer_bottom, U.u_layer_top);
     if (h <= 0.0 || h >= 1.0) { return 0.0; }
     let q = vec3f(p.x + U.u_wind.x, altitude, p.z + U.u_wind.y);
-    if (U.u_shape == 1) {
+    if (u_shape == 1) {
         let w = textureSampleLevel(u_weather_wide, u_weather_wide_sampler, q.xz / U.u_weather_wide_tile,
                                    cm_texture_lod(cr_footprint, U.u_weather_wide_tile / f32(textureDimensions(u_weather_wide).x))).rgb;
         let b = textureSampleLevel(u_base, u_base_sampler, q / U.u_base_tile, cm_texture_lod(cr_footprint, U.u_base_tile / f32(textureDimensions(u_base).x)));
@@ -142,7 +145,7 @@ fn cr_detail_density(p: vec3f, altitude: f32, covered: f32) -> f32 {
     let h = cm_height_fraction(altitude, U.u_layer_bottom, U.u_layer_top);
     var q = vec3f(p.x + U.u_wind.x, altitude, p.z + U.u_wind.y);
     let detail_lod = cm_texture_lod(cr_footprint, U.u_detail_tile / f32(textureDimensions(u_detail).x));
-    if (U.u_shape == 1) {
+    if (u_shape == 1) {
         let curl = (2.0 * textureSampleLevel(u_curl, u_curl_sampler, q.xz / U.u_curl_tile, 0.0).rgb - 1.0) * 4.0;  // curl_bake_decode
         q += curl * (U.u_curl_strength * (1.0 - h));
         let d = textureSampleLevel(u_detail, u_detail_sampler, q / U.u_detail_tile, detail_lod).rgb;
@@ -156,20 +159,20 @@ fn cr_density(p: vec3f, altitude: f32) -> f32 { return cr_detail_density(p, alti
 
 fn cr_coarse_density(p: vec3f, altitude: f32) -> f32 {
     let covered = cr_base_density(p, altitude);
-    return select(covered, cm_saturate(covered * U.u_density_scale), U.u_shape == 1);
+    return select(covered, cm_saturate(covered * U.u_density_scale), u_shape == 1);
 }
 
 var<private> cr_far_index: i32 = 1 << 30;
 
 fn cr_cone_extinction(p: vec3f, i: i32) -> f32 {
-    if (U.u_far_base != 0 && i >= cr_far_index) { return U.u_extinction * cr_coarse_density(p, cr_altitude(p)); }
+    if (u_far_base != 0 && i >= cr_far_index) { return U.u_extinction * cr_coarse_density(p, cr_altitude(p)); }
     return U.u_extinction * cr_density(p, cr_altitude(p));
 }
 
 fn cr_phase(mu: f32, scale: f32) -> f32 {
-    if (U.u_phase_model == 0) { return cm_phase_hg(mu, scale * U.u_phase_g); }
-    if (U.u_phase_model == 1) { return cm_phase_hg_dual(mu, scale * U.u_phase_g, scale * U.u_phase_g_back, U.u_phase_w); }
-    if (U.u_phase_model == 2) { return cm_phase_cornette_shanks(mu, scale * U.u_phase_g); }
+    if (u_phase_model == 0) { return cm_phase_hg(mu, scale * U.u_phase_g); }
+    if (u_phase_model == 1) { return cm_phase_hg_dual(mu, scale * U.u_phase_g, scale * U.u_phase_g_back, U.u_phase_w); }
+    if (u_phase_model == 2) { return cm_phase_cornette_shanks(mu, scale * U.u_phase_g); }
     var m = cr_mie;
     m.g_hg *= scale;
     m.g_draine *= scale;
@@ -188,7 +191,7 @@ fn cr_shadow_lookup(uv: vec2f) -> vec3f {
     return texel;
 }
 
-fn cr_light_distance(u: f32, length: f32) -> f32 { return select(u * length, cm_light_march_distance(u, length), U.u_light_quadratic != 0); }
+fn cr_light_distance(u: f32, length: f32) -> f32 { return select(u * length, cm_light_march_distance(u, length), u_light_quadratic != 0); }
 
 fn cr_on_map(uvd: vec3f) -> bool { return uvd.x >= 0.0 && uvd.x <= 1.0 && uvd.y >= 0.0 && uvd.y <= 1.0; }
 
@@ -204,31 +207,31 @@ fn cr_light_optical_depth(p: vec3f, altitude: f32, toward: vec3f, mode_in: i32, 
         mode = 0;
     }
     if (mode == 0) {
-        let cone = CmConeLightConfig(U.u_cone_samples, U.u_cone_step, U.u_cone_spread,
+        let cone = CmConeLightConfig(u_cone_samples, U.u_cone_step, U.u_cone_spread,
                                      U.u_cone_far_distance, U.u_cone_far_length);
-        cr_far_index = U.u_cone_samples - 1;
+        cr_far_index = u_cone_samples - 1;
         return cm_cone_optical_depth(p, toward, cone);
     }
     cr_far_index = CR_LIGHT_FAR_STEP;
     let up = normalize(vec3f(p.x, p.y + (U.u_planet_radius + U.u_cam_altitude), p.z));
     let seg = cm_cloud_layer_segment(altitude, dot(toward, up), U.u_planet_radius, cr_band.x, cr_band.y);
-    let reach = select(U.u_light_march_max, CR_LIGHT_LONG_REACH, U.u_long_reach == 1);
+    let reach = select(U.u_light_march_max, CR_LIGHT_LONG_REACH, u_long_reach == 1);
     let length_to_exit = select(0.0, min(seg.y, reach), seg.y > seg.x);
-    let n = f32(U.u_light_steps);
+    let n = f32(u_light_steps);
     var tau = 0.0;
-    for (var i = 0; i < U.u_light_steps; i++) {
+    for (var i = 0; i < u_light_steps; i++) {
         let ds = cr_light_distance((f32(i) + 1.0) / n, length_to_exit) - cr_light_distance(f32(i) / n, length_to_exit);
         tau += cr_cone_extinction(p + toward * cr_light_distance((f32(i) + light_offset) / n, length_to_exit), i) * ds;
     }
-    if (U.u_long_reach == 3 && seg.y > length_to_exit && dot(toward, U.u_sun_dir) > 0.0) {
-        let nf = cr_far_steps(U.u_light_steps);
+    if (u_long_reach == 3 && seg.y > length_to_exit && dot(toward, U.u_sun_dir) > 0.0) {
+        let nf = cr_far_steps(u_light_steps);
         let span = (min(seg.y, CR_LIGHT_LONG_REACH) - length_to_exit) / f32(nf);
         for (var j = 0; j < nf; j++) {
             let q = p + toward * (length_to_exit + (f32(j) + light_offset) * span);
             tau += U.u_extinction * cr_coarse_density(q, cr_altitude(q)) * span;
         }
     }
-    if (U.u_long_reach == 2 && seg.y > length_to_exit && dot(toward, U.u_sun_dir) > 0.0) {
+    if (u_long_reach == 2 && seg.y > length_to_exit && dot(toward, U.u_sun_dir) > 0.0) {
         let uvd = cm_shadow_map_project(p + toward * length_to_exit, U.u_shadow_origin, U.u_shadow_right, U.u_shadow_up,
                                         U.u_sun_dir, U.u_shadow_half_extent);
         if (cr_on_map(uvd)) { tau += cm_beer_shadow_optical_depth(cr_shadow_lookup(uvd.xy), uvd.z); }
@@ -238,19 +241,19 @@ fn cr_light_optical_depth(p: vec3f, altitude: f32, toward: vec3f, mode_in: i32, 
 
 fn cr_in_scattering(tau_light: f32, tau_behind: f32, tau_view: f32, mu: f32, h: f32) -> vec3f {
     var sun: f32;
-    if (U.u_lighting == 1) {
+    if (u_lighting == 1) {
         sun = cm_diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, U.u_phase_mean_cosine, U.u_albedo,
                                            CM_DIFFUSION_MODEL_CLOUDS);
-    } else if (U.u_lighting == 2) {
+    } else if (u_lighting == 2) {
         sun = cm_diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, U.u_phase_mean_cosine, U.u_albedo,
                                            CM_DIFFUSION_MODEL_FITTED);
     } else {
-        sun = cm_multiple_scattering_with(tau_light, mu, U.u_ms_a, U.u_ms_b, U.u_ms_c, U.u_octaves);
+        sun = cm_multiple_scattering_with(tau_light, mu, U.u_ms_a, U.u_ms_b, U.u_ms_c, u_octaves);
     }
-    if (U.u_powder != 0) {
+    if (u_powder != 0) {
         sun *= mix(2.0 * cm_powder(tau_light, 2.0), 1.0, 0.5 + 0.5 * mu);
     }
-    if (U.u_occluded_ambient == 0) { return U.u_sun_radiance * sun + mix(U.u_ambient_bottom, U.u_ambient_top, h); }
+    if (u_occluded_ambient == 0) { return U.u_sun_radiance * sun + mix(U.u_ambient_bottom, U.u_ambient_top, h); }
     let up = max(U.u_sun_dir.y, 0.0);
     return U.u_sun_radiance * sun + mix(U.u_ambient_bottom * cm_diffuse_transmittance(tau_behind * up, U.u_phase_mean_cosine),
                                         U.u_ambient_top * cm_diffuse_transmittance(tau_light * up, U.u_phase_mean_cosine), h);
@@ -282,13 +285,13 @@ fn cr_ground_shadow(g: vec3f) -> f32 {
 fn cr_background(dir: vec3f) -> vec3f {
     let ground = cm_ray_sphere_intersect_altitude(U.u_cam_altitude, dir.y, U.u_planet_radius, 0.0);
     if (ground.x >= 0.0 && ground.y > ground.x) {
-        if (U.u_shadows != 0) { return U.u_ground * cr_ground_shadow(dir * ground.x); }
+        if (u_shadows != 0) { return U.u_ground * cr_ground_shadow(dir * ground.x); }
         return U.u_ground;
     }
     let mu = dot(dir, U.u_sun_dir);
     var sky = mix(U.u_sky_horizon, U.u_sky_zenith, sqrt(cm_saturate(dir.y)));
     sky += U.u_sun_radiance * (0.05 * cm_phase_hg(mu, 0.75));
-    if (U.u_sun_disc != 0) { sky += U.u_sun_radiance * cm_sun_disc_radiance(1.0, mu, U.u_sun_angular_radius, 0.6); }
+    if (u_sun_disc != 0) { sky += U.u_sun_radiance * cm_sun_disc_radiance(1.0, mu, U.u_sun_angular_radius, 0.6); }
     return sky;
 }
 
@@ -306,18 +309,18 @@ fn cr_light_samples(luminance: ptr<function, vec3f>, count: i32, dir: vec3f, mu:
     for (var k = 0; k < count; k++) {
         let q = cr_lit[k];
         let alts = cm_altitude_along_ray(U.u_cam_altitude, dir.y, U.u_planet_radius, q.t);
-        cr_footprint = select(0.0, cm_pixel_footprint(q.t, U.u_tan_half_fov, U.u_resolution.y), U.u_lod != 0);
+        cr_footprint = select(0.0, cm_pixel_footprint(q.t, U.u_tan_half_fov, U.u_resolution.y), u_lod != 0);
         var lo = 0.5;
-        if (U.u_jitter != 0 && U.u_light_jitter != 0) {
+        if (u_jitter != 0 && u_light_jitter != 0) {
             lo = cm_sample_jitter(pixel_hash, U.u_frame, *light_index);
             *light_index += 1u;
         }
-        let tau_light = cr_light_optical_depth(dir * q.t, alts, U.u_sun_dir, U.u_light_mode, lo);
+        let tau_light = cr_light_optical_depth(dir * q.t, alts, U.u_sun_dir, u_light_mode, lo);
         var tau_behind = 0.0;
-        if (U.u_lighting != 0) { tau_behind = cr_light_optical_depth(dir * q.t, alts, -U.u_sun_dir, U.u_behind_mode, lo); }
+        if (u_lighting != 0) { tau_behind = cr_light_optical_depth(dir * q.t, alts, -U.u_sun_dir, u_behind_mode, lo); }
         let h = cm_height_fraction(alts, U.u_layer_bottom, U.u_layer_top);
         let S = (U.u_albedo * q.sigma_t) * cr_in_scattering(tau_light, tau_behind, q.tau_view, mu, h);
-        if (U.u_integration == 0) {
+        if (u_integration == 0) {
             *luminance += vec3f(q.transmittance) * cm_integrate_scattering_v3ff(S, q.sigma_t, q.ds);
         } else {
             *luminance += vec3f(q.transmittance) * S * q.ds;
@@ -326,7 +329,7 @@ fn cr_light_samples(luminance: ptr<function, vec3f>, count: i32, dir: vec3f, mu:
 }
 
 fn cr_march_distance(u: f32, t0: f32, t1: f32) -> f32 {
-    if (U.u_schedule == 1) { return cm_march_schedule_distance(u, t0, t1, U.u_march_near_distance); }
+    if (u_schedule == 1) { return cm_march_schedule_distance(u, t0, t1, U.u_march_near_distance); }
     return t0 + u * (t1 - t0);
 }
 
@@ -349,9 +352,9 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
     let ndc = pixel / U.u_resolution * 2.0 - 1.0;
     let aspect = U.u_resolution.x / U.u_resolution.y;
     let dir = normalize(U.u_forward + U.u_right * (ndc.x * aspect * U.u_tan_half_fov) + U.u_up * (ndc.y * U.u_tan_half_fov));
-    cr_band = select(cm_height_range_for_type(U.u_cloud_type) * (U.u_layer_top - U.u_layer_bottom) + U.u_layer_bottom, U.u_band, U.u_shape == 1);
+    cr_band = select(cm_height_range_for_type(U.u_cloud_type) * (U.u_layer_top - U.u_layer_bottom) + U.u_layer_bottom, U.u_band, u_shape == 1);
     if (U.u_pass == 2) {
-        cr_footprint = select(0.0, 2.0 * U.u_shadow_half_extent / f32(CR_SHADOW_MAP_SIZE), U.u_lod != 0);
+        cr_footprint = select(0.0, 2.0 * U.u_shadow_half_extent / f32(CR_SHADOW_MAP_SIZE), u_lod != 0);
         out.out_color = vec4f(cr_shadow_texel(floor(frag_coord)), 0.0);
         out.out_depth = 0.0;
         return out;
@@ -372,9 +375,9 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
     if (seg.y > seg.x) {
         let t1 = seg.y;
         let pixel_hash = cr_pixel_hash(pixel);
-        let offset = select(0.5, cm_frame_jitter(pixel_hash, U.u_frame), U.u_jitter != 0);
+        let offset = select(0.5, cm_frame_jitter(pixel_hash, U.u_frame), u_jitter != 0);
         let mu = dot(dir, U.u_sun_dir);
-        let n = f32(U.u_view_steps);
+        let n = f32(u_view_steps);
         var tau_view = 0.0;
         var depth_sum = 0.0;
         var step_begin = seg.x;
@@ -391,10 +394,10 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
         var resumed = false;
         loop {
             var count = 0;
-            while (!opaque && count < CR_LIT_SAMPLES && (m < sub || i < U.u_view_steps)) {
+            while (!opaque && count < CR_LIT_SAMPLES && (m < sub || i < u_view_steps)) {
                 let refining = m < sub;
-                let probe = !refining && U.u_skip != 0 && empty_steps >= CR_SKIP_BLOCK;
-                let j = min(i + CR_SKIP_BLOCK, U.u_view_steps);
+                let probe = !refining && u_skip != 0 && empty_steps >= CR_SKIP_BLOCK;
+                let j = min(i + CR_SKIP_BLOCK, u_view_steps);
                 var t: f32;
                 if (refining) {
                     t = sub_from + (f32(m) + offset) * sub_ds;
@@ -404,7 +407,7 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
                     t = cr_march_distance((f32(i) + offset) / n, seg.x, t1);
                 }
                 let altitude = cm_altitude_along_ray(U.u_cam_altitude, dir.y, U.u_planet_radius, t);
-                cr_footprint = select(0.0, cm_pixel_footprint(t, U.u_tan_half_fov, U.u_resolution.y), U.u_lod != 0);
+                cr_footprint = select(0.0, cm_pixel_footprint(t, U.u_tan_half_fov, U.u_resolution.y), u_lod != 0);
                 let covered = cr_base_density(dir * t, altitude);
                 var density = covered;
                 if (!probe) { density = cr_detail_density(dir * t, altitude, covered); }
@@ -439,7 +442,7 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
                     }
                     let r0 = select(step_begin, last_empty, (empty_steps > 0 || resumed) && last_empty >= 0.0);
                     resumed = false;
-                    let n_sub = cm_refine_substeps(U.u_extinction * density * (step_end - r0), U.u_refine);
+                    let n_sub = cm_refine_substeps(U.u_extinction * density * (step_end - r0), u_refine);
                     empty_steps = 0;
                     if (n_sub > 1) {
                         sub = n_sub;
@@ -466,7 +469,7 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
         }
         let opacity = 1.0 - acc.transmittance.r;
         if (opacity > 0.0) { cloud_depth = depth_sum / opacity; }
-        if (U.u_haze != 0 && opacity > 0.0) {
+        if (u_haze != 0 && opacity > 0.0) {
             let tau_air = cm_air_optical_depth(U.u_cam_altitude, dir.y, depth_sum / opacity);
             acc.luminance = cm_aerial_perspective_v3v3v3(acc.luminance, U.u_sky_horizon * opacity, tau_air);
         }
@@ -479,7 +482,7 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
     }
     let color = cr_background(dir) * acc.transmittance + acc.luminance;
     var display = cr_tonemap(color);
-    if (U.u_dither != 0) {
+    if (u_dither != 0) {
         let index = u32(frag_coord.x) + u32(frag_coord.y) * 8192u;
         display += cm_triangular_dither(cm_noise_hash(cm_noise_hash(index) + U.u_frame * 0x9e3779b9u)) * (1.0 / 255.0);
     }
