@@ -56,6 +56,18 @@ void catmull_rom_taps(vec4 fp, int width, int height, Tap tap) {
         }
 }
 
+// Catmull-Rom's value of `values` (a width x height grid) at footprint fp, clamped to the
+// range of the four bilinear taps: no ringing (temporal_resolve.frag's cr_catmull_rom).
+vec4 catmull_rom_clamped(vec4 fp, int width, int height, const std::vector<vec4>& values) {
+    vec4 sum(0.0f), lo(INFINITY), hi(-INFINITY);
+    bilinear_taps(fp, width, height, [&](std::size_t i, float) {
+        lo = glm::min(lo, values[i]);
+        hi = glm::max(hi, values[i]);
+    });
+    catmull_rom_taps(fp, width, height, [&](std::size_t i, float weight) { sum += values[i] * weight; });
+    return glm::clamp(sum, lo, hi);
+}
+
 // A view sample in cloud, recorded by the march for the light pass (clouds.frag's CrLitSample).
 struct lit_sample {
     float t;              // distance along the view ray
@@ -634,27 +646,15 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
             // Catmull-Rom taps clamped to the range of the bilinear ones (no ringing), the
             // depth and sample count bilinear.
             const vec4 fp = cm::texel_bilinear(vec2(uvz), vec2(float(w), float(h)));
-            vec4 lo(INFINITY), hi(-INFINITY);
-            bilinear_taps(fp, w, h, [&](std::size_t ti, float weight) {
-                ha += aux_[ti] * weight;
-                lo = glm::min(lo, color_[ti]);
-                hi = glm::max(hi, color_[ti]);
-            });
-            catmull_rom_taps(fp, w, h, [&](std::size_t ti, float weight) { hc += color_[ti] * weight; });
-            hc = glm::clamp(hc, lo, hi);
+            hc = catmull_rom_clamped(fp, w, h, color_);
+            bilinear_taps(fp, w, h, [&](std::size_t ti, float weight) { ha += aux_[ti] * weight; });
         }
         // The fill (where it is needed): this frame's new samples (at 4 (i, j) + offset)
         // interpolated likewise.
         const auto fill = [&] {
             const vec2 q = (vec2(float(x), float(y)) - vec2(offset)) * 0.25f;
-            const vec4 fq(std::floor(q.x), std::floor(q.y), q.x - std::floor(q.x), q.y - std::floor(q.y));
-            vec4 sum(0.0f), lo(INFINITY), hi(-INFINITY);
-            bilinear_taps(fq, lw, lh, [&](std::size_t j, float) {
-                lo = glm::min(lo, fresh[j]);
-                hi = glm::max(hi, fresh[j]);
-            });
-            catmull_rom_taps(fq, lw, lh, [&](std::size_t j, float weight) { sum += fresh[j] * weight; });
-            return glm::clamp(sum, lo, hi);
+            return catmull_rom_clamped(vec4(std::floor(q.x), std::floor(q.y), q.x - std::floor(q.x), q.y - std::floor(q.y)),
+                                       lw, lh, fresh);
         };
         vec4 c;
         vec2 a;

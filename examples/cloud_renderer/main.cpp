@@ -84,6 +84,13 @@ scene temporal_scene(const options& o, int f) {
     return s;
 }
 
+// The median of a list of frame times (0 for none).
+double median_of(std::vector<double> ms) {
+    if (ms.empty()) return 0.0;
+    std::sort(ms.begin(), ms.end());
+    return ms[ms.size() / 2];
+}
+
 // Frames 0..o.temporal-1 of the temporal scheme by render(scene, image&); the last is left in
 // `out`; with --save-every, every Nth frame is also written (a failed write: false, the
 // reason in `why`). The median host time of the frames after the first 16 (whose history is
@@ -105,10 +112,8 @@ bool temporal_frames(const options& o, const char* default_out, Render render, i
             if (!write_png(with_suffix(o.out.empty() ? default_out : o.out, suffix), out, &why)) return false;
         }
     }
-    std::sort(ms.begin(), ms.end());
-    std::sort(gpu_ms.begin(), gpu_ms.end());
-    if (median_ms != nullptr) *median_ms = ms.empty() ? 0.0 : ms[ms.size() / 2];
-    if (median_gpu_ms != nullptr) *median_gpu_ms = gpu_ms.empty() ? 0.0 : gpu_ms[gpu_ms.size() / 2];
+    if (median_ms != nullptr) *median_ms = median_of(ms);
+    if (median_gpu_ms != nullptr) *median_gpu_ms = median_of(gpu_ms);
     return true;
 }
 
@@ -180,23 +185,19 @@ int run_headless(const options& o) {
     if (o.accumulate > 1 && o.temporal == 0) {
         // The accumulated frames are the timed ones: the first (with the compilation), and
         // the median of the others.
-        std::vector<frame_timing> rest;
-        int f = 0;
+        std::vector<double> wall, gl;
         ok = accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& frame) {
             frame_timing timing;
             const bool drawn = gpu->render(s, o.var, o.compile_time, o.width, o.height, frame, &timing, why);
-            if (f++ == 0) first = timing;
-            else rest.push_back(timing);
+            if (s.frame == 0) {
+                first = timing;
+            } else {
+                wall.push_back(timing.wall_ms);
+                gl.push_back(timing.gpu_ms);
+            }
             return drawn;
         }, img);
-        std::vector<double> wall, gl;
-        for (const frame_timing& r : rest) {
-            wall.push_back(r.wall_ms);
-            gl.push_back(r.gpu_ms);
-        }
-        std::sort(wall.begin(), wall.end());
-        std::sort(gl.begin(), gl.end());
-        if (!rest.empty()) ft = frame_timing{gl[gl.size() / 2], wall[wall.size() / 2]};
+        ft = frame_timing{median_of(gl), median_of(wall)};
     } else {
         ok = gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &first, why) &&
              gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &ft, why) &&
@@ -369,9 +370,7 @@ int run_bench(const options& o) {
             std::fprintf(stderr, "error: variant '%s': %s\n", row.spec, why.c_str());
             return 1;
         }
-        std::sort(wall.begin(), wall.end());
-        std::sort(gl.begin(), gl.end());
-        const double median = wall[wall.size() / 2], median_gl = gl[gl.size() / 2];
+        const double median = median_of(wall), median_gl = median_of(gl);
         if (r == 0) reference = img;
         const double psnr = compare(img, reference).psnr_db;
         char psnr_text[32];
