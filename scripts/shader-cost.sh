@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Prints a Markdown table of the static cost of the example renderer's fragment shader, as
-# its host compiles it (cloudmath_cloud_renderer --dump-shader), and of the peer's cloud
+# its host compiles it (cloudmath_cloud_renderer --dump-shader; one program per pass), and of the peer's cloud
 # shader when a checkout is given: SPIR-V instructions in function bodies after
 # `spirv-opt -O` (calls inlined, dead paths folded), texture operations (OpImageSample*,
 # OpImageFetch, OpImageGather, OpImageRead) and loops (OpLoopMerge). A static count, not a
@@ -52,12 +52,17 @@ row() {
     END { printf "| %s | %d | %d | %d |\n", label, n, tex, loops }' "$work/o.spvasm"
 }
 
-"$renderer" --dump-shader > "$work/default.frag"
+for pass in frame temporal shadow background; do
+  "$renderer" --dump-shader --pass "$pass" > "$work/$pass.frag"
+done
 "$renderer" --dump-shader --run-time > "$work/runtime.frag"
 echo "| Shader | SPIR-V instructions | texture operations | loops |"
 echo "|---|---:|---:|---:|"
-row "ours: the default, one permutation compiled in (every pass: frame, shadow map, temporal shading and background)" frag "$work/default.frag"
-row "ours: the run-time uber-shader (\`--run-time\`: every variant's paths)" frag "$work/runtime.frag"
+row "ours: the default's full frame (one permutation compiled in: the variant, the shape and the pass)" frag "$work/frame.frag"
+row "ours: the default's temporal shading pass (\`--pass temporal\`)" frag "$work/temporal.frag"
+row "ours: the default's shadow-map pass (\`--pass shadow\`)" frag "$work/shadow.frag"
+row "ours: the default's background pass (\`--pass background\`: the temporal scheme's sky and ground)" frag "$work/background.frag"
+row "ours: the run-time uber-shader (\`--run-time\`: every variant's paths and every pass)" frag "$work/runtime.frag"
 if [[ -n "$peer" ]]; then
   [[ -r "$peer/shaders/volumetric_clouds.comp" ]] || { echo "shader-cost: $peer/shaders/volumetric_clouds.comp not found" >&2; exit 2; }
   # Its `uniform bool enablePowder = false;` is an initialised bool uniform, which the SPIR-V

@@ -94,7 +94,10 @@ struct pixel_program {
     long shadow_map_reads = 0;     // texture reads of building it (once per frame)
     float map_footprint = 0.0f;    // its texels' width with LOD, else 0
 
-    pixel_program(const scene& sc, const variant& va, const cloud_textures& t, const cm::diffusion_model* m = nullptr)
+    // `kept_map`: the shadow map of the temporal scheme's previous frames, of which only rows
+    // `rows` are redrawn (temporal_shadow_rows); null: the whole map is drawn.
+    pixel_program(const scene& sc, const variant& va, const cloud_textures& t, const cm::diffusion_model* m = nullptr,
+                  const std::vector<vec3>* kept_map = nullptr, glm::ivec2 rows = glm::ivec2(0, shadow_map_size))
         : s(sc), v(va), k(make_frame_constants(sc)), field(sc, t), mie(cm::mie_approx_params(k.droplet_diameter)),
           phase_g_mean(phase_mean_cosine(k, va.phase)),
           band(k.band),
@@ -102,7 +105,9 @@ struct pixel_program {
         if (needs_shadow_map(v)) {
             if (v.lod) map_footprint = 2.0f * k.shadow_half_extent / float(shadow_map_size);
             shadow_map.resize(static_cast<std::size_t>(shadow_map_size) * static_cast<std::size_t>(shadow_map_size));
-            for (int j = 0; j < shadow_map_size; ++j)
+            if (kept_map != nullptr && kept_map->size() == shadow_map.size()) shadow_map = *kept_map;
+            else rows = glm::ivec2(0, shadow_map_size);
+            for (int j = rows.x; j < rows.y; ++j)
                 for (int i = 0; i < shadow_map_size; ++i)
                     shadow_map[static_cast<std::size_t>(j * shadow_map_size + i)] = shadow_texel(i, j, &shadow_map_reads);
         }
@@ -594,7 +599,14 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
     // shade a pixel just outside the image: its sample still stands in for the block.
     scene shading = s;
     shading.frame = s.frame >> 4U;
-    const pixel_program program(shading, v, textures);
+    // The shadow map a slice a frame (temporal_shadow_rows): the whole of it on a first frame
+    // or when the variant or the shape changed.
+    const std::string map_key = variant_spec(v) + (s.shape == cloud_shape::detailed ? "/detailed" : "/classic");
+    const bool whole_map = !has_history_ || map_key != shadow_map_key_;
+    const pixel_program program(shading, v, textures, nullptr, whole_map ? nullptr : &shadow_map_,
+                                temporal_shadow_rows(s.frame, whole_map));
+    shadow_map_ = program.shadow_map;
+    shadow_map_key_ = map_key;
     std::vector<vec4> fresh(static_cast<std::size_t>(lw) * static_cast<std::size_t>(lh));
     std::vector<float> fresh_depth(fresh.size(), 0.0f);
     std::vector<pixel_program::reads> counts(fresh.size());

@@ -16,6 +16,7 @@
 #include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace cloud_renderer {
@@ -101,6 +102,10 @@ private:
     std::vector<glm::vec4> color_;
     std::vector<glm::vec2> aux_;
     long reads_view_ = 0, reads_light_ = 0, reads_shadow_map_ = 0;  // the last frame's
+    // The shadow map, redrawn a slice a frame (temporal_shadow_rows), and the variant and shape
+    // it was drawn for (a change redraws the whole of it).
+    std::vector<glm::vec3> shadow_map_;
+    std::string shadow_map_key_;
 };
 
 }  // namespace cloud_renderer

@@ -77,10 +77,11 @@ std::string with_cloudmath(std::string body) {
 
 }  // namespace
 
-std::string fragment_shader_source(const variant& v, cloud_shape shape, bool compile_time) {
+std::string fragment_shader_source(const variant& v, cloud_shape shape, bool compile_time, clouds_pass pass) {
     std::string head = "#version 410 core\n";
     if (compile_time) {
         head += "#define CR_PARAM(type, name)\n";
+        head += "const int u_pass = " + std::to_string(static_cast<int>(pass)) + ";\n";
         for (const shader_int& c : variant_values(v, shape))
             head += std::string("const int ") + c.name + " = " + std::to_string(c.value) + ";\n";
     } else {
@@ -115,6 +116,7 @@ struct gl_renderer::state {
         GLuint background_fbo = 0, background = 0;  // clouds.frag's pass 3: what lies behind the layer
         GLuint history_fbo[2] = {0, 0}, history[2][2] = {{0, 0}, {0, 0}}, display = 0;
         GLuint resolve_program = 0;
+        std::string shadow_map_key;  // what the shadow map was last drawn whole for (empty: redraw it whole)
         int current = 0;          // the history the next resolve reads
         bool has_history = false;
         scene previous;
@@ -128,15 +130,17 @@ struct gl_renderer::state {
         return gl.link(shaders, 2, "shader program", why);
     }
 
-    GLuint program_for(const variant& v, cloud_shape shape, bool compile_time, std::string& why) {
-        // One program per permutation (variant and shape) compiled in, one for the uber-shader.
-        const std::string key = compile_time ? variant_spec(v) + (shape == cloud_shape::detailed ? "/detailed" : "/classic")
+    GLuint program_for(const variant& v, cloud_shape shape, bool compile_time, clouds_pass pass, std::string& why) {
+        // One program per permutation (variant, shape and pass) compiled in, one for the
+        // uber-shader (its pass a uniform).
+        const std::string key = compile_time ? variant_spec(v) + (shape == cloud_shape::detailed ? "/detailed" : "/classic") +
+                                                   "/pass" + std::to_string(static_cast<int>(pass))
                                              : std::string();
         const auto found = programs.find(key);
         if (found != programs.end()) return found->second;
         const GLuint vs = gl.compile(GL_VERTEX_SHADER, vertex_shader_source(), "vertex shader", why);
         if (vs == 0) return 0;
-        const GLuint fs = gl.compile(GL_FRAGMENT_SHADER, fragment_shader_source(v, shape, compile_time), "fragment shader", why);
+        const GLuint fs = gl.compile(GL_FRAGMENT_SHADER, fragment_shader_source(v, shape, compile_time, pass), "fragment shader", why);
         if (fs == 0) {
             gl.DeleteShader(vs);
             return 0;
@@ -297,18 +301,21 @@ struct uniform_setter {
     void u2(const char* n, glm::uvec2 x) const { gl.Uniform2ui(loc(n), x.x, x.y); }
 };
 
-// Makes the clouds program of the variant current with every uniform of the scene set and
-// the cloud textures bound; 0 on failure. temporal_pass 1: the shading pass of the temporal
-// scheme (clouds.frag's u_pass), shading pixel 4 (i, j) + offset.
+// Makes the clouds program of the variant's pass current with every uniform of the scene set
+// and the cloud textures bound; 0 on failure. clouds_pass::temporal_shading shades pixel
+// 4 (i, j) + offset. The run-time uber-shader is one program for every pass: use_pass sets its
+// u_pass before each draw.
 GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bool compile_time, int width, int height,
-                   int temporal_pass, glm::uvec2 offset, std::string& why) {
+                   clouds_pass pass, glm::uvec2 offset, std::string& why) {
     const gl_api& gl = st.gl;
-    const GLuint program = st.program_for(v, sc.shape, compile_time, why);
+    const GLuint program = st.program_for(v, sc.shape, compile_time, pass, why);
     if (program == 0) return 0;
     gl.UseProgram(program);
     const uniform_setter u{gl, program};
-    if (!compile_time)
+    if (!compile_time) {
         for (const shader_int& value : variant_values(v, sc.shape)) u.i1(value.name, value.value);
+        u.i1("u_pass", static_cast<int>(pass));
+    }
     const frame_constants k = make_frame_constants(sc);
     u.v2("u_resolution", glm::vec2(float(width), float(height)));
     u.v3("u_forward", k.forward);
@@ -353,7 +360,6 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
     u.f1("u_cone_far_length", k.cone_far_length);
     u.f1("u_light_march_max", k.light_march_max);
     u.f1("u_min_transmittance", k.min_transmittance);
-    u.i1("u_pass", temporal_pass);
     u.u2("u_update_offset", offset);
     u.v3("u_shadow_origin", k.shadow_origin);
     u.v3("u_shadow_right", k.shadow_right);
@@ -391,10 +397,28 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
     return program;
 }
 
-// Draws the Beer shadow map with the current clouds program (clouds.frag's pass 2) when the
-// variant has shadows, then binds it to unit 3 for the passes that read it; restores u_pass.
-// Unit 3 holds no texture while the map is drawn (no feedback loop).
-bool shadow_pass(gl_renderer::state& st, const variant& v, GLuint program, int restore_pass, std::string& why) {
+// Makes `program` current for `pass`: the run-time uber-shader is one program whose u_pass
+// selects the pass; a compiled-in permutation is its pass already.
+void use_pass(const gl_api& gl, GLuint program, clouds_pass pass, bool compile_time) {
+    gl.UseProgram(program);
+    if (!compile_time) gl.Uniform1i(gl.GetUniformLocation(program, "u_pass"), static_cast<int>(pass));
+}
+
+// The shadow-map pass's program (bind_clouds with clouds_pass::shadow_map) when the variant
+// draws the map (needs_shadow_map), else 0 with `why` empty; 0 and `why` on failure.
+GLuint bind_shadow_map(gl_renderer::state& st, const scene& sc, const variant& v, bool compile_time, int width, int height,
+                       std::string& why) {
+    if (!needs_shadow_map(v)) return 0;
+    return bind_clouds(st, sc, v, compile_time, width, height, clouds_pass::shadow_map, glm::uvec2(0), why);
+}
+
+// Draws rows [rows.x, rows.y) of the Beer shadow map (all: a full frame; a slice: the
+// temporal scheme, temporal_shadow_rows) with `shadow_program` (bind_shadow_map's; 0: the
+// variant has no map), then binds the map to unit 3 for the passes that read it. Unit 3 holds
+// no texture while the map is drawn (no feedback loop). The caller makes its own pass current
+// afterwards.
+bool shadow_pass(gl_renderer::state& st, GLuint shadow_program, bool compile_time, std::string& why,
+                 glm::ivec2 rows = glm::ivec2(0, shadow_map_size)) {
     const gl_api& gl = st.gl;
     gl.ActiveTexture(GL_TEXTURE3);  // make_target binds to the active unit: not the clouds' 0-2
     if (st.shadow_fbo == 0) {
@@ -410,15 +434,19 @@ bool shadow_pass(gl_renderer::state& st, const variant& v, GLuint program, int r
     }
     gl.ActiveTexture(GL_TEXTURE3);
     gl.BindTexture(GL_TEXTURE_2D, 0);
-    if (needs_shadow_map(v)) {
+    if (shadow_program != 0) {
         const GLenum one = GL_COLOR_ATTACHMENT0;
         gl.BindFramebuffer(GL_FRAMEBUFFER, st.shadow_fbo);
         gl.DrawBuffers(1, &one);
         gl.Viewport(0, 0, shadow_map_size, shadow_map_size);
-        const uniform_setter u{gl, program};
-        u.i1("u_pass", 2);
+        use_pass(gl, shadow_program, clouds_pass::shadow_map, compile_time);
+        const bool slice = rows.x > 0 || rows.y < shadow_map_size;
+        if (slice) {
+            gl.Enable(GL_SCISSOR_TEST);
+            gl.Scissor(0, rows.x, shadow_map_size, rows.y - rows.x);
+        }
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
-        u.i1("u_pass", restore_pass);
+        if (slice) gl.Disable(GL_SCISSOR_TEST);
     }
     gl.ActiveTexture(GL_TEXTURE3);
     gl.BindTexture(GL_TEXTURE_2D, st.shadow_map);
@@ -512,13 +540,18 @@ bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std:
 
 bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, unsigned fbo, int width, int height,
                        frame_timing* timing, std::string& why) {
-    const GLuint program = bind_clouds(*s_, sc, v, compile_time, width, height, 0, glm::uvec2(0), why);
+    // Every program bound (compiled the first time) and its uniforms set before the timing.
+    const GLuint shadow = bind_shadow_map(*s_, sc, v, compile_time, width, height, why);
+    if (shadow == 0 && !why.empty()) return false;
+    const GLuint program = bind_clouds(*s_, sc, v, compile_time, width, height, clouds_pass::frame, glm::uvec2(0), why);
     if (program == 0) return false;
     const gl_api& gl = s_->gl;
     bool shadow_ok = true;
     const GLenum one = GL_COLOR_ATTACHMENT0;
     const bool ok = timed(*s_, timing, why, [&] {
-        shadow_ok = shadow_pass(*s_, v, program, 0, why);
+        shadow_ok = shadow_pass(*s_, shadow, compile_time, why);
+        s_->temporal.shadow_map_key.clear();  // the temporal scheme's next frame redraws it whole
+        use_pass(gl, program, clouds_pass::frame, compile_time);
         gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
         if (fbo != 0) gl.DrawBuffers(1, &one);
         gl.Viewport(0, 0, width, height);
@@ -535,14 +568,25 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
     auto& t = s_->temporal;
     const gl_api& gl = s_->gl;
     const glm::uvec2 offset = cloudmath::temporal_update_offset(sc.frame);
-    // The shading pass: one pixel of every 4 x 4 block, the jitter of frame / 16.
+    // The shading pass: one pixel of every 4 x 4 block, the jitter of frame / 16. Every
+    // program bound (compiled the first time) and its uniforms set before the timing.
     scene shading = sc;
     shading.frame = sc.frame >> 4U;
-    if (bind_clouds(*s_, shading, v, compile_time, width, height, 1, offset, why) == 0) return false;
+    const GLuint shadow = bind_shadow_map(*s_, shading, v, compile_time, width, height, why);
+    if (shadow == 0 && !why.empty()) return false;
+    // The shadow map a slice a frame (temporal_shadow_rows): the whole of it on a first frame,
+    // after a full frame drew it, or when the variant, the shape or the shader form changed.
+    const std::string map_key = variant_spec(v) + (sc.shape == cloud_shape::detailed ? "/detailed" : "/classic") +
+                                (compile_time ? "" : "/run-time");
+    const bool whole_map = !t.has_history || map_key != t.shadow_map_key;
+    t.shadow_map_key = map_key;
+    const GLuint background = bind_clouds(*s_, shading, v, compile_time, width, height, clouds_pass::background, offset, why);
+    if (background == 0) return false;
+    const GLuint clouds = bind_clouds(*s_, shading, v, compile_time, width, height, clouds_pass::temporal_shading, offset, why);
+    if (clouds == 0) return false;
     const GLenum two[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     const GLenum three[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     const int lw = (width + 3) / 4, lh = (height + 3) / 4;
-    const GLuint clouds = [&] { GLint p = 0; gl.GetIntegerv(GL_CURRENT_PROGRAM, &p); return static_cast<GLuint>(p); }();
 
     // The resolve pass's uniforms (temporal_resolve.frag).
     const GLuint r = t.resolve_program;
@@ -571,19 +615,18 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
     u.i1("u_dither", v.dither ? 1 : 0);
     const char* samplers[5] = {"u_fresh", "u_fresh_depth", "u_history", "u_history_aux", "u_background"};
     const GLuint inputs[5] = {t.fresh[0], t.fresh[1], t.history[t.current][0], t.history[t.current][1], t.background};
-    const uniform_setter cu{gl, clouds};
     const int out = 1 - t.current;
 
     bool shadow_ok = true;
     const bool ok = timed(*s_, timing, why, [&] {
-        gl.UseProgram(clouds);
-        shadow_ok = shadow_pass(*s_, v, clouds, 1, why);
+        shadow_ok = shadow_pass(*s_, shadow, compile_time, why, temporal_shadow_rows(sc.frame, whole_map));
+        use_pass(gl, clouds, clouds_pass::temporal_shading, compile_time);
         gl.BindFramebuffer(GL_FRAMEBUFFER, t.fresh_fbo);
         gl.DrawBuffers(2, two);
         gl.Viewport(0, 0, lw, lh);
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
         // The background pass (clouds.frag's pass 3) at full resolution.
-        cu.i1("u_pass", 3);
+        use_pass(gl, background, clouds_pass::background, compile_time);
         gl.BindFramebuffer(GL_FRAMEBUFFER, t.background_fbo);
         gl.DrawBuffers(1, two);
         gl.Viewport(0, 0, width, height);

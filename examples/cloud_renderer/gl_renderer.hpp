@@ -14,9 +14,15 @@
 
 namespace cloud_renderer {
 
-// The fragment shader for a variant, as compiled: #version, the variant block (uniforms, or
-// constants when compile_time), the shader file with cloudmath.glsl resolved in.
-std::string fragment_shader_source(const variant& v, cloud_shape shape, bool compile_time);
+// clouds.frag's passes (its u_pass): a full frame, the temporal scheme's shading pass, the
+// Beer shadow map, the temporal scheme's background.
+enum class clouds_pass { frame = 0, temporal_shading = 1, shadow_map = 2, background = 3 };
+
+// The fragment shader for a variant, as compiled: #version, the permutation block (the
+// variant, the shape and the pass as constants when compile_time; as uniforms otherwise, where
+// `pass` is unused), the shader file with cloudmath.glsl resolved in.
+std::string fragment_shader_source(const variant& v, cloud_shape shape, bool compile_time,
+                                   clouds_pass pass = clouds_pass::frame);
 std::string vertex_shader_source();
 // shaders/temporal_resolve.frag as compiled (#version, cloudmath.glsl resolved in).
 std::string temporal_resolve_shader_source();

@@ -38,7 +38,8 @@ const char* usage_text() {
            "                      against 1024 view steps and 128-step light marches of the same\n"
            "                      lighting model, PSNR of the image and of the horizon band\n"
            "  --list-presets      print the scene presets\n"
-           "  --dump-shader       print the fragment shader as compiled for the variant\n"
+           "  --dump-shader       print the fragment shader as compiled for the variant and\n"
+           "                      --pass (one program per pass, as the renderer compiles them)\n"
            "options:\n"
            "  --preset NAME       scene preset (default: ground; see --list-presets)\n"
            "  --variant SPEC      lighting variant over the defaults (the diffusion model, 6-step\n"
@@ -79,7 +80,7 @@ const char* usage_text() {
 
 std::string parse_options(int argc, const char* const* argv, options& o) {
     std::vector<std::string> args(argv + 1, argv + argc);
-    bool mode_given = false;
+    bool mode_given = false, pass_given = false;
     const auto set_mode = [&](run_mode m, const std::string& flag) -> std::string {
         if (mode_given && o.mode != m) return "choose one mode; " + flag + " conflicts with an earlier mode flag";
         o.mode = m;
@@ -157,6 +158,15 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
             if (v == "classic") o.sc.shape = cloud_shape::classic;
             else if (v == "detailed") o.sc.shape = cloud_shape::detailed;
             else return "--shape must be classic or detailed, not '" + v + "'";
+        } else if (a == "--pass") {
+            std::string v;
+            if (!value(v)) return "--pass needs frame, temporal, shadow or background";
+            const char* names[4] = {"frame", "temporal", "shadow", "background"};
+            o.pass = -1;
+            for (int p = 0; p < 4; ++p)
+                if (v == names[p]) o.pass = p;
+            if (o.pass < 0) return "--pass must be frame, temporal, shadow or background, not '" + v + "'";
+            pass_given = true;
         } else if (a == "--out" || a == "--bench-out" || a == "--cache") {
             std::string v;
             if (!value(v) || v.empty()) return a + " needs a path";
@@ -170,6 +180,7 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
              a == "--save-every") && args[i].find_first_not_of("0123456789") != std::string::npos)
             return a + " must be a whole number, not '" + args[i] + "'";
     }
+    if (pass_given && o.mode != run_mode::dump_shader) return "--pass is an option of --dump-shader";
     if (o.temporal > 0 && o.accumulate > 1) return "--temporal and --accumulate exclude each other (the scheme accumulates itself)";
     if ((o.pan != 0.0f || o.drift != 0.0f || o.save_every > 0) && o.temporal == 0)
         return "--pan, --drift and --save-every need --temporal N";

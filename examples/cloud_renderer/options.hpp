@@ -30,6 +30,7 @@ struct options {
     int save_every = 0;          // --temporal: also write every Nth frame (FILE_fNNN.png)
     double min_psnr = 0;         // --compare: fail below this (0: never)
     bool quiet = false;
+    int pass = 0;                // --dump-shader: clouds.frag's pass (gl_renderer.hpp's clouds_pass), --pass
 };
 
 // Parses argv into `out`. Returns an empty string on success, else a one-line message for

@@ -77,6 +77,11 @@ struct variant {
     // cloud marches them in full steps. At the block's end, the probe finds every cloud that
     // begins inside the block and reaches past it (a probe inside the block skipped the cloud
     // fronts before it: 40-42 dB from the image without skipping, against 45-47 dB now).
+    // Off by default: a cloud that lies wholly between two probes (a chord shorter than the
+    // block, 4 steps: small clouds, grazing rays) is still stepped over, so against the
+    // converged render it loses 4-8 dB of the horizon band (docs/renderer.md, Convergence),
+    // below the 40 dB the default keeps; it saves 13% of the reads and about a quarter of the
+    // frame. A conservative probe (a max-filtered coverage map) would be the fix.
     bool skip = false;
     // Cloud shadows on the ground from a Beer shadow map (shadow_map.hpp) of
     // shadow_map_size^2 texels, each a shadow_map_steps march along the sunlight.
@@ -89,6 +94,13 @@ struct variant {
     // Explicit texture LOD: every density sample reads the mip level whose texels match the
     // pixel's footprint at the view sample (texture_lod; the light's samples inherit it; the
     // shadow map uses its texel width); off: level 0 everywhere.
+    // Off by default, kept as a measured comparison (like integration=naive): the mips average
+    // the noise before the density's nonlinear remap (coverage, erosion, saturation), and the
+    // remap of a mean is not the mean of the remap, so coarse levels change the clouds'
+    // shapes and densities rather than only filtering them. It loses 5-7 dB of the horizon
+    // band against the converged render (docs/renderer.md, Convergence), is no closer to a 4x4
+    // supersampled render than level 0 (ground 32.45 against 32.57 dB, horizon 33.59 against
+    // 35.83), and a mipmapped filter costs llvmpipe more time, not less.
     bool lod = false;
     // The light estimates' far samples on the base shape only (coarse_density: no detail, no
     // curl): the cone's far sample and the march's steps from the fourth on.
@@ -186,6 +198,21 @@ inline constexpr float temporal_fill_blend = 0.1f;
 inline constexpr int shadow_map_size = 128;
 inline constexpr int shadow_map_steps = 24;
 inline constexpr float ground_sky_share = 0.4f;
+// The temporal scheme redraws the shadow map a slice at a time, as engines time-slice their
+// shadow updates: frame f redraws rows [f % slices, f % slices + 1) * size / slices (the whole
+// map on a first frame). A row is then at most slices - 1 frames old: at the docs' 30 m of
+// wind a frame, 30 m, a twelfth of a texel (2 shadow_half_extent / shadow_map_size: 375 m).
+// Measured on the docs' moving sequence (ground, pan 0.5 degrees, 30 m a frame, 320 x 180,
+// frame 47 against its full render): 2 slices 35.75 dB, 4 slices 35.33, the whole map every
+// frame 35.84; the shadow pass costs half of its whole-map time with 2 slices.
+inline constexpr int temporal_shadow_slices = 2;
+static_assert(shadow_map_size % temporal_shadow_slices == 0, "equal slices");
+// Rows [first, end) of the map that temporal frame `frame` redraws (all when `whole`).
+inline glm::ivec2 temporal_shadow_rows(std::uint32_t frame, bool whole) {
+    if (whole) return {0, shadow_map_size};
+    const int slice = static_cast<int>(frame % static_cast<std::uint32_t>(temporal_shadow_slices));
+    return {slice * shadow_map_size / temporal_shadow_slices, (slice + 1) * shadow_map_size / temporal_shadow_slices};
+}
 
 // True when the variant draws the Beer shadow map: for the ground's shadows or a light
 // estimate (light_mode::map).

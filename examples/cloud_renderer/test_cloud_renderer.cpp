@@ -360,6 +360,25 @@ TEST_CASE("no NaN inside the layer, at its boundaries and at tangent rays") {
     }
 }
 
+TEST_CASE("temporal scheme: the shadow map's slices redraw every row once per round, the whole map on a first frame") {
+    for (std::uint32_t start : {0u, 1u, 6u, 4294967293u}) {
+        std::vector<int> drawn(static_cast<std::size_t>(shadow_map_size), 0);
+        for (std::uint32_t f = start; f != start + std::uint32_t(temporal_shadow_slices); ++f) {
+            const glm::ivec2 rows = temporal_shadow_rows(f, false);
+            REQUIRE(rows.x >= 0);
+            REQUIRE(rows.y <= shadow_map_size);
+            CHECK(rows.y - rows.x == shadow_map_size / temporal_shadow_slices);
+            for (int j = rows.x; j < rows.y; ++j) ++drawn[static_cast<std::size_t>(j)];
+        }
+        for (int n : drawn) CHECK(n == 1);
+    }
+    CHECK(temporal_shadow_rows(3, true) == glm::ivec2(0, shadow_map_size));
+    // The lag bound scene.hpp states: (slices - 1) frames of the docs' 30 m of wind stay
+    // within a twelfth of a texel.
+    const frame_constants k = make_frame_constants(*find_preset("ground"));
+    CHECK(float(temporal_shadow_slices - 1) * 30.0f <= 2.0f * k.shadow_half_extent / float(shadow_map_size) / 12.0f);
+}
+
 TEST_CASE("temporal scheme: a still camera's 16 frames are the full frame; GPU and CPU agree in motion") {
     const scene& preset = *find_preset("ground");
     variant v;

@@ -73,6 +73,8 @@ namespace cloudmath_egl {
     X(PFNGLDRAWARRAYSPROC, DrawArrays)                          \
     X(PFNGLVIEWPORTPROC, Viewport)                              \
     X(PFNGLDISABLEPROC, Disable)                                \
+    X(PFNGLENABLEPROC, Enable)                                  \
+    X(PFNGLSCISSORPROC, Scissor)                                \
     X(PFNGLREADPIXELSPROC, ReadPixels)                          \
     X(PFNGLFINISHPROC, Finish)                                  \
     X(PFNGLGENQUERIESPROC, GenQueries)                          \

@@ -5,15 +5,18 @@
 //
 // The host (gl_renderer.cpp) prepends, in this order:
 //   #version 410 core
-//   the permutation block: by default (what engines ship) one permutation per variant and
-//     shape, `const int u_phase_model = 3;` ... and an empty CR_PARAM, so that the compiler
-//     folds every switch and keeps only the variant's own paths; for the run-time
+//   the permutation block: by default (what engines ship) one permutation per variant,
+//     shape and pass, `const int u_phase_model = 3;` ... and an empty CR_PARAM, so that the
+//     compiler folds every switch and keeps only the variant's and the pass's own paths (a
+//     pass that returns early does not carry the others' code: on SIMD hardware, llvmpipe
+//     too, code after a uniform early return can still be paid for); for the run-time
 //     uber-shader (--run-time, quick comparison) `#define CR_PARAM(type, name) uniform type name;`;
 // and replaces the line `#include "cloudmath.glsl"` below with cloudmath::glsl_source().
 // Frame and units: see scene.hpp (camera at the origin, +y up, metres).
 
-// The permutation: the density field's shape (scene.hpp's cloud_shape: 0 classic, 1 detailed)
-// and the lighting variant (values in scene.hpp's `variant`).
+// The permutation: the pass (below), the density field's shape (scene.hpp's cloud_shape: 0
+// classic, 1 detailed) and the lighting variant (values in scene.hpp's `variant`).
+CR_PARAM(int, u_pass)
 CR_PARAM(int, u_shape)
 CR_PARAM(int, u_phase_model)      // 0 HG, 1 dual-lobe HG, 2 Cornette-Shanks, 3 Mie fit
 CR_PARAM(int, u_lighting)         // 0 Wrenninge octaves, 1 diffusion model (diffusion_lighting.glsl) with
@@ -74,13 +77,13 @@ uniform sampler2D u_weather_wide;  // 1024^2 RGB8: R coverage, G type, B top (th
 uniform sampler2D u_curl;      // 128^2 RGB8: curl noise, curl_bake_encode
 uniform sampler2D u_shadow_map;  // CR_SHADOW_MAP_SIZE^2 RGBA32F: (front, mean extinction, optical depth) of pass 2
 
-// The pass: 0 a full frame. 1 the shading pass of the temporal scheme
+// The passes (u_pass): 0 a full frame. 1 the shading pass of the temporal scheme
 // (temporal_resolve.frag), one pixel of every 4 x 4 block: the output pixel (i, j) shades the
 // image's pixel (4 i, 4 j) + u_update_offset (u_resolution stays the full image's size) and
 // writes the cloud layer's own linear radiance and opacity and the cloud's depth, for the
 // resolve pass to blend, composite and tonemap. 2 the Beer shadow map: output pixel (i, j) is
 // texel (i, j) (cr_shadow_texel). 3 the temporal scheme's background at full resolution.
-uniform int u_pass;
+// u_pass is the permutation's first switch (CR_PARAM above): one program per pass.
 uniform uvec2 u_update_offset;
 
 layout(location = 0) out vec4 out_color;   // rgb: display colour in [0, 1] (pass 1: the layer's linear radiance,

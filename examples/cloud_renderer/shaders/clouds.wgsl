@@ -31,6 +31,7 @@
 // The permutation (clouds.frag's CR_PARAM lines): pipeline-overridable constants, one pipeline
 // per variant and density field, so the compiler folds every switch (values in scene.hpp's
 // `variant`; u_shape 0 classic, 1 detailed).
+override u_pass: i32;
 override u_shape: i32;
 override u_phase_model: i32;
 override u_lighting: i32;
@@ -81,7 +82,6 @@ struct CrUniforms {
     u_march_near_distance: f32,
     u_shadow_origin: vec3f, u_shadow_right: vec3f, u_shadow_up: vec3f,
     u_shadow_half_extent: f32,
-    u_pass: i32,
     u_update_offset: vec2u,
 }
 
@@ -348,12 +348,12 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
     var out: CrOutput;
     // gl_FragCoord.xy: y up from the bottom row, pixel centres at .5.
     let frag_coord = vec2f(position.x, U.u_resolution.y - position.y);
-    let pixel = select(frag_coord, floor(frag_coord) * 4.0 + vec2f(U.u_update_offset) + 0.5, U.u_pass == 1);
+    let pixel = select(frag_coord, floor(frag_coord) * 4.0 + vec2f(U.u_update_offset) + 0.5, u_pass == 1);
     let ndc = pixel / U.u_resolution * 2.0 - 1.0;
     let aspect = U.u_resolution.x / U.u_resolution.y;
     let dir = normalize(U.u_forward + U.u_right * (ndc.x * aspect * U.u_tan_half_fov) + U.u_up * (ndc.y * U.u_tan_half_fov));
     cr_band = select(cm_height_range_for_type(U.u_cloud_type) * (U.u_layer_top - U.u_layer_bottom) + U.u_layer_bottom, U.u_band, u_shape == 1);
-    if (U.u_pass == 2) {
+    if (u_pass == 2) {
         cr_footprint = select(0.0, 2.0 * U.u_shadow_half_extent / f32(CR_SHADOW_MAP_SIZE), u_lod != 0);
         out.out_color = vec4f(cr_shadow_texel(floor(frag_coord)), 0.0);
         out.out_depth = 0.0;
@@ -363,7 +363,7 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
     let layer = cm_cloud_layer_segment(U.u_cam_altitude, dir.y, U.u_planet_radius, U.u_layer_bottom, U.u_layer_top);
     let in_band = cm_cloud_layer_segment(U.u_cam_altitude, dir.y, U.u_planet_radius, cr_band.x, cr_band.y);
     let seg = vec2f(max(layer.x, in_band.x), min(min(layer.y, layer.x + U.u_max_distance), in_band.y));
-    if (U.u_pass == 3) {
+    if (u_pass == 3) {
         out.out_color = vec4f(cr_background(dir), select(0.0, 1.0, seg.y > seg.x));
         out.out_depth = 0.0;
         return out;
@@ -476,7 +476,7 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
     }
     let alpha = 1.0 - (acc.transmittance.r + acc.transmittance.g + acc.transmittance.b) / 3.0;
     out.out_depth = cloud_depth;
-    if (U.u_pass == 1) {
+    if (u_pass == 1) {
         out.out_color = vec4f(acc.luminance, alpha);
         return out;
     }

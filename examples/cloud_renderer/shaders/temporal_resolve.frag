@@ -111,11 +111,6 @@ void main() {
         hc = cr_catmull_rom(u_history, fp, size - 1);
         ha = cr_bilinear(u_history_aux, fp, size - 1).xy;
     }
-    // The fill (where it is needed): this frame's new samples (at 4 (i, j) + offset)
-    // interpolated likewise.
-    vec2 q = (vec2(p) - vec2(u_update_offset)) * 0.25;
-    vec4 fq = vec4(floor(q), q - floor(q));
-    ivec2 fresh_last = (size + 3) / 4 - 1;
     vec4 c;
     vec2 a;
     if (is_fresh) {
@@ -125,14 +120,16 @@ void main() {
     } else if (valid && ha.y >= 0.5) {
         c = hc;
         a = ha;
-    } else if (valid) {
-        // Not shaded yet (0 samples: filled): the fills of successive frames, each from other
-        // pixels of the block, averaged until this pixel's own turn replaces them.
-        c = mix(hc, cr_catmull_rom(u_fresh, fq, fresh_last), u_fill_blend);
-        a = vec2(fresh_depth, 0.0);
     } else {
-        // No history (first frame, off the previous screen, or not this pixel's).
-        c = cr_catmull_rom(u_fresh, fq, fresh_last);
+        // The fill: this frame's new samples (at 4 (i, j) + offset) interpolated likewise.
+        // Not shaded yet (valid, 0 samples: filled): the fills of successive frames, each from
+        // other pixels of the block, averaged until this pixel's own turn replaces them. No
+        // history (first frame, off the previous screen, or not this pixel's): the fill alone.
+        // One copy of its 16 taps for both cases: on SIMD hardware (llvmpipe too) a branch's
+        // body is paid by the whole group, so two copies cost twice.
+        vec2 q = (vec2(p) - vec2(u_update_offset)) * 0.25;
+        vec4 fill = cr_catmull_rom(u_fresh, vec4(floor(q), q - floor(q)), (size + 3) / 4 - 1);
+        c = valid ? mix(hc, fill, u_fill_blend) : fill;
         a = vec2(fresh_depth, 0.0);
     }
     if (behind.a == 0.0) c = vec4(0.0);  // a ray that meets no cloud carries none
