@@ -185,6 +185,7 @@ int run(const options& o) {
     if (!o.quiet) std::fprintf(stderr, "peer-bench: OpenGL: %s\n", ours->device().c_str());
 
     const variant defaults;
+    const char* const no_light_march_spec = "light=map,behind=map";
     variant octaves;
     const char* octaves_spec = previous_default_spec;
     why = apply_variant_spec(octaves_spec, octaves);
@@ -214,12 +215,19 @@ int run(const options& o) {
             return ok;
         };
     };
-    timed_row peer_row, ours_default, ours_temporal, ours_octaves, ours_runtime;
-    image ours_runtime_img;
+    timed_row peer_row, ours_default, ours_temporal, ours_octaves, ours_runtime, ours_no_march;
+    image ours_runtime_img, ours_no_march_img;
+    // The default with its light taken from the Beer shadow map both ways: no light march at
+    // all, so the view march's own cost (a lower bound of the default's frame for any light
+    // estimate).
+    variant no_light_march = defaults;
+    why = apply_variant_spec(no_light_march_spec, no_light_march);
+    if (!why.empty()) return fail(why);
     peer_row.frame = [&peer](double& ms, std::string& w) { return peer->dispatch(ms, w); };
     ours_default.frame = full_frame(sc, defaults, ours_default_img, true);
     ours_octaves.frame = full_frame(classic, octaves, ours_octaves_img, true);
     ours_runtime.frame = full_frame(sc, defaults, ours_runtime_img, false);
+    ours_no_march.frame = full_frame(sc, no_light_march, ours_no_march_img, true);
     // Temporal: frames count up from 0; the first 16 fill the history, 16 onward are timed
     // (both passes: the 1-in-16 shading pass and the resolve).
     std::uint32_t temporal_frame = 0;
@@ -234,8 +242,9 @@ int run(const options& o) {
         return ok;
     };
     const double load_before = load_average();
-    if (!o.quiet) std::fprintf(stderr, "peer-bench: timing 5 rows, %d rounds\n", o.frames);
-    if (!time_rows({&peer_row, &ours_default, &ours_temporal, &ours_octaves, &ours_runtime}, o.frames, why)) return fail(why);
+    if (!o.quiet) std::fprintf(stderr, "peer-bench: timing 6 rows, %d rounds\n", o.frames);
+    if (!time_rows({&peer_row, &ours_default, &ours_temporal, &ours_octaves, &ours_runtime, &ours_no_march}, o.frames, why))
+        return fail(why);
     const double load_after = load_average();
     if (!peer->read_image(peer_img, why)) return fail(why);
     if (!o.quiet)
@@ -296,6 +305,11 @@ int run(const options& o) {
     row("ours: previous default", octaves_label, ours_octaves);
     row("ours: default, run-time uber-shader", "`gl_renderer::render` with the variant as uniforms (`--run-time`; warm-up: 1 frame)",
         ours_runtime);
+    char no_march_label[200];
+    std::snprintf(no_march_label, sizeof no_march_label,
+                  "`gl_renderer::render` with `%s`: no light march, the view march's own cost (warm-up: 1 frame)",
+                  no_light_march_spec);
+    row("ours: default, light from the shadow map only", no_march_label, ours_no_march);
 
     char light_text[320];
     if (reads.light_attributed)

@@ -79,9 +79,8 @@ struct variant {
     // fronts before it: 40-42 dB from the image without skipping, against 45-47 dB now).
     // Off by default: a cloud that lies wholly between two probes (a chord shorter than the
     // block, 4 steps: small clouds, grazing rays) is still stepped over, so against the
-    // converged render it loses 4-8 dB of the horizon band (docs/renderer.md, Convergence),
-    // below the 40 dB the default keeps; it saves 13% of the reads and about a quarter of the
-    // frame. A conservative probe (a max-filtered coverage map) would be the fix.
+    // converged render it loses 4-8 dB of the horizon band (docs/renderer.md, Convergence);
+    // it saves 13% of the reads and about a quarter of the frame. A conservative probe (a max-filtered coverage map) would be the fix.
     bool skip = false;
     // Cloud shadows on the ground from a Beer shadow map (shadow_map.hpp) of
     // shadow_map_size^2 texels, each a shadow_map_steps march along the sunlight.
