@@ -147,7 +147,7 @@ cost=$(bash scripts/shader-cost.sh "$renderer")
   echo "Why empty-space skipping and texture LOD stay off (the rows \\`skip=on\\` and \\`lod=on\\` above):"
   echo "- Skipping probes the base shape at the end of each block of 4 empty steps. A cloud that"
   echo "  lies wholly between two probes (a chord shorter than the block: small clouds, grazing"
-  echo "  rays) is stepped over: against the converged render it loses 4 to 8 dB of the horizon band. A"
+  echo "  rays) is stepped over: against the converged render it loses up to 7.5 dB of the horizon band. A"
   echo "  conservative probe (a max-filtered coverage map) would be the fix."
   echo "- LOD reads mips that average the noise before the density's nonlinear remap (coverage,"
   echo "  erosion, saturation): the remap of a mean is not the mean of the remap, so coarse levels"

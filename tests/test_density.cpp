@@ -286,6 +286,37 @@ TEST_CASE_TEMPLATE("aerial_perspective: L e^-tau + L_air (1 - e^-tau), exact at 
     }
 }
 
+// Hardening round 2, A3: L + (L_air - L)(1 - e^-tau) lost L_air when L >> L_air and could
+// leave [L, L_air]; the two weighted terms keep it, within a few ulp of the long double value.
+TEST_CASE_TEMPLATE("aerial_perspective: L >> L_air keeps L_air, and the result stays between L and L_air", T, float, double) {
+    const auto want = [](T L, T L_air, T tau) { return ld(L) * std::exp(-ld(tau)) + ld(L_air) * -std::expm1(-ld(tau)); };
+    CHECK(std::abs(ld(aerial_perspective(T(1.5e6), T(0.2), T(30))) - want(T(1.5e6), T(0.2), T(30))) <= 4 * cm_test::eps<T>() * 0.2L);
+    if (cm_test::ieee_build) CHECK(aerial_perspective(T(1e13), T(3), cm_test::make_inf<T>()) == T(3));
+    CHECK(aerial_perspective(T(1e13), T(3), T(1e6)) == T(3));
+    int outside = 0, off = 0;
+    for (T L : {T(0), T(1e-20), T(0.2), T(3), T(1e6), T(1e13), T(1e30)})
+        for (T L_air : {T(0), T(1e-20), T(0.2), T(3), T(1e6), T(1e13)})
+            for (T tau : {T(0), T(1e-30), T(1e-6), T(0.3), T(5), T(30), T(80), T(700), T(1e4)}) {
+                const T v = aerial_perspective(L, L_air, tau);
+                if (v < std::min(L, L_air) || v > std::max(L, L_air)) ++outside;
+                const ld w = want(L, L_air, tau);
+                if (std::abs(ld(v) - w) > 4 * cm_test::eps<T>() * w + ld(std::numeric_limits<T>::denorm_min())) ++off;
+            }
+    CHECK(outside == 0);
+    CHECK(off == 0);
+    CHECK(aerial_perspective(T(0.3), T(0.7), T(-2)) == T(0.3));  // tau < 0 taken as 0
+}
+
+// Found by the fuzz test (hardening round 2): far below the layer hc^2 overflowed and zero
+// coverage times -Inf gave NaN; below the layer the density is 0.
+TEST_CASE_TEMPLATE("cloud_shape_density: 0 far below the layer, for any coverage", T, float, double) {
+    const glm::vec<4, T> base(T(0.8), T(0.5), T(0.5), T(0.5));
+    for (T h : {T(-1), T(-1e20), -std::numeric_limits<T>::max()})
+        for (T coverage : {T(0), T(0.5), T(1)})
+            for (T rounding : {T(0), T(0.6), T(1)})
+                CHECK(cloud_shape_density(base, glm::vec<3, T>(T(0.5), T(0.5), T(0.5)), h, coverage, T(0.5), T(0.5), rounding) == T(0));
+}
+
 TEST_CASE_TEMPLATE("cloud_top_fraction and cloud_shape_density: per-cloud type, top and rounded tops", T, float, double) {
     CHECK(cloud_top_fraction(T(0)) == T(0.6));
     CHECK(double(cloud_top_fraction(T(1))) == doctest::Approx(1.0));

@@ -268,3 +268,31 @@ TEST_CASE("diffusion models: documented fit ranges and errors are consistent") {
     CHECK(diffusion_models::clouds.rms_error > diffusion_models::fitted.rms_error);
     CHECK(diffusion_models::fitted.rms_error < diffusion_models::physical.rms_error);
 }
+
+// Hardening round 2, A1: a NaN argument was converted to int by diffusion_hat, and the table
+// was read about 2^31 entries away (a segfault at -O2). Now the nodes stay in the table and
+// the NaN reaches the result.
+TEST_CASE_TEMPLATE("diffusion model: a NaN argument gives NaN, never an index outside the table", T, float, double) {
+    const T nan = cm_test::make_nan<T>();
+    const T args[6] = {T(1), T(1), T(1), T(0.3), T(0.85), T(1)};
+    for (const diffusion_model& m : every_model)
+        for (int k = 0; k < 6; ++k) {
+            T a[6];
+            for (int i = 0; i < 6; ++i) a[i] = i == k ? nan : args[i];
+            const T v = diffusion_scattering(a[0], a[1], a[2], a[3], a[4], a[5], m);
+            const diffusion_coordinates<T> u = diffusion_table_coordinates(a[0], a[1], a[2], a[3], a[4], a[5]);
+            const T c = diffusion_table_lookup(m, u);
+            if (cm_test::ieee_build) {
+                CHECK_MESSAGE(cm_test::nan_bits(v), "argument " << k);
+                CHECK_MESSAGE(cm_test::nan_bits(c), "argument " << k);
+            }
+        }
+    // Each coordinate NaN alone, in every build: the lookup reads the table only (ASan and
+    // UBSan builds catch any other read or conversion).
+    for (int k = 0; k < 4; ++k) {
+        T w[4] = {T(0.2), T(0.5), T(0.7), T(0.9)};
+        w[k] = nan;
+        const T c = diffusion_table_lookup(diffusion_models::clouds, diffusion_coordinates<T>{w[0], w[1], w[2], w[3]});
+        if (cm_test::ieee_build) CHECK(cm_test::nan_bits(c));
+    }
+}

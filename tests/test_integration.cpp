@@ -197,4 +197,44 @@ TEST_CASE_TEMPLATE("refine_substeps: ceil of the optical depth in [1, max], NaN,
     }
     // Every sub-step then has an optical depth of at most 1 (below the cap).
     for (T tau = T(0.25); tau < T(16); tau += T(0.37)) CHECK(tau / T(refine_substeps(tau, 16)) <= T(1));
+    // Hardening round 2, A5: in every build, -ffast-math included (where the NaN test was
+    // folded away and NaN reached the int conversion: INT_MIN), the count is in [1, max].
+    for (T x : {cm_test::make_nan<T>(), -cm_test::make_nan<T>(), cm_test::make_inf<T>(), -cm_test::make_inf<T>()}) {
+        const int n = refine_substeps(x, 8);
+        CHECK(n >= 1);
+        CHECK(n <= 8);
+    }
+}
+
+// Hardening round 2, A6: the ends were not exact (t_start + (t_end - t_start) g rounds past
+// t_end, and t_end - t_start itself rounds), u just below 1 overshot, and a near_distance
+// tiny against the range overflowed the ends' ratio (NaN).
+TEST_CASE_TEMPLATE("march_schedule_distance: exact ends and results within them for any range", T, float, double) {
+    CHECK(march_schedule_distance(T(1), T(0.21875), T(841061.688), T(7.086)) == T(841061.688));
+    CHECK(march_schedule_distance(T(1), T(1), T(16777218), T(1)) == T(16777218));
+    CHECK(march_schedule_distance(T(0), T(1), T(16777218), T(1)) == T(1));
+    int outside = 0;
+    std::uint32_t state = 7u;
+    const auto next = [&state] {
+        state = state * 1664525u + 1013904223u;
+        return T(state >> 8) / T(16777216);
+    };
+    for (int i = 0; i < 20000; ++i) {
+        const T t0 = std::pow(T(10), next() * T(7)) * next();
+        const T t1 = t0 + std::pow(T(10), next() * T(7)) * next();
+        const T near_distance = std::pow(T(10), next() * T(12) - T(6));
+        for (T u : {std::nextafter(T(1), T(0)), next(), T(1) - next() * T(1e-6)}) {
+            const T t = march_schedule_distance(u, t0, t1, near_distance);
+            if (!(t >= t0 && t <= t1)) ++outside;
+        }
+    }
+    CHECK(outside == 0);
+    // near_distance tiny inside the domain: finite, and the closed form (long double) there:
+    // t(1/2) = t_end (e^(L/2) - 1) / (e^L - 1) with e^L = (t_end + near) / near.
+    const T tiny = std::is_same_v<T, float> ? T(1e-33) : T(1e-300);
+    const T t = march_schedule_distance(T(0.5), T(0), T(1e6), tiny);
+    CHECK(cm_test::finite_bits(t));
+    const ld eL = (ld(1e6) + ld(tiny)) / ld(tiny);
+    const ld want = ld(1e6) * (std::sqrt(eL) - 1) / (eL - 1);
+    CHECK(std::abs(ld(t) - want) <= 1e-3L * want);
 }

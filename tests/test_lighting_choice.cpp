@@ -98,3 +98,31 @@ TEST_CASE("choose_lighting_model: bad ranges") {
     CHECK(c.meets_budget);
     CHECK(c.extrapolated);
 }
+
+// Hardening round 2, A2: tau_min * tau_max overflowed to +Inf, every log distance to the
+// measurements was then equal, and the thinnest one (where `thin` looks good) was taken.
+TEST_CASE("lighting_model_error: ranges whose product overflows take the nearest measurement in log space") {
+    const float ranges[3][2] = {{200.0f, std::numeric_limits<float>::max()}, {1e20f, 1e20f}, {200.0f, 1e30f}};
+    for (int i = 0; i < D::model_count; ++i) {
+        bool extrapolated = false;
+        for (const auto& r : ranges) {
+            CHECK(lighting_model_error(i, r[0], r[1], extrapolated) == D::rms[i][D::thickness_count - 1]);
+            CHECK(extrapolated);
+        }
+        if (cm_test::ieee_build) {
+            CHECK(lighting_model_error(i, 200.0f, cm_test::make_inf<float>(), extrapolated) == D::rms[i][D::thickness_count - 1]);
+            CHECK(extrapolated);
+        }
+    }
+    // The choice is the one of a finite range beyond the measurements (no overflow there).
+    const lighting_model_choice finite = choose_lighting_model(200.0f, 300.0f, 0.5f);
+    for (const auto& r : ranges) {
+        const lighting_model_choice c = choose_lighting_model(r[0], r[1], 0.5f);
+        CHECK(std::strcmp(c.name, finite.name) == 0);
+        CHECK(c.rms_error == finite.rms_error);
+        CHECK(c.meets_budget == finite.meets_budget);
+        CHECK(std::strcmp(c.name, "thin") != 0);
+    }
+    if (cm_test::ieee_build)
+        CHECK(std::strcmp(choose_lighting_model(200.0f, cm_test::make_inf<float>(), 0.5f).name, finite.name) == 0);
+}

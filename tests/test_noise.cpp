@@ -310,6 +310,23 @@ TEST_CASE_TEMPLATE("far coordinates and absurd octave counts: finite, no overflo
     CHECK(perlin_fbm(p, 8, 40, 3, T(0.5)) <= T(1));
 }
 
+// Hardening round 2, A7: a NaN coordinate was converted to int (undefined behaviour; the
+// UBSan build caught INT_MIN - 1 in worley_f1). Now the lattice cell is defined in every build
+// and, with IEEE semantics, the NaN reaches the result.
+TEST_CASE_TEMPLATE("NaN and infinite coordinates: no int conversion of them, NaN results (UBSan build checks)", T, float, double) {
+    const T nan = cm_test::make_nan<T>(), inf = cm_test::make_inf<T>();
+    for (int axis = 0; axis < 3; ++axis)
+        for (T bad : {nan, inf, -inf}) {
+            glm::vec<3, T> p(T(0.3), T(0.6), T(0.9));
+            p[axis] = bad;
+            const T values[] = {perlin_noise(p, 8), worley_noise(p, 8), worley_f1(p, 8), perlin_fbm(p, 8, 4),
+                                worley_fbm(p, 8, 3), worley_fbm_nubis(p, 8), perlin_worley(p, 8),
+                                perlin_noise(glm::vec<2, T>(p[axis], T(0.4)), 8)};
+            if (cm_test::ieee_build)
+                for (T v : values) CHECK(cm_test::nan_bits(v));
+        }
+}
+
 TEST_CASE("low-discrepancy sequences: Roberts' closed form, even coverage, bit-exact in float and double") {
     const long double phi1 = 0.61803398874989484820L;                                    // golden ratio - 1
     const long double plastic = 1.32471795724474602596L, a1 = 1 / plastic, a2 = 1 / (plastic * plastic);
@@ -353,6 +370,32 @@ TEST_CASE("low-discrepancy sequences: Roberts' closed form, even coverage, bit-e
         }
         CHECK(*std::max_element(count.begin(), count.end()) <= 2);
     }
+}
+
+// Hardening round 2, A9: the exact R1 sequence has at most 3 gap sizes (three-distance
+// theorem); its 24-bit outputs, each truncated, at most 6, in at most 3 groups of sizes one
+// unit (2^-24) apart, as noise.hpp now says.
+TEST_CASE("low_discrepancy_r1: the 24-bit outputs' gaps: at most 6 sizes, in at most 3 groups one unit apart") {
+    int worst_sizes = 0;
+    for (int count : {2, 3, 5, 8, 13, 50, 100, 233, 377, 1000, 1597, 4096}) {
+        std::vector<std::uint32_t> units;
+        for (int n = 0; n < count; ++n)
+            units.push_back(static_cast<std::uint32_t>(low_discrepancy_r1<double>(static_cast<std::uint32_t>(n)) * 16777216.0));
+        std::sort(units.begin(), units.end());
+        std::vector<std::uint32_t> gaps;
+        for (std::size_t i = 0; i < units.size(); ++i)
+            gaps.push_back(i + 1 < units.size() ? units[i + 1] - units[i] : units[0] + 16777216u - units[i]);
+        std::sort(gaps.begin(), gaps.end());
+        gaps.erase(std::unique(gaps.begin(), gaps.end()), gaps.end());
+        int groups = 1;
+        for (std::size_t i = 1; i < gaps.size(); ++i)
+            if (gaps[i] - gaps[i - 1] > 1u) ++groups;
+        CAPTURE(count);
+        CHECK(gaps.size() <= 6);
+        CHECK(groups <= 3);
+        worst_sizes = std::max(worst_sizes, static_cast<int>(gaps.size()));
+    }
+    CHECK(worst_sizes > 3);  // the quantisation does show: the exact sequence's bound of 3 is not the outputs'
 }
 
 TEST_CASE("sample_jitter: index 0 is frame_jitter, R1 over frames for each index, no shared offsets within a frame") {

@@ -129,6 +129,29 @@ TEST_CASE_TEMPLATE("texel_bilinear: GL_LINEAR's footprint, exact at texel centre
     }
 }
 
+// Hardening round 2, A8: at a texel centre uv = (i + 1/2) / width, uv * width - 1/2 landed
+// below i in about 4% of (i, width) pairs: x0 = i - 1, fx = 1, and column 0's own centre then
+// failed the caller's 0 <= x0 test.
+TEST_CASE_TEMPLATE("texel_bilinear: every texel centre of every width up to 600 is (i, 0) exactly", T, float, double) {
+    int wrong = 0, checked = 0;
+    for (int width = 1; width <= 600; ++width)
+        for (int i = 0; i < width; ++i) {
+            const T u = (T(i) + T(0.5)) / T(width);
+            const glm::vec<4, T> fp = texel_bilinear(glm::vec<2, T>(u, u), glm::vec<2, T>(T(width), T(width)));
+            if (fp.x != T(i) || fp.z != T(0) || fp.y != T(i) || fp.w != T(0)) ++wrong;
+            ++checked;
+        }
+    CHECK(checked == 180300);
+    CHECK(wrong == 0);
+    CHECK(texel_bilinear(glm::vec<2, T>(T(0.5) / T(214), T(0.5)), glm::vec<2, T>(T(214), T(1))) ==
+          glm::vec<4, T>(T(0), T(0), T(0), T(0)));
+    // Off the centres the footprint is GL_LINEAR's: a point a thousandth of a texel past a
+    // centre keeps its fraction (the snap is within 4 ulp of uv * size only).
+    const glm::vec<4, T> near_centre = texel_bilinear(glm::vec<2, T>((T(7.501)) / T(300), T(0.5)), glm::vec<2, T>(T(300), T(1)));
+    CHECK(near_centre.x == T(7));
+    CHECK(double(near_centre.z) == doctest::Approx(0.001).epsilon(std::is_same_v<T, float> ? 2e-3 : 1e-9));
+}
+
 TEST_CASE_TEMPLATE("temporal_blend_weight: running mean up to max_samples, then exponential", T, float, double) {
     // A running mean: blending samples x_1..x_n with weights 1 / n gives their plain mean.
     const T xs[] = {T(3), T(-1), T(7), T(2), T(5)};

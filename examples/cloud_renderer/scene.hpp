@@ -79,7 +79,7 @@ struct variant {
     // fronts before it: 40-42 dB from the image without skipping, against 45-47 dB now).
     // Off by default: a cloud that lies wholly between two probes (a chord shorter than the
     // block, 4 steps: small clouds, grazing rays) is still stepped over, so against the
-    // converged render it loses 4-8 dB of the horizon band (docs/renderer.md, Convergence);
+    // converged render it loses up to 7.5 dB of the horizon band (docs/renderer.md, Convergence);
     // it saves 13% of the reads and about a quarter of the frame. A conservative probe (a max-filtered coverage map) would be the fix.
     bool skip = false;
     // Cloud shadows on the ground from a Beer shadow map (shadow_map.hpp) of
@@ -96,7 +96,7 @@ struct variant {
     // Off by default, kept as a measured comparison (like integration=naive): the mips average
     // the noise before the density's nonlinear remap (coverage, erosion, saturation), and the
     // remap of a mean is not the mean of the remap, so coarse levels change the clouds'
-    // shapes and densities rather than only filtering them. It loses 5-7 dB of the horizon
+    // shapes and densities rather than only filtering them. It loses up to 11 dB of the horizon
     // band against the converged render (docs/renderer.md, Convergence), is no closer to a 4x4
     // supersampled render than level 0 (ground 32.45 against 32.57 dB, horizon 33.59 against
     // 35.83), and a mipmapped filter costs llvmpipe more time, not less.

@@ -3,7 +3,7 @@
 // cheapest model whose error against the Monte Carlo reference (lighting_choice_data.hpp)
 // is within the budget, or the most accurate one when none is.
 //
-//   cloudmath_lighting_choice                       the typical scenes of the README
+//   cloudmath_lighting_choice                       the typical scenes of docs/choosing_a_model.md
 //   cloudmath_lighting_choice TAU_MIN TAU_MAX BUDGET   one scene (BUDGET a fraction: 0.5 = 50%)
 #include <cloudmath/lighting_choice.hpp>
 

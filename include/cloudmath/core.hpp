@@ -16,6 +16,8 @@
 #define CLOUDMATH_CORE_HPP
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 
@@ -98,6 +100,35 @@ constexpr bool exactly_equal(T a, T b) noexcept {
 template <class T> struct wider { using type = long double; };
 template <> struct wider<float> { using type = double; };
 template <class T> using wider_t = typename wider<T>::type;
+
+// True when x is a NaN, read from its bits. For the float-to-int conversions only (indices,
+// counts, lattice cells): a NaN that reaches one is undefined behaviour (x86 gives INT_MIN,
+// and a table indexed with it is read 2^31 entries away), and -ffast-math
+// (-ffinite-math-only) folds x != x, std::isnan and every comparison-based NaN test to false,
+// so only the bits are a test that holds in every build. long double goes through double (a
+// NaN stays a NaN).
+template <class T>
+inline bool is_nan_bits(T x) noexcept {
+    if constexpr (std::is_same_v<T, float>) {
+        std::uint32_t b;
+        std::memcpy(&b, &x, sizeof b);
+        return (b & 0x7fffffffu) > 0x7f800000u;
+    } else {
+        const double d = static_cast<double>(x);
+        std::uint64_t b;
+        std::memcpy(&b, &d, sizeof b);
+        return (b & 0x7fffffffffffffffull) > 0x7ff0000000000000ull;
+    }
+}
+
+// floor(x) as an int clamped to [lo, hi], for every x in every build: NaN gives lo, +-Inf and
+// values beyond the range give the nearer end; no out-of-range value reaches the conversion.
+template <class T>
+inline int floor_to_int(T x, int lo, int hi) noexcept {
+    if (is_nan_bits(x) || x <= T(lo)) return lo;
+    if (x >= T(hi)) return hi;
+    return static_cast<int>(std::floor(x));
+}
 
 }  // namespace detail
 

@@ -161,9 +161,15 @@ template <class T>
 // cloud apply it to the cloud's light at its transmittance-weighted depth
 // (sum of T_i (1 - e^(-sigma_t ds)) t_i over the march, divided by 1 - T) and weight L_air by
 // the cloud's opacity: the sky behind it already holds its air. Per channel for vectors.
+// Written as the two weighted terms, not L + (L_air - L) (1 - e^-tau): that difference lost
+// L_air when L >> L_air (1.5e6 through tau 30 gave 0.25 for L_air 0.2) and gave 0 for
+// L = 1e13 through tau = +Inf. The result is clamped to [min(L, L_air), max(L, L_air)] against
+// the rounding of the weights; tau < 0 is taken as 0; NaN propagates.
 template <class T, std::enable_if_t<detail::is_real_v<T>, int> = 0>
 [[nodiscard]] inline T aerial_perspective(T L, T L_air, T tau) noexcept {
-    return L + (L_air - L) * one_minus_exp_neg(tau);
+    const T t = detail::max(tau, T(0));
+    const T r = L * std::exp(-t) + L_air * one_minus_exp_neg(t);
+    return detail::clamp(r, detail::min(L, L_air), detail::max(L, L_air));
 }
 template <glm::length_t N, class T, glm::qualifier Q>
 [[nodiscard]] inline glm::vec<N, T, Q> aerial_perspective(const glm::vec<N, T, Q>& L, const glm::vec<N, T, Q>& L_air,
@@ -245,7 +251,10 @@ template <class T, glm::qualifier Q>
     const T hc = h / cloud_top_fraction(weather.z);
     if (!(hc < T(1))) return T(0);
     const T t = saturate(cloud_type + (weather.y - T(0.5)) * type_spread);
-    const T c = saturate(weather.x - T(0.5) + coverage) * (T(1) - top_rounding * hc * hc);
+    // hc below 0 (under the layer, where the gradient is 0) rounds nothing: hc^2 overflowed for
+    // h around -1e20 in float, and 0 coverage times -Inf gave NaN (found by the fuzz test).
+    const T hr = hc > T(0) ? hc : T(0);
+    const T c = saturate(weather.x - T(0.5) + coverage) * (T(1) - top_rounding * hr * hr);
     return apply_coverage(nubis_base_cloud(base) * height_gradient_for_type(hc, t), c);
 }
 

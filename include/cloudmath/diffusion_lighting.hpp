@@ -117,14 +117,14 @@ inline T diffusion_depth(T tau) noexcept {
 }
 
 // Piecewise-linear weights of coordinate u in [0, 1] over n >= 2 equally spaced nodes: the
-// lower node and the weight of the upper one.
+// lower node and the weight of the upper one. The node is in [0, n - 2] for every u: a NaN u
+// gives node 0 and a NaN weight (the lookup's result is NaN, as the contract says), never an
+// index outside the table (a NaN converted to int read it 2^31 entries away).
 template <class T>
 inline void diffusion_hat(T u, int n, int& i0, T& w1) noexcept {
     const T p = detail::clamp(u, T(0), T(1)) * T(n - 1);
-    int i = static_cast<int>(p);
-    if (i > n - 2) i = n - 2;
-    i0 = i;
-    w1 = p - T(i);
+    i0 = detail::floor_to_int(p, 0, n - 2);
+    w1 = p - T(i0);
 }
 
 }  // namespace detail

@@ -327,8 +327,16 @@ vec3 cm_air_optical_depth(float altitude, float cos_zenith, float distance) {
 }
 
 // L e^-tau + L_air (1 - e^-tau): radiance seen through air that scatters L_air.
-float cm_aerial_perspective(float L, float L_air, float tau) { return L + (L_air - L) * cm_one_minus_exp_neg(tau); }
-vec3 cm_aerial_perspective(vec3 L, vec3 L_air, vec3 tau) { return L + (L_air - L) * cm_one_minus_exp_neg(tau); }
+// The two weighted terms (no L_air - L: it lost L_air when L >> L_air), clamped to the
+// interval between L and L_air; tau < 0 taken as 0.
+float cm_aerial_perspective(float L, float L_air, float tau) {
+    float t = max(tau, 0.0);
+    return clamp(L * exp(-t) + L_air * cm_one_minus_exp_neg(t), min(L, L_air), max(L, L_air));
+}
+vec3 cm_aerial_perspective(vec3 L, vec3 L_air, vec3 tau) {
+    vec3 t = max(tau, vec3(0.0));
+    return clamp(L * exp(-t) + L_air * cm_one_minus_exp_neg(t), min(L, L_air), max(L, L_air));
+}
 
 // Nubis density model (density.hpp): steps on already-sampled texture values.
 float cm_nubis_low_frequency_fbm(vec4 base) { return base.y * 0.625 + base.z * 0.25 + base.w * 0.125; }
@@ -348,7 +356,8 @@ float cm_cloud_shape_density(vec4 base, vec3 weather, float h, float coverage, f
     float hc = h / cm_cloud_top_fraction(weather.z);
     if (!(hc < 1.0)) return 0.0;
     float t = cm_saturate(cloud_type + (weather.y - 0.5) * type_spread);
-    float c = cm_saturate(weather.x - 0.5 + coverage) * (1.0 - top_rounding * hc * hc);
+    float hr = max(hc, 0.0);  // under the layer nothing to round (hc^2 overflowed: NaN)
+    float c = cm_saturate(weather.x - 0.5 + coverage) * (1.0 - top_rounding * hr * hr);
     return cm_apply_coverage(cm_nubis_base_cloud(base) * cm_height_gradient_for_type(hc, t), c);
 }
 
@@ -447,7 +456,9 @@ vec4 cm_diffusion_table_coordinates(float tau_sun, float tau_behind, float tau_v
 // Lower node and upper weight of u over n equally spaced nodes.
 void cmi_diffusion_hat(float u, int n, out int i0, out float w1) {
     float p = clamp(u, 0.0, 1.0) * float(n - 1);
-    int i = min(int(p), n - 2);
+    // An integer clamp: int(NaN) is undefined (INT_MIN on common GPUs), and the node indexes
+    // the table; [0, n - 2] whatever u is.
+    int i = clamp(int(p), 0, n - 2);
     i0 = i;
     w1 = p - float(i);
 }
@@ -479,10 +490,10 @@ float cmi_diffusion_scattering_phases(float tau_sun, float tau_behind, float tau
                                       float p_half, float p_four_fifths) {
     float mc = clamp(mu, -1.0, 1.0);
     float gc = clamp(g, -0.999, 0.999);
-    float w = clamp(albedo, 0.0, 1.0);
-    vec2 medium = cm_diffusion_similarity(gc, w);
 )cm_glsl"
-     R"cm_glsl(    float ts = cmi_diffusion_depth(tau_sun);
+     R"cm_glsl(    float w = clamp(albedo, 0.0, 1.0);
+    vec2 medium = cm_diffusion_similarity(gc, w);
+    float ts = cmi_diffusion_depth(tau_sun);
     float x = medium.x * ts;
     float y = medium.x * cmi_diffusion_depth(tau_behind);
     float direct = exp(-ts);
@@ -839,17 +850,24 @@ vec3 cm_march_opacity(CmMarchAccumulator acc) { return vec3(1.0) - acc.transmitt
 // Distance of fraction u of a march over [t_start, t_end] whose steps grow with distance:
 // t_start + (t_end - t_start) (e^(u L) - 1) / (e^L - 1),
 // L = ln((t_end + near_distance) / (t_start + near_distance));
-// ends exact. (GLSL has no log1p: L = log(1 + x) loses relative precision for tiny x, which
+// ends exact, results within them. (GLSL has no log1p: L = log(1 + x) loses relative precision for tiny x, which
 // only bends the spacing of a nearly uniform schedule.)
 float cm_march_schedule_distance(float u, float t_start, float t_end, float near_distance) {
     float v = cm_saturate(u);
-    float L = log(1.0 + (t_end - t_start) / (t_start + near_distance));
+    if (v <= 0.0) return t_start;
+    if (v >= 1.0) return t_end;
+    float base = t_start + near_distance;
+    float ratio = (t_end - t_start) / base;
+    // The ends' ratio near overflow (near_distance tiny): the difference of two logs (1e38, not
+)cm_glsl"
+     R"cm_glsl(    // FLT_MAX: WGSL refuses the literal 3.4028235e38 as beyond f32).
+    float L = ratio < 1e38 ? log(1.0 + ratio) : log(t_end + near_distance) - log(base);
     float g = v * exp((v - 1.0) * L) * cm_one_minus_exp_neg_over_x(v * L) / cm_one_minus_exp_neg_over_x(L);
-    return t_start + (t_end - t_start) * g;
+    // Within [t_start, t_end]: the sum rounds past t_end for u near 1.
+    return clamp(t_start + (t_end - t_start) * g, t_start, t_end);
 }
 
-)cm_glsl"
-     R"cm_glsl(// Light steps placed quadratically: fraction u of a march of `length` (integration.hpp).
+// Light steps placed quadratically: fraction u of a march of `length` (integration.hpp).
 float cm_light_march_distance(float u, float length) {
     float v = cm_saturate(u);
     return length * (v * v);
@@ -860,7 +878,8 @@ int cm_refine_substeps(float step_optical_depth, int max_substeps) {
     int most = max(max_substeps, 1);
     if (!(step_optical_depth > 1.0)) return 1;
     if (step_optical_depth >= float(most)) return most;
-    return int(ceil(step_optical_depth));
+    // Clamped after the conversion too: in [1, most] even where a compiler folds the NaN test.
+    return clamp(int(ceil(step_optical_depth)), 1, most);
 }
 
 #endif  // CM_INTEGRATION_GLSL
@@ -1381,7 +1400,13 @@ vec3 cm_camera_project(vec3 p, vec3 forward, vec3 right, vec3 up, float tan_half
 
 // (x0, y0, fx, fy): texels x0..x0+1, y0..y0+1 weighted like GL_LINEAR, for texelFetch.
 vec4 cm_texel_bilinear(vec2 uv, vec2 size) {
-    vec2 st = uv * size - 0.5;
+    vec2 scaled = uv * size;
+    vec2 st = scaled - 0.5;
+    // Within 4 ulp of uv * size of an integer: that integer (a texel centre, uv rounded).
+    vec2 nearest = floor(st + 0.5);
+    vec2 tolerance = 4.0 * 1.1920929e-7 * max(abs(scaled), vec2(1.0));
+    if (abs(st.x - nearest.x) <= tolerance.x) st.x = nearest.x;
+    if (abs(st.y - nearest.y) <= tolerance.y) st.y = nearest.y;
     vec2 base = floor(st);
     return vec4(base, st - base);
 }
@@ -1408,14 +1433,15 @@ float cm_temporal_blend_weight(float history_samples, float max_samples) {
 
 #include "core.glsl"
 
-// front > back while the march has met no extinction.
+// front > back while the march has met no extinction; covered: the steps' length with extinction.
 struct CmBeerShadowAccumulator {
     float front;
     float back;
     float optical_depth;
+    float covered;
 };
 
-CmBeerShadowAccumulator cm_beer_shadow_accumulator() { return CmBeerShadowAccumulator(1.0, 0.0, 0.0); }
+CmBeerShadowAccumulator cm_beer_shadow_accumulator() { return CmBeerShadowAccumulator(1.0, 0.0, 0.0, 0.0); }
 
 // Adds the step [t, t + ds) of extinction sigma_t; steps without extinction change nothing.
 void cm_beer_shadow_add_step(inout CmBeerShadowAccumulator acc, float t, float ds, float sigma_t) {
@@ -1423,12 +1449,15 @@ void cm_beer_shadow_add_step(inout CmBeerShadowAccumulator acc, float t, float d
     if (acc.front > acc.back) acc.front = t;
     acc.back = t + ds;
     acc.optical_depth += sigma_t * ds;
+    acc.covered += ds;
 }
 
-// (front depth, mean extinction over back - front, total optical depth); empty: 0.
+// (front depth, mean extinction over back - front, total optical depth); empty: 0. Steps
+// shorter than the rounding of t (back == front): over their own length (finite, not +Inf).
 vec3 cm_beer_shadow_texel(CmBeerShadowAccumulator acc) {
     if (acc.front > acc.back) return vec3(0.0);
-    return vec3(acc.front, acc.optical_depth / (acc.back - acc.front), acc.optical_depth);
+    float column = acc.back > acc.front ? acc.back - acc.front : acc.covered;
+    return vec3(acc.front, acc.optical_depth / column, acc.optical_depth);
 }
 
 // min(max(depth - front, 0) mean_extinction, total).

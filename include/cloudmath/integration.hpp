@@ -100,15 +100,22 @@ struct march_accumulator {
 // Example: 64 steps over 0-35 km with near_distance = 1 km are 56 m long at the camera and
 // 2 km at 35 km, against 547 m everywhere for uniform steps.
 // Evaluated as u e^((u-1) L) f(u L) / f(L) with f(x) = (1 - e^-x)/x
-// (one_minus_exp_neg_over_x): t(0) = t_start and t(1) = t_end exactly, no cancellation for
-// small L and no overflow for large L.
+// (one_minus_exp_neg_over_x): no cancellation for small L and no overflow for large L.
+// u <= 0 gives t_start and u >= 1 t_end exactly, and every result lies in [t_start, t_end]
+// (t_start + (t_end - t_start) g rounds past t_end for u at or just below 1, and
+// t_end - t_start itself rounds where the ends are far apart). Where the ends' ratio
+// overflows (near_distance tiny against t_end - t_start), L is the difference of two logs.
 // Domain: 0 <= t_start <= t_end, near_distance > 0; u is clamped to [0, 1].
 template <class T>
 [[nodiscard]] inline T march_schedule_distance(T u, T t_start, T t_end, T near_distance) noexcept {
     const T v = saturate(u);
-    const T L = std::log1p((t_end - t_start) / (t_start + near_distance));
+    if (v <= T(0)) return t_start;
+    if (v >= T(1)) return t_end;
+    const T base = t_start + near_distance;
+    const T ratio = (t_end - t_start) / base;
+    const T L = ratio < std::numeric_limits<T>::max() ? std::log1p(ratio) : std::log(t_end + near_distance) - std::log(base);
     const T g = v * std::exp((v - T(1)) * L) * one_minus_exp_neg_over_x(v * L) / one_minus_exp_neg_over_x(L);
-    return t_start + (t_end - t_start) * g;
+    return detail::clamp(t_start + (t_end - t_start) * g, t_start, t_end);
 }
 
 // light_march_distance(u, length): where a march of `length` toward the light puts fraction
@@ -133,11 +140,13 @@ template <class T>
 // inside the cloud, where the sun's light is dimmer than at the cloud's front (the image
 // darkens and the bias does not average out over frames). Marched again from the last empty
 // sample (the cloud's front lies between), the front is found to within a sub-step. NaN and
-// values <= 1 give 1; +Inf gives max_substeps; max_substeps < 1 is taken as 1.
+// values <= 1 give 1; +Inf gives max_substeps; max_substeps < 1 is taken as 1. The result is
+// in [1, max_substeps] in every build, -ffast-math included (the NaN test reads the bits: a
+// comparison-based one is folded away there, and NaN reached the int conversion).
 template <class T>
 [[nodiscard]] inline int refine_substeps(T step_optical_depth, int max_substeps) noexcept {
     const int most = max_substeps > 1 ? max_substeps : 1;
-    if (!(step_optical_depth > T(1))) return 1;  // NaN too
+    if (detail::is_nan_bits(step_optical_depth) || !(step_optical_depth > T(1))) return 1;
     if (step_optical_depth >= T(most)) return most;  // before the int conversion: no overflow
     return static_cast<int>(std::ceil(step_optical_depth));
 }

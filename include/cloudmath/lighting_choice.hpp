@@ -31,6 +31,7 @@
 #define CLOUDMATH_LIGHTING_CHOICE_HPP
 
 #include <cmath>
+#include <limits>
 
 #include "diffusion_lighting.hpp"
 #include "multiple_scattering.hpp"
@@ -81,11 +82,17 @@ namespace cloudmath {
         }
     extrapolated = count == 0;
     if (count == 0) {
-        // The measured thickness nearest to the range (its middle, in log space).
-        const float mid = std::sqrt(detail::max(tau_min, 1e-30f) * detail::max(tau_max, 1e-30f));
+        // The measured thickness nearest to the range (its middle, in log space). The middle
+        // is the mean of the ends' logs, each end clamped to [1e-30, FLT_MAX]: the product
+        // tau_min * tau_max overflowed to +Inf for ranges such as (200, +Inf), (200, FLT_MAX)
+        // or (1e20, 1e20), and every distance was then equal (the thinnest thickness won).
+        const auto log_end = [](float tau) {
+            return std::log(detail::min(detail::max(tau, 1e-30f), std::numeric_limits<float>::max()));
+        };
+        const float log_mid = 0.5f * log_end(tau_min) + 0.5f * log_end(tau_max);
         int best = 0;
         for (int t = 1; t < D::thickness_count; ++t)
-            if (std::abs(std::log(D::thickness[t] / mid)) < std::abs(std::log(D::thickness[best] / mid)))
+            if (std::abs(std::log(D::thickness[t]) - log_mid) < std::abs(std::log(D::thickness[best]) - log_mid))
                 best = t;
         return D::rms[index][best];
     }

@@ -65,7 +65,9 @@ namespace cloudmath {
 // are the top 24 bits over 2^24: in [0, 1), exact in float.
 
 // R1: alpha = golden ratio - 1 = 0.6180339887 (0x9e3779b9 / 2^32). Any N consecutive terms
-// split [0, 1) into gaps of at most 3 sizes (the three-distance theorem).
+// of the exact sequence split [0, 1) into gaps of at most 3 sizes (the three-distance
+// theorem); the 24-bit outputs, each truncated by up to 2^-24, show up to 6 sizes, each
+// within 2^-24 of one of the 3.
 template <class T = float>
 [[nodiscard]] constexpr T low_discrepancy_r1(std::uint32_t n) noexcept {
     return T((0x80000000U + n * 0x9e3779b9U) >> 8U) * T(1.0 / 16777216.0);
@@ -133,11 +135,11 @@ constexpr int clamp_period(int period) noexcept { return period < 1 ? 1 : period
 
 // floor(x) as an int, clamped to +-2^30 so the conversion (and cell + 1) cannot overflow:
 // coordinates beyond a billion cells are outside the documented domain, and give a
-// constant lattice cell instead of undefined behaviour.
+// constant lattice cell instead of undefined behaviour; a NaN gives the cell -2^30 (its
+// fraction, NaN, then makes the noise NaN).
 template <class T>
 inline int floor_to_cell(T x) noexcept {
-    const T f = std::floor(x);
-    return f < T(-1073741824) ? -1073741824 : (f > T(1073741824) ? 1073741824 : static_cast<int>(f));
+    return floor_to_int(x, -1073741824, 1073741824);
 }
 
 // period * factor, saturated at 2^30 (an fBm with absurd octave counts keeps a valid period;
@@ -331,7 +333,7 @@ template <class T>
                 const T oy = T(dy) + hash_to_unit<T>(h2) - y;
                 const T oz = T(dz) + hash_to_unit<T>(h3) - z;
                 const T d2 = ox * ox + oy * oy + oz * oz;
-                best = d2 < best ? d2 : best;
+                best = d2 >= best ? best : d2;  // a NaN p (every d2 NaN) keeps NaN: the result is NaN
             }
         }
     return std::sqrt(best);

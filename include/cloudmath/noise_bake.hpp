@@ -393,14 +393,13 @@ inline std::vector<std::uint8_t> bake_to_vector(int size, int cells, int dimensi
 namespace detail {
 
 // floor(x) modulo size in [0, size) and the fraction x - floor(x), without an int
-// conversion of anything outside [0, size - 1] (NaN fails every comparison below: index 0).
+// conversion of anything outside [0, size - 1] (NaN: index 0, by floor_to_int).
 template <class T>
 inline int wrapped_texel(T x, int size, T& fraction) noexcept {
     const T cell = std::floor(x);
     fraction = x - cell;
     const T m = cell - T(size) * std::floor(cell / T(size));  // in [0, size] (rounding)
-    const T top = T(size - 1);
-    return static_cast<int>(m > T(0) ? (m < top ? m : top) : T(0));
+    return floor_to_int(m, 0, size - 1);  // NaN too, in every build (-ffast-math included)
 }
 
 }  // namespace detail

@@ -26,6 +26,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -73,10 +74,21 @@ template <class T>
 // (1 - fy, fy). What GL_LINEAR computes, as numbers a shader and the CPU share (texelFetch
 // with explicit weights: no 8-bit weight quantisation, and the caller decides what to do
 // at the border). All four texels exist when 0 <= x0 and x0 + 1 < width (same for y): the
-// caller's test for "history available". At a texel centre fx = 0 to within one rounding.
+// caller's test for "history available". At a texel centre, uv = (i + 1/2) / size as a
+// caller computes it, x0 = i and fx = 0 exactly: uv carries a rounding, so uv * size - 1/2
+// lands a few ulp either side of i (below it in about 4% of (i, width) pairs, which gave
+// x0 = i - 1 and fx = 1, and made column 0's own centre fail the border test); values within
+// 4 ulp of uv * size of an integer are taken as that integer.
 template <class T>
 [[nodiscard]] inline glm::vec<4, T> texel_bilinear(const glm::vec<2, T>& uv, const glm::vec<2, T>& size) noexcept {
-    const glm::vec<2, T> st = uv * size - T(0.5);
+    const glm::vec<2, T> scaled = uv * size;
+    glm::vec<2, T> st = scaled - T(0.5);
+    for (int c = 0; c < 2; ++c) {
+        const T nearest = std::floor(st[c] + T(0.5));
+        const T magnitude = std::fabs(scaled[c]);
+        const T tolerance = T(4) * std::numeric_limits<T>::epsilon() * (magnitude > T(1) ? magnitude : T(1));
+        if (std::fabs(st[c] - nearest) <= tolerance) st[c] = nearest;
+    }
     const glm::vec<2, T> base(std::floor(st.x), std::floor(st.y));
     return glm::vec<4, T>(base.x, base.y, st.x - base.x, st.y - base.y);
 }

@@ -44,7 +44,8 @@ template <class T>
 // 0 outside the disc. Linear limb darkening: I = I0 (1 - u (1 - cos psi)) with
 // cos psi = sqrt(1 - sin^2 theta / sin^2 r), and I0 = irradiance / (cone_solid_angle(r) (1 - u/3))
 // so that the disc's radiance integrated over its solid angle is the irradiance (to 0.06 r^2
-// relative: 1.3e-6 at the Sun's radius). sin^2 theta is (1 - c)(1 + c), exact for c near 1.
+// relative for r up to 0.91 rad, 1.3e-6 at the Sun's radius; beyond 0.91 rad the bound
+// grows past 0.06 r^2). sin^2 theta is (1 - c)(1 + c), exact for c near 1.
 // limb_darkening is clamped to [0, 1] (0: a flat disc); angular_radius in (0, pi/2). In
 // float, cos_angle resolves the real Sun's radius in about 180 steps (1 - cos r = 1.08e-5
 // against its spacing of 6e-8): enough for a disc a few pixels wide; a renderer that zooms

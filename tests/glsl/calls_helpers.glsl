@@ -30,9 +30,9 @@ float cm_test_add_segment(CmMarchAccumulator acc, vec3 S, float sigma_t, float d
     return cm_test_sum(acc);
 }
 
-// cm_beer_shadow_add_step on an accumulator started at (a.x, a.y, a.z): the texel after a step.
+// cm_beer_shadow_add_step on an accumulator started at (a.x, a.y, a.z, a.w): the texel after a step.
 float cm_test_beer_shadow(vec4 a, vec4 b) {
-    CmBeerShadowAccumulator acc = CmBeerShadowAccumulator(a.x, a.y, a.z);
+    CmBeerShadowAccumulator acc = CmBeerShadowAccumulator(a.x, a.y, a.z, a.w);
     cm_beer_shadow_add_step(acc, b.x, b.y, b.z);
     return cm_test_sum(cm_beer_shadow_texel(acc));
 }

@@ -321,6 +321,10 @@ std::vector<parity_case> make_cases() {
         for (vec3 r : {vec3(0.0f, 35000.0f, 1000.0f), vec3(1500.0f, 4000.0f, 500.0f), vec3(0.0f, 35000.0f, 1e9f),
                        vec3(100.0f, 100.0f, 10.0f), vec3(0.0f, 1e6f, 1.0f)})
             for (float u : {-0.5f, 0.0f, 0.01f, 0.1f, 0.37f, 0.5f, 0.9f, 0.999f, 1.0f, 2.0f}) schedule.push_back({vec4(u, r), vec4(0)});
+        // Hardening round 2, A6: ends whose difference rounds, u just below 1, a near_distance
+        // tiny against the range (the ends' ratio overflows float).
+        for (vec3 r : {vec3(0.21875f, 841061.688f, 7.086f), vec3(1.0f, 16777218.0f, 1.0f), vec3(0.0f, 1e6f, 1e-33f)})
+            for (float u : {0.5f, 0.99999994f, 1.0f}) schedule.push_back({vec4(u, r), vec4(0)});
         add({"cm_march_schedule_distance", "vec4(cm_march_schedule_distance(a.x, a.y, a.z, a.w))",
              [](vec4 a, vec4) { return vec4(cm::march_schedule_distance(a.x, a.y, a.z, a.w)); }, schedule, 1, 1e-3f});
         // Light steps (u clamped, lengths 0 to 30 km) and sub-step counts (below, at and
@@ -529,6 +533,9 @@ std::vector<parity_case> make_cases() {
         std::vector<std::pair<vec4, vec4>> seen;
         for (float tau : {0.0f, 1e-8f, 1e-3f, 0.5f, 3.0f, 40.0f, 1e4f})
             for (float L : {0.0f, 0.3f, 2.5f}) seen.push_back({vec4(L, 0.7f, tau, tau * 0.5f), vec4(L * 2.0f, 1.1f, 0.0f, 0.0f)});
+        // Hardening round 2, A3: L far above L_air (the difference form lost L_air).
+        seen.push_back({vec4(1.5e6f, 0.2f, 30.0f, 60.0f), vec4(1e13f, 3.0f, 0.0f, 0.0f)});
+        seen.push_back({vec4(1e13f, 3.0f, 1e4f, 40.0f), vec4(2.0f, 1e6f, 0.0f, 0.0f)});
         add({"cm_aerial_perspective", "vec4(cm_aerial_perspective(a.x, a.y, a.z), cm_aerial_perspective(vec3(a.x, b.x, b.y), vec3(a.y), vec3(a.z, a.w, 2.0 * a.z)))",
              [](vec4 a, vec4 b) { return vec4(cm::aerial_perspective(a.x, a.y, a.z),
                                               cm::aerial_perspective(vec3(a.x, b.x, b.y), vec3(a.y), vec3(a.z, a.w, 2.0f * a.z))); }, seen, 4, 1.0f});
@@ -685,6 +692,12 @@ std::vector<parity_case> make_cases() {
         std::vector<std::pair<vec4, vec4>> uvs;
         for (float u : {0.0f, 0.5f / 320.0f, 0.1f, 0.5f, 0.73f, 1.0f - 0.5f / 320.0f, 1.2f})
             for (float v : {-0.1f, 0.5f / 180.0f, 0.33f, 0.999f}) uvs.push_back({vec4(u, v, 0.0f, 0.0f), vec4(320.0f, 180.0f, 0.0f, 0.0f)});
+        // Hardening round 2, A8: texel centres where uv * size - 1/2 rounds below i (column 0
+        // of width 214, and others): (i, 0) exactly on both sides.
+        for (int width : {214, 7, 99, 333, 517})
+            for (int i : {0, 1, width / 2, width - 1})
+                uvs.push_back({vec4((float(i) + 0.5f) / float(width), (float(i) + 0.5f) / float(width), 0.0f, 0.0f),
+                               vec4(float(width), float(width), 0.0f, 0.0f)});
         add({"cm_texel_bilinear", "cm_texel_bilinear(a.xy, b.xy)",
              [](vec4 a, vec4 b) { return cm::texel_bilinear(vec2(a), vec2(b)); }, uvs, 4, 1.0f, 1e-4});
         std::vector<std::pair<vec4, vec4>> counts;

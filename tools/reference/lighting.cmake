@@ -44,6 +44,14 @@ if(CLOUDMATH_BUILD_TESTS)
       grep -q missing.csv "$2.err" || { echo "message does not name the path"; exit 1; }
       "$1" reference --quick --threads 2 --out "$2/ref.csv" 2>/dev/null || { echo "reference --quick failed"; exit 1; }
       [ "$(grep -c '^sphere,' "$2/ref.csv")" -eq 30 ] || { echo "quick reference: want 30 sphere rows"; exit 1; }
+      # A valid reference of one row: a data failure of that file (exit 1 naming it), not a bad
+      # command line; a negative radiance: exit 1 naming the file and the value.
+      mkdir -p "$2/one/images"; grep -v '^sphere,\|^slab' "$2/ref.csv" >"$2/one.csv"; grep -m1 '^sphere,' "$2/ref.csv" >>"$2/one.csv"
+      "$1" report --reference "$2/one.csv" --docs "$2/one" 2>"$2.err"; s=$?
+      [ $s -eq 1 ] && grep -q "one.csv: no row with radiance > 0 in the fit range" "$2.err" || { echo "1-row reference: exit $s"; cat "$2.err"; exit 1; }
+      grep -v '^sphere,\|^slab' "$2/ref.csv" >"$2/negative.csv"; grep -m1 '^sphere,' "$2/ref.csv" | awk -F, -v OFS=, '{$16 = "-1"} 1' >>"$2/negative.csv"
+      "$1" report --reference "$2/negative.csv" --docs "$2/one" 2>"$2.err"; s=$?
+      [ $s -eq 1 ] && grep -q "negative.csv.*radiance -1 is negative" "$2.err" || { echo "radiance -1: exit $s"; cat "$2.err"; exit 1; }
       "$1" report --reference "$2/ref.csv" --docs "$2" 2>/dev/null || { echo "report failed"; exit 1; }
       for f in lighting_error.md lighting_error.csv images/lighting_error_vs_tau.svg images/lighting_error_sphere_profile.svg; do
         [ -s "$2/$f" ] || { echo "missing $f"; exit 1; }

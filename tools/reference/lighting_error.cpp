@@ -298,6 +298,8 @@ reference_set read_reference(const std::string& path) {
             !(std::abs(glm::length(r.sun) - 1.0) < 1e-9) || !(r.std_error >= 0.0) ||
             !std::isfinite(r.radiance))
             fail("values out of range");
+        // A radiance is never negative (a Monte Carlo mean of non-negative path weights).
+        if (!(r.radiance >= 0.0)) fail("radiance " + f[15] + " is negative");
         if (!r.is_sphere() && !(r.sun.z > 0.0)) fail("slab sun below the horizon");
         set.rows.push_back(r);
     }

@@ -315,6 +315,18 @@ report_summary write_report(const report_options& o) {
 
     const std::vector<double> taus = optical_thicknesses(set);
 
+    // Every fit range needs rows with radiance > 0: a reference without them is a data
+    // failure of that file (exit 1 naming it), not a bad command line (fit_octaves'
+    // invalid_argument, exit 2, named no file).
+    for (const row_subset& range : fit_ranges()) {
+        std::size_t selected = 0;
+        for (const reference_row& r : set.rows) if (r.radiance > 0.0 && range.select(r)) ++selected;
+        if (selected == 0)
+            throw std::runtime_error(o.reference_path + ": no row with radiance > 0 in the fit range '" + range.id +
+                                     "' (" + std::to_string(set.rows.size()) +
+                                     " rows read): the report fits every range (all, thin, thick)");
+    }
+
     // --- Fits: every range x form x octave count.
     const attenuation forms[] = {attenuation::beer, attenuation::powder, attenuation::nubis};
     struct fit_job {

@@ -36,7 +36,9 @@ foreach(bad "--bogus" "--distribution;c2" "--distribution;gamma" "--sphere;--x;1
             "--sphere;--m;1.33,0;--x;abc" "--distribution;c1;--wavelength;0.6"
             "--distribution;c1;--threads;0" "--distribution;c1;--x;5"
             "--sphere;--m;1.33,0;--x;1e-160" "--sphere;--m;1.33,0;--x;1e-31" "--sphere;--m;1.33,0;--x; 5"
-            "--sphere;--m;1.33,0;--x;5xyz" "--sphere;--m;1.33,0;--x;nan" "--sphere;--m;0x1p0,0;--x;5")
+            "--sphere;--m;1.33,0;--x;5xyz" "--sphere;--m;1.33,0;--x;nan" "--sphere;--m;0x1p0,0;--x;5"
+            "--sphere;--m;1.33,1e19;--x;10" "--sphere;--m;1.33,1e9;--x;10" "--sphere;--m;900,0;--x;1e4"
+            "--distribution;c1;--m;1.33,2000")
   expect(2 ${bad})
   if(NOT err MATCHES "^cloudmath_mie: [^\n]*\n$")
     message(FATAL_ERROR "${bad}: expected one line on stderr, got '${err}'")

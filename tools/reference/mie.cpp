@@ -129,6 +129,9 @@ mie_coefficients compute_mie_coefficients(complex m, double x) {
         !std::isfinite(m.imag()) || !(m.real() > 0.0))
         throw std::invalid_argument(
             "Mie: need a finite size parameter >= 1e-30 (mie_min_size_parameter) and Re(m) > 0");
+    if (!(std::abs(m) <= mie_max_index_modulus) || !(std::abs(m) * x <= mie_max_index_size_parameter))
+        throw std::invalid_argument("Mie: need |m| <= 1000 and |m| x <= 1e6 (mie_max_index_modulus, "
+                                    "mie_max_index_size_parameter): the series' recurrence runs |m| x steps");
     // Bohren & Huffman's formulas assume exp(-i omega t), absorption as +i k: work with that
     // and conjugate the coefficients at the end (the efficiencies do not change).
     const complex m_bh(m.real(), std::abs(m.imag()));

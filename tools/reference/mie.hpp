@@ -54,6 +54,14 @@ namespace cloudmath::reference {
 // smallest size parameter is about 1e-6 times the quadrature step).
 inline constexpr double mie_min_size_parameter = 1e-30;
 
+// The largest refractive index modulus and |m| x accepted. The log-derivative recurrence runs
+// down from above |m| x, one step each: 1e6 steps take milliseconds; |m| = 1e9 at x = 10 ran
+// for minutes, and |m| = 1e19 overflowed the start index's conversion to size_t (undefined
+// behaviour) and printed a wrong Q_ext. Water, ice and absorbing aerosols have |m| < 3;
+// metals in the visible reach tens.
+inline constexpr double mie_max_index_modulus = 1000.0;
+inline constexpr double mie_max_index_size_parameter = 1e6;
+
 // Wiscombe's number of series terms: floor(x + 4 x^(1/3) + 2), at least 1.
 [[nodiscard]] std::size_t mie_term_count(double size_parameter);
 
@@ -67,7 +75,7 @@ struct mie_coefficients {
 };
 
 // Throws std::invalid_argument for x < mie_min_size_parameter (so for x <= 0), non-finite
-// input or Re(m) <= 0.
+// input, Re(m) <= 0, |m| > mie_max_index_modulus or |m| x > mie_max_index_size_parameter.
 [[nodiscard]] mie_coefficients compute_mie_coefficients(std::complex<double> m,
                                                         double size_parameter);
 

@@ -84,10 +84,14 @@ std::vector<double> parse_list(const std::string& flag, const std::string& text)
     return out;
 }
 
+std::string number(double v);  // below
+
 std::complex<double> parse_index(const std::string& text) {
     const std::vector<double> v = parse_list("--m", text);
     if (v.size() != 2) throw usage_error("--m: expected RE,IM, got '" + text + "'");
     if (!(v[0] > 0.0)) throw usage_error("--m: the real part must be > 0");
+    if (!(std::abs(std::complex<double>(v[0], v[1])) <= mie_max_index_modulus))
+        throw usage_error("--m: |m| must be at most 1000, not " + number(std::abs(std::complex<double>(v[0], v[1]))));
     return {v[0], v[1]};
 }
 
@@ -202,6 +206,9 @@ options parse(int argc, char** argv) {
             if (seen(f)) throw usage_error(std::string(f) + " does not apply to --sphere");
         if (!o.x) throw usage_error("--sphere needs --x");
         if (!o.m) throw usage_error("--sphere needs --m");
+        if (!(std::abs(*o.m) * *o.x <= mie_max_index_size_parameter))
+            throw usage_error("--m and --x: |m| x must be at most 1e6 (the series runs |m| x steps), not " +
+                              number(std::abs(*o.m) * *o.x));
     } else {
         if (o.distribution.empty()) throw usage_error("give --distribution c1|gamma or --sphere");
         for (const char* f : {"--x", "--angles"})

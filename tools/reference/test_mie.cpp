@@ -205,6 +205,13 @@ TEST_CASE("x from 1e-3 to 1e4: finite, Q_sca <= Q_ext, |g| <= 1; x = 1e4 amplitu
 }
 
 TEST_CASE("bad sphere input throws") {
+    // Hardening round 2, B1: a huge |m| overflowed the recurrence's start index (undefined
+    // behaviour, a wrong Q_ext) or ran for minutes.
+    CHECK_THROWS_AS((void)compute_mie_coefficients({1.33, 1e19}, 10.0), std::invalid_argument);
+    CHECK_THROWS_AS((void)compute_mie_coefficients({1.33, 1e9}, 10.0), std::invalid_argument);
+    CHECK_THROWS_AS((void)compute_mie_coefficients({1001.0, 0.0}, 1.0), std::invalid_argument);
+    CHECK_THROWS_AS((void)compute_mie_coefficients({900.0, 0.0}, 2000.0), std::invalid_argument);
+    CHECK_NOTHROW((void)compute_mie_coefficients({999.0, 0.0}, 1000.0));  // |m| x = 999000: accepted
     CHECK_THROWS_AS((void)compute_mie_coefficients({1.33, 0.0}, 0.0), std::invalid_argument);
     CHECK_THROWS_AS((void)compute_mie_coefficients({0.0, 0.0}, 1.0), std::invalid_argument);
     CHECK_THROWS_AS((void)compute_mie_coefficients({1.33, 0.0}, std::nan("")),

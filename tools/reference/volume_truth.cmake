@@ -115,6 +115,13 @@ x,y,r,g,b,se_r,se_g,se_b'
         [ $s -eq 1 ] || { echo "row '$row': exit $s, want 1"; exit 1; }
         grep -q "truth_ground.csv:6: malformed row" "$out.err" || { echo "row '$row': no message naming the line"; cat "$out.err"; exit 1; }
       done
+      # A truncated file (one of the 2 pixels) and a pixel given twice: exit 1 naming the file.
+      printf '%s\n%s\n' "$head" "0,0,0.1,0.2,0.3,0,0,0" >"$out/truth_ground.csv"
+      "$tool" report --presets ground --data "$out" --docs "$out" --quiet 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "truth_ground.csv: 1 of 2 pixels" "$out.err" || { echo "truncated: exit $s"; cat "$out.err"; exit 1; }
+      printf '%s\n%s\n%s\n' "$head" "1,0,0.1,0.2,0.3,0,0,0" "1,0,0.1,0.2,0.3,0,0,0" >"$out/truth_ground.csv"
+      "$tool" report --presets ground --data "$out" --docs "$out" --quiet 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "truth_ground.csv:7: pixel 1,0 appears twice" "$out.err" || { echo "duplicate: exit $s"; cat "$out.err"; exit 1; }
       printf '%s\n' "$head" | sed 's/# width: 2/# width: 2xyz/' >"$out/truth_ground.csv"
       "$tool" report --presets ground --data "$out" --docs "$out" --quiet 2>"$out.err" >/dev/null; s=$?
       [ $s -eq 1 ] && grep -q "width and height metadata" "$out.err" || { echo "width 2xyz: exit $s"; cat "$out.err"; exit 1; }

@@ -208,6 +208,7 @@ truth_image read_truth(const std::string& path) {
     std::string line;
     int line_no = 0;
     bool header = false;
+    std::vector<bool> seen;  // pixels read so far
     const auto fail = [&](const std::string& why) {
         throw std::runtime_error(path + ":" + std::to_string(line_no) + ": " + why);
     };
@@ -235,6 +236,7 @@ truth_image read_truth(const std::string& path) {
             t.height = size("height");
             t.radiance.assign(static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height), {});
             t.std_error = t.radiance;
+            seen.assign(t.radiance.size(), false);
             continue;
         }
         // Eight cells, each the whole number (strict_number.hpp): sscanf took trailing junk
@@ -255,10 +257,22 @@ truth_image read_truth(const std::string& path) {
             v[c] = *value;
         }
         const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(x);
+        if (seen[i]) fail("pixel " + cells[0] + "," + cells[1] + " appears twice");
+        seen[i] = true;
         t.radiance[i] = {v[0], v[1], v[2]};
         t.std_error[i] = {v[3], v[4], v[5]};
     }
     if (!header) fail("no data");
+    // Every pixel once: a truncated file (a render cut short, a partial copy) read 44 of 14400
+    // pixels, the rest stayed 0, and the report said rms 175070%.
+    const std::size_t read = static_cast<std::size_t>(std::count(seen.begin(), seen.end(), true));
+    if (read != seen.size()) {
+        const std::size_t missing = static_cast<std::size_t>(std::find(seen.begin(), seen.end(), false) - seen.begin());
+        throw std::runtime_error(path + ": " + std::to_string(read) + " of " + std::to_string(seen.size()) +
+                                 " pixels (" + std::to_string(t.width) + " x " + std::to_string(t.height) +
+                                 "); the first missing is " + std::to_string(missing % std::size_t(t.width)) + "," +
+                                 std::to_string(missing / std::size_t(t.width)) + " (truncated file?)");
+    }
     return t;
 }
 

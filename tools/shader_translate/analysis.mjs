@@ -16,6 +16,8 @@ export class Analysis {
     this.globals = new Map();    // name -> type
     this.hooks = hooks;
     this.scopes = [];
+    this.current = null;  // the overload whose body is being printed (enter / leave)
+    this.calls = [];      // { from, to, line }: the calls typed inside printed bodies
     for (const [macro, h] of Object.entries(hooks)) {
       this.addFunction({ ret: h.ret, name: macro, params: h.params.map(([type, name]) => ({ qual: '', type, name })), hook: true });
       this.addFunction({ ret: h.ret, name: h.fn, params: h.params.map(([type, name]) => ({ qual: '', type, name })), hook: true });
@@ -39,7 +41,12 @@ export class Analysis {
     const list = this.functions.get(item.name) || [];
     const sig = item.params.map((p) => p.type).join(',');
     const same = list.find((o) => o.params.map((p) => p.type).join(',') === sig);
-    if (same) { if (item.body) same.item = item; return; }  // a prototype and its definition
+    if (same) {  // a prototype and its definition; two definitions are an error (GLSL's too)
+      if (item.body && same.item.body && same.item !== item && (same.item.section || '') === (item.section || ''))
+        this.error(`${item.name}(${sig}) is defined twice`, item.line);
+      if (item.body) same.item = item;
+      return;
+    }
     list.push({ ret: item.ret, params: item.params, item, index: list.length, hook: item.hook });
     this.functions.set(item.name, list);
   }
@@ -82,7 +89,10 @@ export class Analysis {
           if (!f) this.error(`${t} has no field ${e.name}`, e.line);
           return f.array ? `${f.type}[]` : f.type;
         }
-        return t && (isVector(t) || isScalar(t)) ? swizzleType(t, e.name) : null;
+        if (!t || !(isVector(t) || isScalar(t))) return null;
+        const swizzled = swizzleType(t, e.name);
+        if (!swizzled) this.error(`.${e.name} is not a swizzle of a ${t}`, e.line);
+        return swizzled;
       }
       case 'index': {
         const t = this.typeOf(e.obj);
@@ -112,8 +122,52 @@ export class Analysis {
     if (this.structs.has(e.callee)) return e.callee;
     const args = e.args.map((a) => this.typeOf(a));
     if (BUILTIN_FUNCTIONS.has(e.callee) && !this.functions.has(e.callee)) return builtinResult(e.callee, args);
+    if (!this.functions.has(e.callee)) this.error(`call of ${e.callee}, which is not defined (nor a built-in the translator knows)`, e.line);
     const o = this.resolve(e.callee, args, e.line);
+    if (o && this.current && !o.hook) this.calls.push({ from: this.current, to: o, line: e.line });
     return o ? o.ret : null;
+  }
+
+  // --- the function being printed: its calls (recursion) and its returns -------------------
+  // The emitters call enter() and leave() around each function body they print, and
+  // checkReturn() at each return statement.
+  enter(item) {
+    this.current = (this.functions.get(item.name) || []).find((o) => o.item === item) || null;
+  }
+  leave() { this.current = null; }
+  checkReturn(expr, line) {
+    if (!this.current) return;
+    const want = this.current.ret;
+    if (!expr) {
+      if (want !== 'void') this.error(`return without a value in ${this.current.item.name}, which returns ${want}`, line);
+      return;
+    }
+    const got = this.typeOf(expr);
+    if (!got || !want) return;
+    // GLSL converts int and uint to float implicitly; vectors and structs must match.
+    const same = got === want || (isScalar(got) && isScalar(want) && want === 'float' && got !== 'bool') ||
+      (isVector(got) && isVector(want) && dim(got) === dim(want) && want[0] === 'v' && got[0] !== 'b');
+    if (!same) this.error(`${this.current.item.name} returns ${want}, not ${got}`, line);
+  }
+  // Recursion, direct or through other functions, is illegal in GLSL, HLSL and WGSL: after
+  // the emitters have printed (and so typed every call), a cycle in the calls is an error at
+  // the call that closes it.
+  checkRecursion() {
+    const edges = new Map();
+    for (const c of this.calls) {
+      if (!edges.has(c.from)) edges.set(c.from, []);
+      edges.get(c.from).push(c);
+    }
+    const state = new Map();  // 1 on the path, 2 done
+    const visit = (o) => {
+      state.set(o, 1);
+      for (const c of edges.get(o) || []) {
+        if (state.get(c.to) === 1) this.error(`recursion: ${c.from.item.name} calls ${c.to.item.name}, which leads back to it`, c.line);
+        if (!state.get(c.to)) visit(c.to);
+      }
+      state.set(o, 2);
+    };
+    for (const o of edges.keys()) if (!state.get(o)) visit(o);
   }
 
   // The overload a call refers to (null for constructors, built-ins and unknown macros).

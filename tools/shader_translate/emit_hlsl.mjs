@@ -142,7 +142,9 @@ export function emitHlsl(unit, analysis, { emit = () => true, flatten = false, c
       }
       case 'decl': return withComments(s, declarators(s, indent, false), indent, comment);
       case 'expr': return c(`${indent}${expr(s.expr)};`);
-      case 'return': return c(`${indent}return${s.expr ? ' ' + expr(s.expr) : ''};`);
+      case 'return':
+        A.checkReturn(s.expr, s.line);
+        return c(`${indent}return${s.expr ? ' ' + expr(s.expr) : ''};`);
       case 'break': case 'continue': return c(`${indent}${s.kind};`);
       case 'if': {
         let text = `${indent}if (${expr(s.cond)})${sep(body(s.then, indent))}`;
@@ -189,10 +191,12 @@ export function emitHlsl(unit, analysis, { emit = () => true, flatten = false, c
       case 'global': return withComments(it, declarators(it, '', true), '', comment);
       case 'function': {
         A.push();
+        A.enter(it);
         for (const p of it.params) A.bind(p.name, p.type);
         const params = it.params.map((p) => `${p.qual ? p.qual + ' ' : ''}${hlslType(p.type)} ${hlslName(p.name)}`).join(', ');
         const head = `${hlslType(it.ret)} ${it.name}(${params})`;
         const text = it.body ? oneLine(head, stmt({ ...it.body, leading: [], trailing: null }, '').trimStart()) : `${head};`;
+        A.leave();
         A.pop();
         return withComments(it, text, '', comment);
       }

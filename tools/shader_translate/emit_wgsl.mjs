@@ -248,6 +248,7 @@ export function emitWgsl(unit, analysis, { emit = () => true, comment = (c) => c
         return c(`${indent}${simpleStatement(e)};`);
       }
       case 'return':
+        A.checkReturn(s.expr, s.line);
         if (s.expr && s.expr.kind === 'ternary' && (hasCall(s.expr.then) || hasCall(s.expr.else))) return c(returnTernary(s.expr, indent, returnType));
         return c(`${indent}return${s.expr ? ' ' + splat(s.expr, expr(s.expr), returnType) : ''};`);
       case 'break': case 'continue': return c(`${indent}${s.kind};`);
@@ -315,6 +316,7 @@ export function emitWgsl(unit, analysis, { emit = () => true, comment = (c) => c
         if (!it.body) return '';  // prototypes: WGSL declarations are order-independent
         const overload = A.functions.get(it.name).find((o) => o.item === it);
         A.push();
+        A.enter(it);
         for (const p of it.params) A.bind(p.name, p.type, p.qual ? { pointer: true } : {});
         mutated = mutatedNames(it.body, A, { runtimeIndexed: true });
         const copies = [];
@@ -328,6 +330,7 @@ export function emitWgsl(unit, analysis, { emit = () => true, comment = (c) => c
         const head = `fn ${overloadName(it.name, overload)}(${params.join(', ')})${it.ret === 'void' ? '' : ` -> ${wgslType(it.ret)}`}`;
         let text = stmt({ ...it.body, leading: [], trailing: null }, '').trimStart();
         if (copies.length) text = text.replace(/^\{\n/, `{\n${copies.join('\n')}\n`);
+        A.leave();
         A.pop();
         return withComments(it, oneLine(head, text), '', comment);
       }

@@ -122,6 +122,8 @@ const BINARY = {
   '<<': 9, '>>': 9, '+': 10, '-': 10, '*': 11, '/': 11, '%': 11,
 };
 const ASSIGN = new Set(['=', '+=', '-=', '*=', '/=', '%=', '<<=', '>>=', '&=', '|=', '^=']);
+// The deepest nesting the parser accepts (see enter() below).
+export const MAX_NESTING = 256;
 
 // options.aliases: identifier -> identifier substitutions (object-like #defines that name a
 // function, resolved by the WGSL preprocessor).
@@ -136,6 +138,13 @@ export function parse(source, file, options = {}) {
   const ident = () => { if (peek().kind !== 'ident') err('expected an identifier'); return next().text; };
   const structs = new Set();
   const isTypeName = (t) => t.kind === 'ident' && (isBuiltinType(t.text) || structs.has(t.text));
+  // Nesting (parentheses, calls, unary operators, blocks, ifs, ternaries, and chains of binary
+  // operators, which nest as deep as they are long) is capped: the parser and the emitters
+  // recurse over it, and JavaScript's stack overflowed with no location past about 1,400
+  // parentheses or 5,800 terms. The twins nest about 20 deep.
+  let depth = 0;
+  const enter = () => { if (++depth > MAX_NESTING) err(`nesting deeper than ${MAX_NESTING} levels is not supported`); };
+  const leave = () => { depth--; };
 
   function arraySuffix() {
     if (!is('[')) return null;
@@ -148,8 +157,13 @@ export function parse(source, file, options = {}) {
   // --- expressions --------------------------------------------------------------------------
   function primary() {
     const t = peek();
-    if (t.kind === 'number') { next(); return { kind: 'num', text: t.text, line: t.line }; }
-    if (is('(')) { next(); const e = expression(); expect(')'); return { kind: 'paren', expr: e }; }
+    if (t.kind === 'number') {
+      next();
+      if (/[.eEfF]/.test(t.text) && !/^0[xX]/.test(t.text) && !Number.isFinite(Math.fround(parseFloat(t.text))))
+        err('a float literal that rounds to infinity in float', t);
+      return { kind: 'num', text: t.text, line: t.line };
+    }
+    if (is('(')) { next(); enter(); const e = expression(); leave(); expect(')'); return { kind: 'paren', expr: e }; }
     if (t.kind === 'ident') {
       next();
       // Array constructor: float[135](...)
@@ -161,7 +175,7 @@ export function parse(source, file, options = {}) {
         const args = callArgs();
         return { kind: 'call', callee: t.text, array: size, args, line: t.line };
       }
-      if (is('(')) { next(); return { kind: 'call', callee: t.text, args: callArgs(), line: t.line }; }
+      if (is('(')) { next(); enter(); const args = callArgs(); leave(); return { kind: 'call', callee: t.text, args, line: t.line }; }
       return { kind: 'ident', name: t.text, line: t.line };
     }
     err('expected an expression');
@@ -180,7 +194,7 @@ export function parse(source, file, options = {}) {
   function postfix() {
     let e = primary();
     for (;;) {
-      if (is('.')) { next(); e = { kind: 'member', obj: e, name: ident() }; continue; }
+      if (is('.')) { next(); const line = peek().line; e = { kind: 'member', obj: e, name: ident(), line }; continue; }
       if (is('[')) { next(); const index = expression(); expect(']'); e = { kind: 'index', obj: e, index }; continue; }
       if (is('++') || is('--')) { e = { kind: 'postfix', op: next().text, arg: e }; continue; }
       return e;
@@ -189,35 +203,50 @@ export function parse(source, file, options = {}) {
   function unary() {
     if (is('-') || is('+') || is('!') || is('~') || is('++') || is('--')) {
       const op = next().text;
-      return { kind: 'unary', op, arg: unary() };
+      enter();
+      const arg = unary();
+      leave();
+      return { kind: 'unary', op, arg };
     }
     return postfix();
   }
   function binary(minPrec) {
     let left = unary();
-    for (;;) {
-      const t = peek();
-      const prec = t.kind === 'punct' ? BINARY[t.text] : undefined;
-      if (prec === undefined || prec < minPrec) return left;
-      next();
-      const right = binary(prec + 1);
-      left = { kind: 'binary', op: t.text, left, right };
+    let chain = 0;  // operators in this chain: the tree is as deep as the chain is long
+    try {
+      for (;;) {
+        const t = peek();
+        const prec = t.kind === 'punct' ? BINARY[t.text] : undefined;
+        if (prec === undefined || prec < minPrec) return left;
+        next();
+        enter();
+        chain++;
+        const right = binary(prec + 1);
+        left = { kind: 'binary', op: t.text, left, right };
+      }
+    } finally {
+      depth -= chain;
     }
   }
   function conditional() {
     const cond = binary(1);
     if (!is('?')) return cond;
     next();
+    enter();
     const then = assignment();
     expect(':');
     const otherwise = assignment();
+    leave();
     return { kind: 'ternary', cond, then, else: otherwise };
   }
   function assignment() {
     const left = conditional();
     if (peek().kind === 'punct' && ASSIGN.has(peek().text)) {
       const op = next().text;
-      return { kind: 'assign', op, left, right: assignment() };
+      enter();
+      const right = assignment();
+      leave();
+      return { kind: 'assign', op, left, right };
     }
     return left;
   }
@@ -259,6 +288,14 @@ export function parse(source, file, options = {}) {
     return { kind: 'decl', const: isConst, precise, type, declarators, leading: first.leading, trailing: end.trailing, line: first.line, blankBefore: first.blankBefore };
   }
   function statement() {
+    enter();
+    try {
+      return statementBody();
+    } finally {
+      leave();
+    }
+  }
+  function statementBody() {
     const t = peek();
     const lead = t.leading;
     if (t.kind === 'directive') { next(); return { kind: 'directive', text: t.text, leading: lead, blankBefore: t.blankBefore, trailing: t.trailing, line: t.line }; }

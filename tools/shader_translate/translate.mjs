@@ -110,6 +110,20 @@ export function preprocessWgsl(text, { defines = {}, hooks = {}, file } = {}) {
   return { text: out.join('\n'), aliases, defined };
 }
 
+// HLSL keeps the preprocessor lines, so nothing else checks them: every #ifdef / #ifndef
+// needs its #endif, and #else and #endif their #ifdef (a dangling one was emitted as it was).
+function checkConditionals(text, file) {
+  const open = [];
+  text.split('\n').forEach((line, i) => {
+    const m = /^\s*#\s*(\w+)/.exec(line);
+    if (!m) return;
+    if (m[1] === 'ifdef' || m[1] === 'ifndef' || m[1] === 'if') open.push(i + 1);
+    else if (m[1] === 'else' || m[1] === 'elif') { if (!open.length) throw new TranslateError(`#${m[1]} without #ifdef`, i + 1, file); }
+    else if (m[1] === 'endif') { if (!open.pop()) throw new TranslateError('#endif without #ifdef', i + 1, file); }
+  });
+  if (open.length) throw new TranslateError('#ifdef without #endif', open[open.length - 1], file);
+}
+
 // Comments keep their text; paths and names of the GLSL files become the target's.
 // HLSL keeps the GLSL's files, #includes and guards, so its comments name the .hlsl files.
 // WGSL's comments stay as the GLSL twin wrote them (there is no #include to rename).
@@ -153,24 +167,35 @@ function translateLines(files, { target, emit, flatten = false, defines = {}, ho
     unit.items.unshift(...userDefines.map(([k, v]) => ({ kind: 'directive', text: `#define ${k} ${v}`, leading: [] })));
   }
   let file = null, hook = null;
+  // The preprocessor sections an item lies in (HLSL keeps them: the same function may be
+  // defined once per branch of an #ifdef / #else).
+  const sections = [];
   for (const it of unit.items) {
     if (it.kind === 'directive') {
       const m = /^#\s*pragma\s+cm_file\s+(\S+)/.exec(it.text);
       if (m) { file = m[1]; it.marker = true; }
       const h = /^#\s*pragma\s+cm_hook_(begin|end)\s*(\w*)/.exec(it.text);
       if (h) { hook = h[1] === 'begin' ? h[2] : null; it.marker = true; }
+      const d = /^#\s*(ifdef|ifndef|if|else|elif|endif)\b\s*(.*)$/.exec(it.text);
+      if (d && (d[1] === 'ifdef' || d[1] === 'ifndef' || d[1] === 'if')) sections.push(`${d[1]} ${d[2]}`);
+      else if (d && (d[1] === 'else' || d[1] === 'elif') && sections.length) sections.push(`${sections.pop()} / ${d[1]} ${d[2]}`);
+      else if (d && d[1] === 'endif') sections.pop();
     }
     it.file = file || '(defines)';
     it.hook = hook;
+    it.section = sections.join(' > ');
   }
   const analysis = new Analysis(unit.items.filter((it) => !it.marker), { file: 'unit', hooks });
   const wanted = (it) => !it.marker && (!emitSet || emitSet.has(it.file) || it.file === '(defines)' && target === 'wgsl');
   const comment = commentRewriter(target);
   if (target === 'hlsl') {
+    checkConditionals(source, 'unit');
     const printed = emitHlsl({ items: unit.items }, analysis, { emit: wanted, flatten, comment });
+    analysis.checkRecursion();
     return { text: joinItems(printed).replace(/\n{3,}/g, '\n\n') };
   }
   const printed = emitWgsl({ items: unit.items }, analysis, { emit: wanted, comment });
+  analysis.checkRecursion();
   const main = printed.filter((p) => !p.item.hook);
   const hooked = printed.filter((p) => p.item.hook);
   return {

@@ -184,3 +184,59 @@ test('module files: dependencies first, each once, cycles refused', () => {
   assert.throws(() => moduleFiles('a.glsl', { 'a.glsl': '#include "b.glsl"\n', 'b.glsl': '#include "a.glsl"\n' }), /cycle/);
   assert.throws(() => moduleFiles('a.glsl', { 'a.glsl': '#include "x.glsl"\n' }), /no such file/);
 });
+
+// Hardening round 2 (B5-B8): what the translator let through, or crashed on, now refused with
+// the file and line.
+const refuses = (src, message, line) => {
+  for (const target of ['hlsl', 'wgsl'])
+    assert.throws(() => translateUnit([{ name: 'a.glsl', text: src }], { target }),
+      (e) => e instanceof TranslateError && e.message.includes(message) && e.message.startsWith(`a.glsl:${line}:`),
+      `${target}: expected a.glsl:${line}: ... ${message}`);
+};
+
+test('deep nesting is an error with its line, not a stack overflow (B5, B8)', () => {
+  const parens = `float f(float x) {\n  return ${'('.repeat(1500)}x${')'.repeat(1500)};\n}`;
+  refuses(parens, 'nesting deeper than 256 levels', 2);
+  const flat = `float f(float x) {\n  return x${' + x'.repeat(6000)};\n}`;
+  refuses(flat, 'nesting deeper than 256 levels', 2);
+  const nots = `bool f(bool b) {\n  return ${'!'.repeat(2000)}b;\n}`;
+  refuses(nots, 'nesting deeper than 256 levels', 2);
+  const calls = `float g(float x) { return x; }\nfloat f(float x) {\n  return ${'g('.repeat(1500)}x${')'.repeat(1500)};\n}`;
+  refuses(calls, 'nesting deeper than 256 levels', 3);
+  const ifs = `float f(float x) {\n${'if (x > 0.0) '.repeat(1600)}x = 1.0;\n  return x;\n}`;
+  refuses(ifs, 'nesting deeper than 256 levels', 2);
+  const blocks = `float f(float x) {\n${'{'.repeat(1500)}x = 1.0;${'}'.repeat(1500)}\n  return x;\n}`;
+  refuses(blocks, 'nesting deeper than 256 levels', 2);
+  const ternaries = `float f(float x) {\n  return ${'x > 0.0 ? x : '.repeat(1500)}x;\n}`;
+  refuses(ternaries, 'nesting deeper than 256 levels', 2);
+  // 200 nested ifs (under the cap) translate, and quickly in HLSL (800 took 3.5 s before).
+  const fine = `float f(float x) {\n${'if (x > 0.0) '.repeat(200)}x = 1.0;\n  return x;\n}`;
+  const t0 = Date.now();
+  has(hlsl(fine), 'x = 1.0;');
+  assert.ok(Date.now() - t0 < 2000, 'HLSL: 200 nested ifs took over 2 s');
+});
+
+test('a function defined twice with the same signature is an error (B6)', () => {
+  refuses('float f(float x) { return x; }\nfloat f(float x) { return 2.0 * x; }', 'f(float) is defined twice', 2);
+  // A prototype and its definition stay fine.
+  has(hlsl('float f(float x);\nfloat f(float x) { return x; }'), 'float f(float x)');
+});
+
+test('what was translated silently though wrong is an error with its line (B7)', () => {
+  refuses('float f(float x) {\n  return f(x);\n}', 'recursion: f calls f', 2);
+  refuses('float g(float x);\nfloat f(float x) {\n  return g(x);\n}\nfloat g(float x) {\n  return f(x);\n}', 'recursion', 6);
+  refuses('float f(float x) {\n  return undefined_thing(x);\n}', 'call of undefined_thing, which is not defined', 2);
+  refuses('vec3 f(float x) {\n  return x;\n}', 'f returns vec3, not float', 2);
+  refuses('float f(vec3 v) {\n  return v.xyzwq.x;\n}', '.xyzwq is not a swizzle of a vec3', 2);
+  refuses('float f(vec3 v) {\n  return v.w;\n}', '.w is not a swizzle of a vec3', 2);
+  refuses('float f(vec2 v) {\n  return v.xg.x;\n}', '.xg is not a swizzle of a vec2', 2);
+  refuses('float f() {\n  return 1e999;\n}', 'rounds to infinity in float', 2);
+  // The float maximum itself, an int returned as float and overloads calling overloads are fine.
+  has(hlsl('float f() { return 3.4028235e38; }'), '3.4028235e38');
+  has(hlsl('float f() { return 1; }'), 'return 1;');
+  has(hlsl('float g(float x) { return x; }\nvec2 g(vec2 v) { return vec2(g(v.x), g(v.y)); }'), 'float2 g(float2 v)');
+  // HLSL keeps the preprocessor lines: a dangling one is an error there too.
+  assert.throws(() => hlsl('#ifdef A\nfloat f(float x) { return x; }\n'), (e) => e instanceof TranslateError && e.message.includes('#ifdef without #endif'));
+  assert.throws(() => hlsl('float f(float x) { return x; }\n#else\n'), (e) => e instanceof TranslateError && e.message.includes('#else without #ifdef'));
+  assert.throws(() => hlsl('float f(float x) { return x; }\n#endif\n'), (e) => e instanceof TranslateError && e.message.includes('#endif without #ifdef'));
+});

@@ -55,8 +55,13 @@ export function builtinResult(name, args) {
 }
 
 // Swizzle result: component type of `t`, as many components as letters.
+// Null when the letters are no swizzle of t: more than 4, a component past t's size (.z of a
+// vec2, .w of a vec3), or letters mixed from two sets (.xg).
 export function swizzleType(t, letters) {
   const c = component(t);
-  if (!c || !/^[xyzwrgbastpq]{1,4}$/.test(letters)) return null;
+  if (!c || !/^([xyzw]{1,4}|[rgba]{1,4}|[stpq]{1,4})$/.test(letters)) return null;
+  const n = dim(t);
+  const highest = Math.max(...[...letters].map((l) => 'xyzwrgbastpq'.indexOf(l) % 4));
+  if (highest >= n) return null;
   return vectorOf(c, letters.length);
 }

@@ -40,11 +40,11 @@ const base = `http://127.0.0.1:${server.address().port}`;
 const failures = [];
 const check = (ok, what) => { if (!ok) failures.push(what); console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`); };
 
-// The repository README shows the same three.js snippet as web/README.md (which the page runs).
+// docs/browser.md shows the same three.js snippet as web/README.md (which the page runs).
 const threeBlock = (text) => [...text.matchAll(/```js\n([\s\S]*?)```/g)].map((m) => m[1]).find((b) => b.includes('THREE.ShaderMaterial'));
 const webSnippet = threeBlock(await readFile(join(web, 'README.md'), 'utf8'));
-const rootSnippet = threeBlock(await readFile(join(web, '..', 'README.md'), 'utf8'));
-check(webSnippet && webSnippet === rootSnippet, 'README.md shows the three.js snippet of web/README.md unchanged');
+const rootSnippet = threeBlock(await readFile(join(web, '..', 'docs', 'browser.md'), 'utf8'));
+check(webSnippet && webSnippet === rootSnippet, 'docs/browser.md shows the three.js snippet of web/README.md unchanged');
 const userDataDir = await mkdtemp(join(tmpdir(), 'cloudmath-chromium-'));
 // WebGL2 through ANGLE on SwiftShader's Vulkan; WebGPU through Dawn on SwiftShader's Vulkan
 // (--enable-unsafe-webgpu --enable-features=Vulkan --use-webgpu-adapter=swiftshader). Both

@@ -84,7 +84,9 @@ vec4 cm_diffusion_table_coordinates(float tau_sun, float tau_behind, float tau_v
 // Lower node and upper weight of u over n equally spaced nodes.
 void cmi_diffusion_hat(float u, int n, out int i0, out float w1) {
     float p = clamp(u, 0.0, 1.0) * float(n - 1);
-    int i = min(int(p), n - 2);
+    // An integer clamp: int(NaN) is undefined (INT_MIN on common GPUs), and the node indexes
+    // the table; [0, n - 2] whatever u is.
+    int i = clamp(int(p), 0, n - 2);
     i0 = i;
     w1 = p - float(i);
 }

@@ -49,13 +49,20 @@ vec3 cm_march_opacity(CmMarchAccumulator acc) { return vec3(1.0) - acc.transmitt
 // Distance of fraction u of a march over [t_start, t_end] whose steps grow with distance:
 // t_start + (t_end - t_start) (e^(u L) - 1) / (e^L - 1),
 // L = ln((t_end + near_distance) / (t_start + near_distance));
-// ends exact. (GLSL has no log1p: L = log(1 + x) loses relative precision for tiny x, which
+// ends exact, results within them. (GLSL has no log1p: L = log(1 + x) loses relative precision for tiny x, which
 // only bends the spacing of a nearly uniform schedule.)
 float cm_march_schedule_distance(float u, float t_start, float t_end, float near_distance) {
     float v = cm_saturate(u);
-    float L = log(1.0 + (t_end - t_start) / (t_start + near_distance));
+    if (v <= 0.0) return t_start;
+    if (v >= 1.0) return t_end;
+    float base = t_start + near_distance;
+    float ratio = (t_end - t_start) / base;
+    // The ends' ratio near overflow (near_distance tiny): the difference of two logs (1e38, not
+    // FLT_MAX: WGSL refuses the literal 3.4028235e38 as beyond f32).
+    float L = ratio < 1e38 ? log(1.0 + ratio) : log(t_end + near_distance) - log(base);
     float g = v * exp((v - 1.0) * L) * cm_one_minus_exp_neg_over_x(v * L) / cm_one_minus_exp_neg_over_x(L);
-    return t_start + (t_end - t_start) * g;
+    // Within [t_start, t_end]: the sum rounds past t_end for u near 1.
+    return clamp(t_start + (t_end - t_start) * g, t_start, t_end);
 }
 
 // Light steps placed quadratically: fraction u of a march of `length` (integration.hpp).
@@ -69,7 +76,8 @@ int cm_refine_substeps(float step_optical_depth, int max_substeps) {
     int most = max(max_substeps, 1);
     if (!(step_optical_depth > 1.0)) return 1;
     if (step_optical_depth >= float(most)) return most;
-    return int(ceil(step_optical_depth));
+    // Clamped after the conversion too: in [1, most] even where a compiler folds the NaN test.
+    return clamp(int(ceil(step_optical_depth)), 1, most);
 }
 
 #endif  // CM_INTEGRATION_GLSL

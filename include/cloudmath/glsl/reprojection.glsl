@@ -33,7 +33,13 @@ vec3 cm_camera_project(vec3 p, vec3 forward, vec3 right, vec3 up, float tan_half
 
 // (x0, y0, fx, fy): texels x0..x0+1, y0..y0+1 weighted like GL_LINEAR, for texelFetch.
 vec4 cm_texel_bilinear(vec2 uv, vec2 size) {
-    vec2 st = uv * size - 0.5;
+    vec2 scaled = uv * size;
+    vec2 st = scaled - 0.5;
+    // Within 4 ulp of uv * size of an integer: that integer (a texel centre, uv rounded).
+    vec2 nearest = floor(st + 0.5);
+    vec2 tolerance = 4.0 * 1.1920929e-7 * max(abs(scaled), vec2(1.0));
+    if (abs(st.x - nearest.x) <= tolerance.x) st.x = nearest.x;
+    if (abs(st.y - nearest.y) <= tolerance.y) st.y = nearest.y;
     vec2 base = floor(st);
     return vec4(base, st - base);
 }

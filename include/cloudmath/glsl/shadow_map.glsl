@@ -10,14 +10,15 @@
 
 #include "core.glsl"
 
-// front > back while the march has met no extinction.
+// front > back while the march has met no extinction; covered: the steps' length with extinction.
 struct CmBeerShadowAccumulator {
     float front;
     float back;
     float optical_depth;
+    float covered;
 };
 
-CmBeerShadowAccumulator cm_beer_shadow_accumulator() { return CmBeerShadowAccumulator(1.0, 0.0, 0.0); }
+CmBeerShadowAccumulator cm_beer_shadow_accumulator() { return CmBeerShadowAccumulator(1.0, 0.0, 0.0, 0.0); }
 
 // Adds the step [t, t + ds) of extinction sigma_t; steps without extinction change nothing.
 void cm_beer_shadow_add_step(inout CmBeerShadowAccumulator acc, float t, float ds, float sigma_t) {
@@ -25,12 +26,15 @@ void cm_beer_shadow_add_step(inout CmBeerShadowAccumulator acc, float t, float d
     if (acc.front > acc.back) acc.front = t;
     acc.back = t + ds;
     acc.optical_depth += sigma_t * ds;
+    acc.covered += ds;
 }
 
-// (front depth, mean extinction over back - front, total optical depth); empty: 0.
+// (front depth, mean extinction over back - front, total optical depth); empty: 0. Steps
+// shorter than the rounding of t (back == front): over their own length (finite, not +Inf).
 vec3 cm_beer_shadow_texel(CmBeerShadowAccumulator acc) {
     if (acc.front > acc.back) return vec3(0.0);
-    return vec3(acc.front, acc.optical_depth / (acc.back - acc.front), acc.optical_depth);
+    float column = acc.back > acc.front ? acc.back - acc.front : acc.covered;
+    return vec3(acc.front, acc.optical_depth / column, acc.optical_depth);
 }
 
 // min(max(depth - front, 0) mean_extinction, total).

@@ -78,9 +78,15 @@ float3 cm_air_optical_depth(float altitude, float cos_zenith, float distance) {
 }
 
 // L e^-tau + L_air (1 - e^-tau): radiance seen through air that scatters L_air.
-float cm_aerial_perspective(float L, float L_air, float tau) { return L + (L_air - L) * cm_one_minus_exp_neg(tau); }
+// The two weighted terms (no L_air - L: it lost L_air when L >> L_air), clamped to the
+// interval between L and L_air; tau < 0 taken as 0.
+float cm_aerial_perspective(float L, float L_air, float tau) {
+    float t = max(tau, 0.0);
+    return clamp(L * exp(-t) + L_air * cm_one_minus_exp_neg(t), min(L, L_air), max(L, L_air));
+}
 float3 cm_aerial_perspective(float3 L, float3 L_air, float3 tau) {
-    return L + (L_air - L) * cm_one_minus_exp_neg(tau);
+    float3 t = max(tau, float3(0.0, 0.0, 0.0));
+    return clamp(L * exp(-t) + L_air * cm_one_minus_exp_neg(t), min(L, L_air), max(L, L_air));
 }
 
 // Nubis density model (density.hpp): steps on already-sampled texture values.
@@ -102,7 +108,8 @@ float cm_cloud_shape_density(float4 base, float3 weather, float h, float coverag
     float hc = h / cm_cloud_top_fraction(weather.z);
     if (!(hc < 1.0)) return 0.0;
     float t = cm_saturate(cloud_type + (weather.y - 0.5) * type_spread);
-    float c = cm_saturate(weather.x - 0.5 + coverage) * (1.0 - top_rounding * hc * hc);
+    float hr = max(hc, 0.0); // under the layer nothing to round (hc^2 overflowed: NaN)
+    float c = cm_saturate(weather.x - 0.5 + coverage) * (1.0 - top_rounding * hr * hr);
     return cm_apply_coverage(cm_nubis_base_cloud(base) * cm_height_gradient_for_type(hc, t), c);
 }
 

@@ -40,7 +40,13 @@ float3 cm_camera_project(float3 p, float3 forward, float3 right, float3 up, floa
 
 // (x0, y0, fx, fy): texels x0..x0+1, y0..y0+1 weighted like GL_LINEAR, for texelFetch.
 float4 cm_texel_bilinear(float2 uv, float2 size) {
-    float2 st = uv * size - 0.5;
+    float2 scaled = uv * size;
+    float2 st = scaled - 0.5;
+    // Within 4 ulp of uv * size of an integer: that integer (a texel centre, uv rounded).
+    float2 nearest = floor(st + 0.5);
+    float2 tolerance = 4.0 * 1.1920929e-7 * max(abs(scaled), float2(1.0, 1.0));
+    if (abs(st.x - nearest.x) <= tolerance.x) st.x = nearest.x;
+    if (abs(st.y - nearest.y) <= tolerance.y) st.y = nearest.y;
     float2 base = floor(st);
     return float4(base, st - base);
 }

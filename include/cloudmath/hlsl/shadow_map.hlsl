@@ -16,22 +16,24 @@
 
 #include "core.hlsl"
 
-// front > back while the march has met no extinction.
+// front > back while the march has met no extinction; covered: the steps' length with extinction.
 struct CmBeerShadowAccumulator {
     float front;
     float back;
     float optical_depth;
+    float covered;
 };
 // CmBeerShadowAccumulator(...) of the GLSL: HLSL has no struct constructors.
-CmBeerShadowAccumulator cm_make_CmBeerShadowAccumulator(float front, float back, float optical_depth) {
+CmBeerShadowAccumulator cm_make_CmBeerShadowAccumulator(float front, float back, float optical_depth, float covered) {
     CmBeerShadowAccumulator r;
     r.front = front;
     r.back = back;
     r.optical_depth = optical_depth;
+    r.covered = covered;
     return r;
 }
 
-CmBeerShadowAccumulator cm_beer_shadow_accumulator() { return cm_make_CmBeerShadowAccumulator(1.0, 0.0, 0.0); }
+CmBeerShadowAccumulator cm_beer_shadow_accumulator() { return cm_make_CmBeerShadowAccumulator(1.0, 0.0, 0.0, 0.0); }
 
 // Adds the step [t, t + ds) of extinction sigma_t; steps without extinction change nothing.
 void cm_beer_shadow_add_step(inout CmBeerShadowAccumulator acc, float t, float ds, float sigma_t) {
@@ -39,12 +41,15 @@ void cm_beer_shadow_add_step(inout CmBeerShadowAccumulator acc, float t, float d
     if (acc.front > acc.back) acc.front = t;
     acc.back = t + ds;
     acc.optical_depth += sigma_t * ds;
+    acc.covered += ds;
 }
 
-// (front depth, mean extinction over back - front, total optical depth); empty: 0.
+// (front depth, mean extinction over back - front, total optical depth); empty: 0. Steps
+// shorter than the rounding of t (back == front): over their own length (finite, not +Inf).
 float3 cm_beer_shadow_texel(CmBeerShadowAccumulator acc) {
     if (acc.front > acc.back) return float3(0.0, 0.0, 0.0);
-    return float3(acc.front, acc.optical_depth / (acc.back - acc.front), acc.optical_depth);
+    float column = acc.back > acc.front ? acc.back - acc.front : acc.covered;
+    return float3(acc.front, acc.optical_depth / column, acc.optical_depth);
 }
 
 // min(max(depth - front, 0) mean_extinction, total).

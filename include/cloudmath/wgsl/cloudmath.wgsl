@@ -353,13 +353,20 @@ fn cm_march_opacity(acc: CmMarchAccumulator) -> vec3f { return vec3f(1.0) - acc.
 // Distance of fraction u of a march over [t_start, t_end] whose steps grow with distance:
 // t_start + (t_end - t_start) (e^(u L) - 1) / (e^L - 1),
 // L = ln((t_end + near_distance) / (t_start + near_distance));
-// ends exact. (GLSL has no log1p: L = log(1 + x) loses relative precision for tiny x, which
+// ends exact, results within them. (GLSL has no log1p: L = log(1 + x) loses relative precision for tiny x, which
 // only bends the spacing of a nearly uniform schedule.)
 fn cm_march_schedule_distance(u: f32, t_start: f32, t_end: f32, near_distance: f32) -> f32 {
     let v: f32 = cm_saturate(u);
-    let L: f32 = log(1.0 + (t_end - t_start) / (t_start + near_distance));
+    if (v <= 0.0) { return t_start; }
+    if (v >= 1.0) { return t_end; }
+    let base: f32 = t_start + near_distance;
+    let ratio: f32 = (t_end - t_start) / base;
+    // The ends' ratio near overflow (near_distance tiny): the difference of two logs (1e38, not
+    // FLT_MAX: WGSL refuses the literal 3.4028235e38 as beyond f32).
+    let L: f32 = select(log(t_end + near_distance) - log(base), log(1.0 + ratio), ratio < 1e38);
     let g: f32 = v * exp((v - 1.0) * L) * cm_one_minus_exp_neg_over_x(v * L) / cm_one_minus_exp_neg_over_x(L);
-    return t_start + (t_end - t_start) * g;
+    // Within [t_start, t_end]: the sum rounds past t_end for u near 1.
+    return clamp(t_start + (t_end - t_start) * g, t_start, t_end);
 }
 
 // Light steps placed quadratically: fraction u of a march of `length` (integration.hpp).
@@ -373,7 +380,8 @@ fn cm_refine_substeps(step_optical_depth: f32, max_substeps: i32) -> i32 {
     let most: i32 = max(max_substeps, 1);
     if (!(step_optical_depth > 1.0)) { return 1; }
     if (step_optical_depth >= f32(most)) { return most; }
-    return i32(ceil(step_optical_depth));
+    // Clamped after the conversion too: in [1, most] even where a compiler folds the NaN test.
+    return clamp(i32(ceil(step_optical_depth)), 1, most);
 }
 // cloudmath/glsl/multiple_scattering.glsl: GLSL twin of cloudmath/multiple_scattering.hpp,
 // Wrenninge's octaves: sum_{i<N} b^i phase(mu, c^i g) exp(-a^i tau).
@@ -542,7 +550,9 @@ fn cm_diffusion_table_coordinates(tau_sun: f32, tau_behind: f32, tau_view: f32, 
 // Lower node and upper weight of u over n equally spaced nodes.
 fn cmi_diffusion_hat(u: f32, n: i32, i0: ptr<function, i32>, w1: ptr<function, f32>) {
     let p: f32 = clamp(u, 0.0, 1.0) * f32(n - 1);
-    let i: i32 = min(i32(p), n - 2);
+    // An integer clamp: int(NaN) is undefined (INT_MIN on common GPUs), and the node indexes
+    // the table; [0, n - 2] whatever u is.
+    let i: i32 = clamp(i32(p), 0, n - 2);
     (*i0) = i;
     (*w1) = p - f32(i);
 }
@@ -878,11 +888,15 @@ fn cm_air_optical_depth(altitude: f32, cos_zenith: f32, distance: f32) -> vec3f 
 }
 
 // L e^-tau + L_air (1 - e^-tau): radiance seen through air that scatters L_air.
+// The two weighted terms (no L_air - L: it lost L_air when L >> L_air), clamped to the
+// interval between L and L_air; tau < 0 taken as 0.
 fn cm_aerial_perspective(L: f32, L_air: f32, tau: f32) -> f32 {
-    return L + (L_air - L) * cm_one_minus_exp_neg(tau);
+    let t: f32 = max(tau, 0.0);
+    return clamp(L * exp(-t) + L_air * cm_one_minus_exp_neg(t), min(L, L_air), max(L, L_air));
 }
 fn cm_aerial_perspective_v3v3v3(L: vec3f, L_air: vec3f, tau: vec3f) -> vec3f {
-    return L + (L_air - L) * cm_one_minus_exp_neg_v3(tau);
+    let t: vec3f = max(tau, vec3f(0.0));
+    return clamp(L * exp(-t) + L_air * cm_one_minus_exp_neg_v3(t), min(L, L_air), max(L, L_air));
 }
 
 // Nubis density model (density.hpp): steps on already-sampled texture values.
@@ -906,7 +920,8 @@ fn cm_cloud_shape_density(base: vec4f, weather: vec3f, h: f32, coverage: f32, cl
     let hc: f32 = h / cm_cloud_top_fraction(weather.z);
     if (!(hc < 1.0)) { return 0.0; }
     let t: f32 = cm_saturate(cloud_type + (weather.y - 0.5) * type_spread);
-    let c: f32 = cm_saturate(weather.x - 0.5 + coverage) * (1.0 - top_rounding * hc * hc);
+    let hr: f32 = max(hc, 0.0); // under the layer nothing to round (hc^2 overflowed: NaN)
+    let c: f32 = cm_saturate(weather.x - 0.5 + coverage) * (1.0 - top_rounding * hr * hr);
     return cm_apply_coverage(cm_nubis_base_cloud(base) * cm_height_gradient_for_type(hc, t), c);
 }
 
@@ -1235,7 +1250,13 @@ fn cm_camera_project(p: vec3f, forward: vec3f, right: vec3f, up: vec3f, tan_half
 
 // (x0, y0, fx, fy): texels x0..x0+1, y0..y0+1 weighted like GL_LINEAR, for texelFetch.
 fn cm_texel_bilinear(uv: vec2f, size: vec2f) -> vec4f {
-    let st: vec2f = uv * size - 0.5;
+    let scaled: vec2f = uv * size;
+    var st: vec2f = scaled - 0.5;
+    // Within 4 ulp of uv * size of an integer: that integer (a texel centre, uv rounded).
+    let nearest: vec2f = floor(st + 0.5);
+    let tolerance: vec2f = 4.0 * 1.1920929e-7 * max(abs(scaled), vec2f(1.0));
+    if (abs(st.x - nearest.x) <= tolerance.x) { st.x = nearest.x; }
+    if (abs(st.y - nearest.y) <= tolerance.y) { st.y = nearest.y; }
     let base: vec2f = floor(st);
     return vec4f(base, st - base);
 }
@@ -1254,14 +1275,15 @@ fn cm_temporal_blend_weight(history_samples: f32, max_samples: f32) -> f32 {
 //      vec3 uvd = cm_shadow_map_project(p, origin, right, up, toward_sun, half_extent);
 //      float T = cm_beer_shadow_transmittance(texture(shadow_map, uvd.xy).xyz, uvd.z);
 
-// front > back while the march has met no extinction.
+// front > back while the march has met no extinction; covered: the steps' length with extinction.
 struct CmBeerShadowAccumulator {
     front: f32,
     back: f32,
     optical_depth: f32,
+    covered: f32,
 }
 
-fn cm_beer_shadow_accumulator() -> CmBeerShadowAccumulator { return CmBeerShadowAccumulator(1.0, 0.0, 0.0); }
+fn cm_beer_shadow_accumulator() -> CmBeerShadowAccumulator { return CmBeerShadowAccumulator(1.0, 0.0, 0.0, 0.0); }
 
 // Adds the step [t, t + ds) of extinction sigma_t; steps without extinction change nothing.
 fn cm_beer_shadow_add_step(acc: ptr<function, CmBeerShadowAccumulator>, t: f32, ds: f32, sigma_t: f32) {
@@ -1269,12 +1291,15 @@ fn cm_beer_shadow_add_step(acc: ptr<function, CmBeerShadowAccumulator>, t: f32, 
     if ((*acc).front > (*acc).back) { (*acc).front = t; }
     (*acc).back = t + ds;
     (*acc).optical_depth += sigma_t * ds;
+    (*acc).covered += ds;
 }
 
-// (front depth, mean extinction over back - front, total optical depth); empty: 0.
+// (front depth, mean extinction over back - front, total optical depth); empty: 0. Steps
+// shorter than the rounding of t (back == front): over their own length (finite, not +Inf).
 fn cm_beer_shadow_texel(acc: CmBeerShadowAccumulator) -> vec3f {
     if (acc.front > acc.back) { return vec3f(0.0); }
-    return vec3f(acc.front, acc.optical_depth / (acc.back - acc.front), acc.optical_depth);
+    let column: f32 = select(acc.covered, acc.back - acc.front, acc.back > acc.front);
+    return vec3f(acc.front, acc.optical_depth / column, acc.optical_depth);
 }
 
 // min(max(depth - front, 0) mean_extinction, total).

@@ -76,11 +76,15 @@ fn cm_air_optical_depth(altitude: f32, cos_zenith: f32, distance: f32) -> vec3f 
 }
 
 // L e^-tau + L_air (1 - e^-tau): radiance seen through air that scatters L_air.
+// The two weighted terms (no L_air - L: it lost L_air when L >> L_air), clamped to the
+// interval between L and L_air; tau < 0 taken as 0.
 fn cm_aerial_perspective(L: f32, L_air: f32, tau: f32) -> f32 {
-    return L + (L_air - L) * cm_one_minus_exp_neg(tau);
+    let t: f32 = max(tau, 0.0);
+    return clamp(L * exp(-t) + L_air * cm_one_minus_exp_neg(t), min(L, L_air), max(L, L_air));
 }
 fn cm_aerial_perspective_v3v3v3(L: vec3f, L_air: vec3f, tau: vec3f) -> vec3f {
-    return L + (L_air - L) * cm_one_minus_exp_neg_v3(tau);
+    let t: vec3f = max(tau, vec3f(0.0));
+    return clamp(L * exp(-t) + L_air * cm_one_minus_exp_neg_v3(t), min(L, L_air), max(L, L_air));
 }
 
 // Nubis density model (density.hpp): steps on already-sampled texture values.
@@ -104,7 +108,8 @@ fn cm_cloud_shape_density(base: vec4f, weather: vec3f, h: f32, coverage: f32, cl
     let hc: f32 = h / cm_cloud_top_fraction(weather.z);
     if (!(hc < 1.0)) { return 0.0; }
     let t: f32 = cm_saturate(cloud_type + (weather.y - 0.5) * type_spread);
-    let c: f32 = cm_saturate(weather.x - 0.5 + coverage) * (1.0 - top_rounding * hc * hc);
+    let hr: f32 = max(hc, 0.0); // under the layer nothing to round (hc^2 overflowed: NaN)
+    let c: f32 = cm_saturate(weather.x - 0.5 + coverage) * (1.0 - top_rounding * hr * hr);
     return cm_apply_coverage(cm_nubis_base_cloud(base) * cm_height_gradient_for_type(hc, t), c);
 }
 

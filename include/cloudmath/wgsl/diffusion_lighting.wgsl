@@ -85,7 +85,9 @@ fn cm_diffusion_table_coordinates(tau_sun: f32, tau_behind: f32, tau_view: f32, 
 // Lower node and upper weight of u over n equally spaced nodes.
 fn cmi_diffusion_hat(u: f32, n: i32, i0: ptr<function, i32>, w1: ptr<function, f32>) {
     let p: f32 = clamp(u, 0.0, 1.0) * f32(n - 1);
-    let i: i32 = min(i32(p), n - 2);
+    // An integer clamp: int(NaN) is undefined (INT_MIN on common GPUs), and the node indexes
+    // the table; [0, n - 2] whatever u is.
+    let i: i32 = clamp(i32(p), 0, n - 2);
     (*i0) = i;
     (*w1) = p - f32(i);
 }

@@ -52,13 +52,20 @@ fn cm_march_opacity(acc: CmMarchAccumulator) -> vec3f { return vec3f(1.0) - acc.
 // Distance of fraction u of a march over [t_start, t_end] whose steps grow with distance:
 // t_start + (t_end - t_start) (e^(u L) - 1) / (e^L - 1),
 // L = ln((t_end + near_distance) / (t_start + near_distance));
-// ends exact. (GLSL has no log1p: L = log(1 + x) loses relative precision for tiny x, which
+// ends exact, results within them. (GLSL has no log1p: L = log(1 + x) loses relative precision for tiny x, which
 // only bends the spacing of a nearly uniform schedule.)
 fn cm_march_schedule_distance(u: f32, t_start: f32, t_end: f32, near_distance: f32) -> f32 {
     let v: f32 = cm_saturate(u);
-    let L: f32 = log(1.0 + (t_end - t_start) / (t_start + near_distance));
+    if (v <= 0.0) { return t_start; }
+    if (v >= 1.0) { return t_end; }
+    let base: f32 = t_start + near_distance;
+    let ratio: f32 = (t_end - t_start) / base;
+    // The ends' ratio near overflow (near_distance tiny): the difference of two logs (1e38, not
+    // FLT_MAX: WGSL refuses the literal 3.4028235e38 as beyond f32).
+    let L: f32 = select(log(t_end + near_distance) - log(base), log(1.0 + ratio), ratio < 1e38);
     let g: f32 = v * exp((v - 1.0) * L) * cm_one_minus_exp_neg_over_x(v * L) / cm_one_minus_exp_neg_over_x(L);
-    return t_start + (t_end - t_start) * g;
+    // Within [t_start, t_end]: the sum rounds past t_end for u near 1.
+    return clamp(t_start + (t_end - t_start) * g, t_start, t_end);
 }
 
 // Light steps placed quadratically: fraction u of a march of `length` (integration.hpp).
@@ -72,5 +79,6 @@ fn cm_refine_substeps(step_optical_depth: f32, max_substeps: i32) -> i32 {
     let most: i32 = max(max_substeps, 1);
     if (!(step_optical_depth > 1.0)) { return 1; }
     if (step_optical_depth >= f32(most)) { return most; }
-    return i32(ceil(step_optical_depth));
+    // Clamped after the conversion too: in [1, most] even where a compiler folds the NaN test.
+    return clamp(i32(ceil(step_optical_depth)), 1, most);
 }

@@ -38,7 +38,13 @@ fn cm_camera_project(p: vec3f, forward: vec3f, right: vec3f, up: vec3f, tan_half
 
 // (x0, y0, fx, fy): texels x0..x0+1, y0..y0+1 weighted like GL_LINEAR, for texelFetch.
 fn cm_texel_bilinear(uv: vec2f, size: vec2f) -> vec4f {
-    let st: vec2f = uv * size - 0.5;
+    let scaled: vec2f = uv * size;
+    var st: vec2f = scaled - 0.5;
+    // Within 4 ulp of uv * size of an integer: that integer (a texel centre, uv rounded).
+    let nearest: vec2f = floor(st + 0.5);
+    let tolerance: vec2f = 4.0 * 1.1920929e-7 * max(abs(scaled), vec2f(1.0));
+    if (abs(st.x - nearest.x) <= tolerance.x) { st.x = nearest.x; }
+    if (abs(st.y - nearest.y) <= tolerance.y) { st.y = nearest.y; }
     let base: vec2f = floor(st);
     return vec4f(base, st - base);
 }

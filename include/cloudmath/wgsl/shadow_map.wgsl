@@ -14,14 +14,15 @@
 //      vec3 uvd = cm_shadow_map_project(p, origin, right, up, toward_sun, half_extent);
 //      float T = cm_beer_shadow_transmittance(texture(shadow_map, uvd.xy).xyz, uvd.z);
 
-// front > back while the march has met no extinction.
+// front > back while the march has met no extinction; covered: the steps' length with extinction.
 struct CmBeerShadowAccumulator {
     front: f32,
     back: f32,
     optical_depth: f32,
+    covered: f32,
 }
 
-fn cm_beer_shadow_accumulator() -> CmBeerShadowAccumulator { return CmBeerShadowAccumulator(1.0, 0.0, 0.0); }
+fn cm_beer_shadow_accumulator() -> CmBeerShadowAccumulator { return CmBeerShadowAccumulator(1.0, 0.0, 0.0, 0.0); }
 
 // Adds the step [t, t + ds) of extinction sigma_t; steps without extinction change nothing.
 fn cm_beer_shadow_add_step(acc: ptr<function, CmBeerShadowAccumulator>, t: f32, ds: f32, sigma_t: f32) {
@@ -29,12 +30,15 @@ fn cm_beer_shadow_add_step(acc: ptr<function, CmBeerShadowAccumulator>, t: f32, 
     if ((*acc).front > (*acc).back) { (*acc).front = t; }
     (*acc).back = t + ds;
     (*acc).optical_depth += sigma_t * ds;
+    (*acc).covered += ds;
 }
 
-// (front depth, mean extinction over back - front, total optical depth); empty: 0.
+// (front depth, mean extinction over back - front, total optical depth); empty: 0. Steps
+// shorter than the rounding of t (back == front): over their own length (finite, not +Inf).
 fn cm_beer_shadow_texel(acc: CmBeerShadowAccumulator) -> vec3f {
     if (acc.front > acc.back) { return vec3f(0.0); }
-    return vec3f(acc.front, acc.optical_depth / (acc.back - acc.front), acc.optical_depth);
+    let column: f32 = select(acc.covered, acc.back - acc.front, acc.back > acc.front);
+    return vec3f(acc.front, acc.optical_depth / column, acc.optical_depth);
 }
 
 // min(max(depth - front, 0) mean_extinction, total).
