@@ -541,3 +541,42 @@ TEST_CASE("fuzz the fast-math and batch helpers, and the GLSL source functions")
     CHECK(cm::glsl_source_from_directory("/no/such/directory", "phase", &error).empty());
     CHECK(!error.empty());
 }
+
+TEST_CASE_TEMPLATE("fuzz the atmosphere: extinction, optical depth and transmittance in range, the LUT mapping inside it", T, float, double) {
+    inputs<T> r(21);
+    const cm::atmosphere_parameters<T> air = cm::earth_atmosphere<T>();
+    const std::vector<glm::vec<3, T>> lut = cm::atmosphere_transmittance_lut(air, 16, 8, 8);
+    for (int k = 0; k < rounds_of_run() / 8; ++k) {
+        const T any_altitude = r.any(), any_mu = r.any();
+        const glm::vec<3, T> sigma = cm::atmosphere_extinction(air, any_altitude);
+        CHECK(ok(sigma.x));
+        CHECK(sigma.z >= T(0));
+        // Inside the domain: altitudes from the ground to 100 km, any zenith cosine.
+        const T h = r.in(T(0), T(1e5)), mu = r.in(T(-1), T(1));
+        const T d = cm::atmosphere_distance_to_top(air, h, mu);
+        CHECK(ok(d));
+        CHECK(d >= T(0));
+        const bool ground = cm::atmosphere_ray_hits_ground(air, h, mu);
+        if (ground) CHECK(mu < T(0));
+        const glm::vec<3, T> tau = cm::atmosphere_optical_depth(air, h, mu, r.in(T(0), T(1e6)), 1 + k % 16);
+        CHECK(ok(tau.y));
+        CHECK(tau.y >= T(0));
+        const glm::vec<3, T> t = cm::atmosphere_transmittance(air, h, mu, 1 + k % 32);
+        for (int c = 0; c < 3; ++c) CHECK(in_range(t[c], T(0), T(1)));
+        CHECK(in_range(cm::atmosphere_transmittance_from_lut(air, lut, 16, 8, h, mu).y, T(0), T(1)));
+        // The LUT mapping for any input lands inside the texture and inside the domain.
+        const glm::vec<2, T> uv = cm::atmosphere_transmittance_lut_uv(air, any_altitude, any_mu, glm::vec<2, T>(T(256), T(64)));
+        if (cm_test::ieee_build) {
+            CHECK(in_range(uv.x, T(0), T(1)));
+            CHECK(in_range(uv.y, T(0), T(1)));
+        }
+        const glm::vec<2, T> am = cm::atmosphere_transmittance_lut_altitude_mu(air, glm::vec<2, T>(r.any(), r.any()), glm::vec<2, T>(T(256), T(64)));
+        CHECK(in_range(am.x, T(0), air.top_radius - air.bottom_radius + T(1)));
+        CHECK(in_range(am.y, T(-1), T(1)));
+        // EV100 inside its domain (positive aperture, time and sensitivity) and exposure.
+        const T ev = cm::ev100_from_camera(r.in(T(0.5), T(64)), r.in(T(1e-5), T(60)), r.in(T(25), T(102400)));
+        CHECK(ok(ev));
+        CHECK(ok(cm::ev100_from_luminance(r.in(T(1e-6), T(1e9)))));
+        CHECK(cm::exposure_from_ev100(r.in(T(-10), T(30))) > T(0));
+    }
+}

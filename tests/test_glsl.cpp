@@ -16,7 +16,7 @@
 namespace {
 const char* const modules[] = {"core", "phase", "transmittance", "integration", "multiple_scattering",
                                "diffusion_lighting", "diffusion_lighting_models", "cone_sampling",
-                               "geometry", "density", "noise", "sun", "reprojection", "shadow_map", "texture_lod", "cloudmath"};
+                               "geometry", "density", "noise", "sun", "reprojection", "shadow_map", "texture_lod", "atmosphere", "cloudmath"};
 
 std::string read_file(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -59,7 +59,7 @@ TEST_CASE("every GLSL file is embedded, byte for byte") {
 
 TEST_CASE("the shipped files do use #include (so resolution is exercised)") {
     CHECK(include_directives(std::string(cloudmath::glsl_embedded_file("phase.glsl"))) >= 1);
-    CHECK(include_directives(std::string(cloudmath::glsl_embedded_file("cloudmath.glsl"))) == 14);
+    CHECK(include_directives(std::string(cloudmath::glsl_embedded_file("cloudmath.glsl"))) == 15);
     CHECK(include_directives("  #  include \"x.glsl\"\n// #include \"y.glsl\"\n") == 1);
 }
 

@@ -18,5 +18,6 @@
 #include "reprojection.hpp"
 #include "shadow_map.hpp"
 #include "texture_lod.hpp"
+#include "atmosphere.hpp"
 
 #endif  // CLOUDMATH_CLOUDMATH_HPP

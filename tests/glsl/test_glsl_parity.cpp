@@ -749,6 +749,55 @@ std::vector<parity_case> make_cases() {
                                                     vec3(0.64f, 0.8f, -0.48f), a.w), 0.0f); },
              projections, 3, 1.0f, 1e-5});
     }
+    // atmosphere: Earth's air at the ground, in the ozone layer and at the top; zenith angles
+    // from straight down through the horizon to straight up; the LUT mapping both ways; EV100.
+    {
+        std::vector<std::pair<vec4, vec4>> rays;
+        for (float h : {0.0f, 1.0f, 1500.0f, 8000.0f, 25000.0f, 59000.0f, 60000.0f})
+            for (float mu : {-1.0f, -0.2f, -0.05f, -0.01f, 0.0f, 0.01f, 0.1f, 0.5f, 1.0f})
+                rays.push_back({vec4(h, mu, 3000.0f, 0.0f), vec4(0)});
+        const auto earth = cm::earth_atmosphere<float>();
+        add({"cm_earth_atmosphere",
+             "vec4(cm_earth_atmosphere().bottom_radius * 1e-6, cm_earth_atmosphere().rayleigh_scattering.z * 1e6, cm_earth_atmosphere().ozone_absorption.y * 1e6, cm_earth_atmosphere().mie_g)",
+             [earth](vec4, vec4) { return vec4(earth.bottom_radius * 1e-6f, earth.rayleigh_scattering.z * 1e6f, earth.ozone_absorption.y * 1e6f, earth.mie_g); },
+             {{vec4(0), vec4(0)}}, 4, 1.0f, 1e-6});
+        add({"cm_atmosphere_extinction", "vec4(cm_atmosphere_extinction(cm_earth_atmosphere(), a.x) * 1e6, 0.0)",
+             [earth](vec4 a, vec4) { return vec4(cm::atmosphere_extinction(earth, a.x) * 1e6f, 0.0f); }, rays, 3, 1.0f, 1e-5});
+        add({"cm_atmosphere_distance_to_top",
+             "vec4(cm_atmosphere_distance_to_top(cm_earth_atmosphere(), a.x, a.y) * 1e-3, cm_atmosphere_ray_hits_ground(cm_earth_atmosphere(), a.x, a.y) ? 1.0 : 0.0, 0.0, 0.0)",
+             [earth](vec4 a, vec4) { return vec4(cm::atmosphere_distance_to_top(earth, a.x, a.y) * 1e-3f,
+                                                 cm::atmosphere_ray_hits_ground(earth, a.x, a.y) ? 1.0f : 0.0f, 0.0f, 0.0f); },
+             rays, 2, 1.0f, 1e-5});
+        add({"cm_atmosphere_ray_hits_ground", "vec4(cm_atmosphere_ray_hits_ground(cm_earth_atmosphere(), a.x, a.y) ? 1.0 : 0.0)",
+             [earth](vec4 a, vec4) { return vec4(cm::atmosphere_ray_hits_ground(earth, a.x, a.y) ? 1.0f : 0.0f); }, rays, 1, 1.0f, 0.0});
+        add({"cm_atmosphere_optical_depth", "vec4(cm_atmosphere_optical_depth(cm_earth_atmosphere(), a.x, a.y, a.z, 16), 0.0)",
+             [earth](vec4 a, vec4) { return vec4(cm::atmosphere_optical_depth(earth, a.x, a.y, a.z, 16), 0.0f); }, rays, 3, 1e-3f, 1e-5});
+        add({"cm_atmosphere_transmittance", "vec4(cm_atmosphere_transmittance(cm_earth_atmosphere(), a.x, a.y, 64), 0.0)",
+             [earth](vec4 a, vec4) { return vec4(cm::atmosphere_transmittance(earth, a.x, a.y, 64), 0.0f); }, rays, 3, 1.0f, 1e-5});
+        add({"cm_atmosphere_transmittance_lut_uv", "vec4(cm_atmosphere_transmittance_lut_uv(cm_earth_atmosphere(), a.x, a.y, vec2(256.0, 64.0)), 0.0, 0.0)",
+             [earth](vec4 a, vec4) { return vec4(cm::atmosphere_transmittance_lut_uv(earth, a.x, a.y, vec2(256.0f, 64.0f)), 0.0f, 0.0f); },
+             rays, 2, 1.0f, 1e-5});
+        std::vector<std::pair<vec4, vec4>> texels;
+        for (float u : {0.0f, 0.5f / 256.0f, 0.1f, 0.5f, 0.9f, 1.0f - 0.5f / 256.0f, 1.0f})
+            for (float v : {0.0f, 0.5f / 64.0f, 0.3f, 0.7f, 1.0f - 0.5f / 64.0f, 1.0f}) texels.push_back({vec4(u, v, 0.0f, 0.0f), vec4(256.0f, 64.0f, 0.0f, 0.0f)});
+        add({"cm_atmosphere_transmittance_lut_altitude_mu",
+             "vec4(cm_atmosphere_transmittance_lut_altitude_mu(cm_earth_atmosphere(), a.xy, b.xy) * vec2(1e-4, 1.0), 0.0, 0.0)",
+             [earth](vec4 a, vec4 b) { return vec4(cm::atmosphere_transmittance_lut_altitude_mu(earth, vec2(a), vec2(b)) * vec2(1e-4f, 1.0f), 0.0f, 0.0f); },
+             texels, 2, 1.0f, 1e-4});
+        std::vector<std::pair<vec4, vec4>> cameras;
+        for (float n : {1.4f, 2.8f, 16.0f})
+            for (float t : {1.0f / 1000.0f, 1.0f / 100.0f, 1.0f})
+                for (float iso : {100.0f, 800.0f}) cameras.push_back({vec4(n, t, iso, n * 1000.0f), vec4(0)});
+        add({"cm_ev100_from_camera",
+             "vec4(cm_ev100_from_camera(a.x, a.y, a.z), cm_ev100_from_luminance(a.w), cm_exposure_from_ev100(cm_ev100_from_camera(a.x, a.y, a.z)) * 1e4, 0.0)",
+             [](vec4 a, vec4) { return vec4(cm::ev100_from_camera(a.x, a.y, a.z), cm::ev100_from_luminance(a.w),
+                                            cm::exposure_from_ev100(cm::ev100_from_camera(a.x, a.y, a.z)) * 1e4f, 0.0f); },
+             cameras, 3, 1.0f, 1e-5});
+        add({"cm_ev100_from_luminance", "vec4(cm_ev100_from_luminance(a.w))",
+             [](vec4 a, vec4) { return vec4(cm::ev100_from_luminance(a.w)); }, cameras, 1, 1.0f, 1e-5});
+        add({"cm_exposure_from_ev100", "vec4(cm_exposure_from_ev100(a.x))",
+             [](vec4 a, vec4) { return vec4(cm::exposure_from_ev100(a.x)); }, cameras, 1, 1e-3f, 1e-5});
+    }
     return cs;
 }
 

@@ -8,6 +8,7 @@ export declare const version: string;
 
 /** The file name of each GLSL twin, as a key of `sources`. */
 export type SourceName =
+  | "atmosphere.glsl"
   | "cloudmath.glsl"
   | "cone_sampling.glsl"
   | "core.glsl"
@@ -27,6 +28,7 @@ export type SourceName =
 
 /** The name of each module, as a key of `modules`. */
 export type ModuleName =
+  | "atmosphere"
   | "cloudmath"
   | "cone_sampling"
   | "core"
@@ -53,6 +55,7 @@ export declare const modules: Readonly<Record<ModuleName, string>>;
 
 /** The file name of each WGSL twin, as a key of `wgslSources`. */
 export type WgslSourceName =
+  | "atmosphere.wgsl"
   | "cloudmath.wgsl"
   | "cone_sampling.wgsl"
   | "cone_sampling_hooks.wgsl"
@@ -75,6 +78,7 @@ export type WgslSourceName =
 
 /** The name of each WGSL module, as an argument of `wgsl()`. */
 export type WgslModuleName =
+  | "atmosphere"
   | "cloudmath"
   | "cone_sampling"
   | "cone_sampling_hooks"
@@ -102,6 +106,8 @@ export declare const wgslSources: Readonly<Record<WgslSourceName, string>>;
  * Throws an Error naming an unknown module. */
 export declare function wgsl(...moduleNames: (WgslModuleName | WgslModuleName[])[]): string;
 
+/** `modules.atmosphere` */
+export declare const atmosphere: string;
 /** `modules.cloudmath` */
 export declare const cloudmath: string;
 /** `modules.cone_sampling` */

@@ -30,7 +30,7 @@ import { modules, sources, phase, multipleScattering, resolve, version, wgsl, wg
 import { resolveIncludes } from 'cloudmath-glsl/resolve';
 const fail = (m) => { console.log('FAIL: ' + m); process.exit(1); };
 const names = Object.keys(modules);
-if (names.length !== 16) fail(`want 16 modules, got ${names.join(',')}`);
+if (names.length !== 17) fail(`want 17 modules, got ${names.join(',')}`);
 for (const [name, text] of Object.entries(modules))
   if (/^[ \t]*#[ \t]*include/m.test(text)) fail(`${name}: unresolved #include`);
 if (!phase.includes('float cm_phase_hg(float mu, float g)')) fail('phase lacks cm_phase_hg');

@@ -17,5 +17,6 @@
 #include "reprojection.glsl"
 #include "shadow_map.glsl"
 #include "texture_lod.glsl"
+#include "atmosphere.glsl"
 
 #endif  // CM_CLOUDMATH_GLSL

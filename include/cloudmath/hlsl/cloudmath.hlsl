@@ -23,5 +23,6 @@
 #include "reprojection.hlsl"
 #include "shadow_map.hlsl"
 #include "texture_lod.hlsl"
+#include "atmosphere.hlsl"
 
 #endif // CM_CLOUDMATH_HLSL

@@ -1334,5 +1334,110 @@ fn cm_texture_lod(footprint: f32, texel_size: f32) -> f32 {
     let ratio: f32 = footprint / texel_size;
     return select(0.0, log2(ratio), ratio > 1.0);
 }
+// cloudmath/glsl/atmosphere.glsl: GLSL twin of cloudmath/atmosphere.hpp: a planet's air
+// (CmAtmosphere, Earth's from cm_earth_atmosphere()), its extinction at an altitude, the
+// optical depth and transmittance along a ray by quadrature, the transmittance LUT's
+// parametrisation (Bruneton 2017) both ways, and EV100 exposure.
+// Use: CmAtmosphere air = cm_earth_atmosphere();
+//      vec3 T_sun = cm_atmosphere_transmittance(air, altitude, sun_dir.y, 64);
+//      vec3 T_lut = texture(u_transmittance_lut, cm_atmosphere_transmittance_lut_uv(air, altitude, mu, vec2(256.0, 64.0))).rgb;
+// Units: metres, 1/m; channels 680, 550, 440 nm.
+
+// atmosphere_parameters (atmosphere.hpp), field for field.
+struct CmAtmosphere {
+    bottom_radius: f32,
+    top_radius: f32,
+    rayleigh_scattering: vec3f,
+    rayleigh_scale_height: f32,
+    mie_scattering: f32,
+    mie_extinction: f32,
+    mie_scale_height: f32,
+    mie_g: f32,
+    ozone_absorption: vec3f,
+    ozone_center: f32,
+    ozone_half_width: f32,
+    ground_albedo: f32,
+}
+
+// Earth's air (Bruneton 2017): see earth_atmosphere() in atmosphere.hpp.
+fn cm_earth_atmosphere() -> CmAtmosphere {
+    return CmAtmosphere(6360e3, 6420e3, vec3f(5.802e-6, 13.558e-6, 33.1e-6), 8000.0, 3.996e-6, 4.40e-6, 1200.0, 0.8, vec3f(0.650e-6, 1.881e-6, 0.085e-6), 25e3, 15e3, 0.1);
+}
+
+// Rayleigh + Mie extinction + ozone absorption at an altitude (below 0 taken as 0).
+fn cm_atmosphere_extinction(air: CmAtmosphere, altitude: f32) -> vec3f {
+    let h: f32 = max(altitude, 0.0);
+    let tent: f32 = max(1.0 - abs(h - air.ozone_center) / air.ozone_half_width, 0.0);
+    return air.rayleigh_scattering * exp(-h / air.rayleigh_scale_height) + vec3f(air.mie_extinction * exp(-h / air.mie_scale_height)) + air.ozone_absorption * tent;
+}
+
+// The distance along the ray to the top of the air (0 once outside, pointing outward).
+fn cm_atmosphere_distance_to_top(air: CmAtmosphere, altitude: f32, cos_zenith: f32) -> f32 {
+    let t: vec2f = cm_ray_sphere_intersect_altitude(altitude, cos_zenith, air.bottom_radius, air.top_radius - air.bottom_radius);
+    return max(t.y, 0.0);
+}
+
+// True when the ray meets the ground sphere in front of the point.
+fn cm_atmosphere_ray_hits_ground(air: CmAtmosphere, altitude: f32, cos_zenith: f32) -> bool {
+    if (!(cos_zenith < 0.0)) { return false; }
+    let t: vec2f = cm_ray_sphere_intersect_altitude(altitude, cos_zenith, air.bottom_radius, 0.0);
+    return t.x >= 0.0 && t.y >= t.x;
+}
+
+// Optical depth along `distance` metres of the ray: the midpoint rule over `steps` steps.
+fn cm_atmosphere_optical_depth(air: CmAtmosphere, altitude: f32, cos_zenith: f32, distance: f32, steps: i32) -> vec3f {
+    let n: i32 = max(steps, 1);
+    let ds: f32 = max(distance, 0.0) / f32(n);
+    var tau: vec3f = vec3f(0.0);
+    for (var i: i32 = 0; i < n; i++) {
+        let t: f32 = (f32(i) + 0.5) * ds;
+        tau += cm_atmosphere_extinction(air, cm_altitude_along_ray(altitude, cos_zenith, air.bottom_radius, t));
+    }
+    return tau * ds;
+}
+
+// Transmittance from the point to the top of the air along the direction; 0 into the ground.
+fn cm_atmosphere_transmittance(air: CmAtmosphere, altitude: f32, cos_zenith: f32, steps: i32) -> vec3f {
+    if (cm_atmosphere_ray_hits_ground(air, altitude, cos_zenith)) { return vec3f(0.0); }
+    return exp(-cm_atmosphere_optical_depth(air, altitude, cos_zenith, cm_atmosphere_distance_to_top(air, altitude, cos_zenith), steps));
+}
+
+// The texture coordinates of (altitude, cos_zenith) in a transmittance LUT of `size` texels.
+fn cm_atmosphere_transmittance_lut_uv(air: CmAtmosphere, altitude: f32, cos_zenith: f32, size: vec2f) -> vec2f {
+    let R: f32 = air.bottom_radius;
+    let top: f32 = air.top_radius;
+    let r: f32 = R + clamp(altitude, 0.0, top - R);
+    let H: f32 = sqrt((top - R) * (top + R));
+    let rho: f32 = sqrt(max((r - R) * (r + R), 0.0));
+    let d: f32 = cm_atmosphere_distance_to_top(air, r - R, cos_zenith);
+    let d_min: f32 = top - r;
+    let d_max: f32 = rho + H;
+    let x_mu: f32 = select(0.0, clamp((d - d_min) / (d_max - d_min), 0.0, 1.0), d_max > d_min);
+    let x_r: f32 = rho / H;
+    return vec2f(0.5 / size.x + x_mu * (1.0 - 1.0 / size.x), 0.5 / size.y + x_r * (1.0 - 1.0 / size.y));
+}
+
+// The inverse: (altitude, cos_zenith) of texture coordinate uv (a LUT generator's texel).
+fn cm_atmosphere_transmittance_lut_altitude_mu(air: CmAtmosphere, uv: vec2f, size: vec2f) -> vec2f {
+    let R: f32 = air.bottom_radius;
+    let top: f32 = air.top_radius;
+    let x_mu: f32 = cm_saturate((uv.x - 0.5 / size.x) / (1.0 - 1.0 / size.x));
+    let x_r: f32 = cm_saturate((uv.y - 0.5 / size.y) / (1.0 - 1.0 / size.y));
+    let H: f32 = sqrt((top - R) * (top + R));
+    let rho: f32 = H * x_r;
+    let r: f32 = sqrt(rho * rho + R * R);
+    let d_min: f32 = top - r;
+    let d_max: f32 = rho + H;
+    let d: f32 = d_min + x_mu * (d_max - d_min);
+    let mu: f32 = select(1.0, clamp((H * H - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0), d > 0.0);
+    return vec2f(r - R, mu);
+}
+
+// EV100 of a camera (f-number, shutter seconds, ISO), of an average luminance, and the exposure.
+fn cm_ev100_from_camera(aperture: f32, shutter_time: f32, iso: f32) -> f32 {
+    return log2(aperture * aperture / shutter_time * 100.0 / iso);
+}
+fn cm_ev100_from_luminance(average_luminance: f32) -> f32 { return log2(average_luminance * 100.0 / 12.5); }
+fn cm_exposure_from_ev100(ev100: f32) -> f32 { return 1.0 / (1.2 * exp2(ev100)); }
 // cloudmath/glsl/cloudmath.glsl: every GLSL twin. Define configuration macros
 // (CM_MS_OCTAVES, CM_MS_PHASE, CM_DIFFUSION_PHASE, CM_CONE_EXTINCTION, CM_CONE_SAMPLES) before including it.

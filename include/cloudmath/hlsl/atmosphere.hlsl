@@ -1,0 +1,135 @@
+// cloudmath/hlsl/atmosphere.hlsl: generated from the GLSL twin by tools/shader_translate; do not edit.
+// Regenerate with: node tools/shader_translate/generate.mjs (shaders.generated_current fails while it is stale).
+// HLSL for DXC and FXC (shader model 5 and 6), Unity and Unreal; parity with the C++ in
+// docs/hlsl_parity.md. GLSL S(...) struct constructors are cm_make_S(...) here. The comments
+// below are the GLSL twin's (file names made .hlsl).
+//
+// cloudmath/hlsl/atmosphere.hlsl: GLSL twin of cloudmath/atmosphere.hpp: a planet's air
+// (CmAtmosphere, Earth's from cm_earth_atmosphere()), its extinction at an altitude, the
+// optical depth and transmittance along a ray by quadrature, the transmittance LUT's
+// parametrisation (Bruneton 2017) both ways, and EV100 exposure.
+// Use: CmAtmosphere air = cm_earth_atmosphere();
+//      vec3 T_sun = cm_atmosphere_transmittance(air, altitude, sun_dir.y, 64);
+//      vec3 T_lut = texture(u_transmittance_lut, cm_atmosphere_transmittance_lut_uv(air, altitude, mu, vec2(256.0, 64.0))).rgb;
+// Units: metres, 1/m; channels 680, 550, 440 nm.
+#ifndef CM_ATMOSPHERE_HLSL
+#define CM_ATMOSPHERE_HLSL
+
+#include "core.hlsl"
+#include "geometry.hlsl"
+
+// atmosphere_parameters (atmosphere.hpp), field for field.
+struct CmAtmosphere {
+    float bottom_radius;
+    float top_radius;
+    float3 rayleigh_scattering;
+    float rayleigh_scale_height;
+    float mie_scattering;
+    float mie_extinction;
+    float mie_scale_height;
+    float mie_g;
+    float3 ozone_absorption;
+    float ozone_center;
+    float ozone_half_width;
+    float ground_albedo;
+};
+// CmAtmosphere(...) of the GLSL: HLSL has no struct constructors.
+CmAtmosphere cm_make_CmAtmosphere(float bottom_radius, float top_radius, float3 rayleigh_scattering, float rayleigh_scale_height, float mie_scattering, float mie_extinction, float mie_scale_height, float mie_g, float3 ozone_absorption, float ozone_center, float ozone_half_width, float ground_albedo) {
+    CmAtmosphere r;
+    r.bottom_radius = bottom_radius;
+    r.top_radius = top_radius;
+    r.rayleigh_scattering = rayleigh_scattering;
+    r.rayleigh_scale_height = rayleigh_scale_height;
+    r.mie_scattering = mie_scattering;
+    r.mie_extinction = mie_extinction;
+    r.mie_scale_height = mie_scale_height;
+    r.mie_g = mie_g;
+    r.ozone_absorption = ozone_absorption;
+    r.ozone_center = ozone_center;
+    r.ozone_half_width = ozone_half_width;
+    r.ground_albedo = ground_albedo;
+    return r;
+}
+
+// Earth's air (Bruneton 2017): see earth_atmosphere() in atmosphere.hpp.
+CmAtmosphere cm_earth_atmosphere() {
+    return cm_make_CmAtmosphere(6360e3, 6420e3, float3(5.802e-6, 13.558e-6, 33.1e-6), 8000.0, 3.996e-6, 4.40e-6, 1200.0, 0.8, float3(0.650e-6, 1.881e-6, 0.085e-6), 25e3, 15e3, 0.1);
+}
+
+// Rayleigh + Mie extinction + ozone absorption at an altitude (below 0 taken as 0).
+float3 cm_atmosphere_extinction(CmAtmosphere air, float altitude) {
+    float h = max(altitude, 0.0);
+    float tent = max(1.0 - abs(h - air.ozone_center) / air.ozone_half_width, 0.0);
+    return air.rayleigh_scattering * exp(-h / air.rayleigh_scale_height) + ((float3)(air.mie_extinction * exp(-h / air.mie_scale_height))) + air.ozone_absorption * tent;
+}
+
+// The distance along the ray to the top of the air (0 once outside, pointing outward).
+float cm_atmosphere_distance_to_top(CmAtmosphere air, float altitude, float cos_zenith) {
+    float2 t = cm_ray_sphere_intersect_altitude(altitude, cos_zenith, air.bottom_radius, air.top_radius - air.bottom_radius);
+    return max(t.y, 0.0);
+}
+
+// True when the ray meets the ground sphere in front of the point.
+bool cm_atmosphere_ray_hits_ground(CmAtmosphere air, float altitude, float cos_zenith) {
+    if (!(cos_zenith < 0.0)) return false;
+    float2 t = cm_ray_sphere_intersect_altitude(altitude, cos_zenith, air.bottom_radius, 0.0);
+    return t.x >= 0.0 && t.y >= t.x;
+}
+
+// Optical depth along `distance` metres of the ray: the midpoint rule over `steps` steps.
+float3 cm_atmosphere_optical_depth(CmAtmosphere air, float altitude, float cos_zenith, float distance, int steps) {
+    int n = max(steps, 1);
+    float ds = max(distance, 0.0) / float(n);
+    float3 tau = float3(0.0, 0.0, 0.0);
+    for (int i = 0; i < n; ++i) {
+        float t = (float(i) + 0.5) * ds;
+        tau += cm_atmosphere_extinction(air, cm_altitude_along_ray(altitude, cos_zenith, air.bottom_radius, t));
+    }
+    return tau * ds;
+}
+
+// Transmittance from the point to the top of the air along the direction; 0 into the ground.
+float3 cm_atmosphere_transmittance(CmAtmosphere air, float altitude, float cos_zenith, int steps) {
+    if (cm_atmosphere_ray_hits_ground(air, altitude, cos_zenith)) return float3(0.0, 0.0, 0.0);
+    return exp(-cm_atmosphere_optical_depth(air, altitude, cos_zenith, cm_atmosphere_distance_to_top(air, altitude, cos_zenith), steps));
+}
+
+// The texture coordinates of (altitude, cos_zenith) in a transmittance LUT of `size` texels.
+float2 cm_atmosphere_transmittance_lut_uv(CmAtmosphere air, float altitude, float cos_zenith, float2 size) {
+    float R = air.bottom_radius;
+    float top = air.top_radius;
+    float r = R + clamp(altitude, 0.0, top - R);
+    float H = sqrt((top - R) * (top + R));
+    float rho = sqrt(max((r - R) * (r + R), 0.0));
+    float d = cm_atmosphere_distance_to_top(air, r - R, cos_zenith);
+    float d_min = top - r;
+    float d_max = rho + H;
+    float x_mu = d_max > d_min ? clamp((d - d_min) / (d_max - d_min), 0.0, 1.0) : 0.0;
+    float x_r = rho / H;
+    return float2(0.5 / size.x + x_mu * (1.0 - 1.0 / size.x), 0.5 / size.y + x_r * (1.0 - 1.0 / size.y));
+}
+
+// The inverse: (altitude, cos_zenith) of texture coordinate uv (a LUT generator's texel).
+float2 cm_atmosphere_transmittance_lut_altitude_mu(CmAtmosphere air, float2 uv, float2 size) {
+    float R = air.bottom_radius;
+    float top = air.top_radius;
+    float x_mu = cm_saturate((uv.x - 0.5 / size.x) / (1.0 - 1.0 / size.x));
+    float x_r = cm_saturate((uv.y - 0.5 / size.y) / (1.0 - 1.0 / size.y));
+    float H = sqrt((top - R) * (top + R));
+    float rho = H * x_r;
+    float r = sqrt(rho * rho + R * R);
+    float d_min = top - r;
+    float d_max = rho + H;
+    float d = d_min + x_mu * (d_max - d_min);
+    float mu = d > 0.0 ? clamp((H * H - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0) : 1.0;
+    return float2(r - R, mu);
+}
+
+// EV100 of a camera (f-number, shutter seconds, ISO), of an average luminance, and the exposure.
+float cm_ev100_from_camera(float aperture, float shutter_time, float iso) {
+    return log2(aperture * aperture / shutter_time * 100.0 / iso);
+}
+float cm_ev100_from_luminance(float average_luminance) { return log2(average_luminance * 100.0 / 12.5); }
+float cm_exposure_from_ev100(float ev100) { return 1.0 / (1.2 * exp2(ev100)); }
+
+#endif // CM_ATMOSPHERE_HLSL
