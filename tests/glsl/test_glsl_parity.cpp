@@ -775,15 +775,20 @@ std::vector<parity_case> make_cases() {
         add({"cm_atmosphere_transmittance", "vec4(cm_atmosphere_transmittance(cm_earth_atmosphere(), a.x, a.y, 64), 0.0)",
              [earth](vec4 a, vec4) { return vec4(cm::atmosphere_transmittance(earth, a.x, a.y, 64), 0.0f); }, rays, 3, 1.0f, 1e-5});
         // The whole default LUT (256 x 64) generated in the compute shader, texel for texel
-        // against the CPU reference atmosphere_transmittance_lut: a = (i, j), b = (256, 64).
+        // against the CPU reference atmosphere_transmittance_lut: a = (i, j), b = (256, 64, 64
+        // steps). The step count goes through int(), so --fuzz keeps these inputs as they are
+        // (16384 texels, not 20 times as many) and the texel indices stay in the LUT.
         std::vector<std::pair<vec4, vec4>> lut_texels;
         for (int j = 0; j < 64; ++j)
-            for (int i = 0; i < 256; ++i) lut_texels.push_back({vec4(float(i), float(j), 0.0f, 0.0f), vec4(256.0f, 64.0f, 0.0f, 0.0f)});
+            for (int i = 0; i < 256; ++i) lut_texels.push_back({vec4(float(i), float(j), 0.0f, 0.0f), vec4(256.0f, 64.0f, 64.0f, 0.0f)});
         const std::vector<vec3> lut = cm::atmosphere_transmittance_lut(earth, 256, 64, 64);
         add({"cm_atmosphere_transmittance",
              "vec4(cm_atmosphere_transmittance(cm_earth_atmosphere(), cm_atmosphere_transmittance_lut_altitude_mu(cm_earth_atmosphere(), (a.xy + 0.5) / b.xy, b.xy).x, "
-             "cm_atmosphere_transmittance_lut_altitude_mu(cm_earth_atmosphere(), (a.xy + 0.5) / b.xy, b.xy).y, 64), 0.0)",
-             [lut](vec4 a, vec4) { return vec4(lut[std::size_t(a.y) * 256u + std::size_t(a.x)], 0.0f); }, lut_texels, 3, 1.0f, 1e-5});
+             "cm_atmosphere_transmittance_lut_altitude_mu(cm_earth_atmosphere(), (a.xy + 0.5) / b.xy, b.xy).y, int(b.z)), 0.0)",
+             [lut](vec4 a, vec4) {
+                 const std::size_t i = std::size_t(std::clamp(a.x, 0.0f, 255.0f)), j = std::size_t(std::clamp(a.y, 0.0f, 63.0f));
+                 return vec4(lut[j * 256u + i], 0.0f); },
+             lut_texels, 3, 1.0f, 1e-5});
         add({"cm_atmosphere_transmittance_lut_uv", "vec4(cm_atmosphere_transmittance_lut_uv(cm_earth_atmosphere(), a.x, a.y, vec2(256.0, 64.0)), 0.0, 0.0)",
              [earth](vec4 a, vec4) { return vec4(cm::atmosphere_transmittance_lut_uv(earth, a.x, a.y, vec2(256.0f, 64.0f)), 0.0f, 0.0f); },
              rays, 2, 1.0f, 1e-5});
