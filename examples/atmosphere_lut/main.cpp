@@ -3,7 +3,7 @@
 // then cm_atmosphere_transmittance at each texel centre), timed, read back and compared
 // texel for texel with the CPU reference (cloudmath::atmosphere_transmittance_lut).
 //
-//   cloudmath_atmosphere_lut [--width W] [--height H] [--steps N] [--runs R]
+//   cloudmath_atmosphere_lut [--width W] [--height H] [--steps N] [--runs R] | --print-shader
 //   defaults: 256 x 64 (Hillaire 2020's size), 64 steps, 5 timed runs after one warm-up.
 // Prints the device, the median time per generation (host clock from the dispatch to the end
 // of glFinish: on llvmpipe the GPU timestamps are taken when the work is queued) and the
@@ -27,8 +27,9 @@
 
 namespace {
 
-const char* const usage = "usage: cloudmath_atmosphere_lut [--width W] [--height H] [--steps N] [--runs R]\n"
-                          "  W, H: 2..4096 (default 256 x 64); N: light steps 1..1024 (default 64); R: timed runs 1..100 (default 5)\n";
+const char* const usage = "usage: cloudmath_atmosphere_lut [--width W] [--height H] [--steps N] [--runs R] | --print-shader\n"
+                          "  W, H: 2..4096 (default 256 x 64); N: light steps 1..1024 (default 64); R: timed runs 1..100 (default 5)\n"
+                          "  --print-shader: print the compute shader and exit\n";
 
 // The whole number in [lo, hi] that `text` spells, or -1.
 int whole(const char* text, int lo, int hi) {
@@ -63,6 +64,10 @@ int main(int argc, char** argv) {
         const std::string a = argv[i];
         if (a == "--help" || a == "-h") {
             std::fputs(usage, stdout);
+            return 0;
+        }
+        if (a == "--print-shader") {  // the compute shader as compiled (for static cost counts)
+            std::fputs(compute_source().c_str(), stdout);
             return 0;
         }
         int* target = a == "--width" ? &width : a == "--height" ? &height : a == "--steps" ? &steps : a == "--runs" ? &runs : nullptr;
