@@ -601,7 +601,7 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
     shading.frame = s.frame >> 4U;
     // The shadow map a slice a frame (temporal_shadow_rows): the whole of it on a first frame
     // or when the variant or the shape changed.
-    const std::string map_key = variant_spec(v) + (s.shape == cloud_shape::detailed ? "/detailed" : "/classic");
+    const std::string map_key = permutation_key(v, s.shape);
     const bool whole_map = !has_history_ || map_key != shadow_map_key_;
     const pixel_program program(shading, v, textures, nullptr, whole_map ? nullptr : &shadow_map_,
                                 temporal_shadow_rows(s.frame, whole_map));

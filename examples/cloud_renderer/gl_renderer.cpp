@@ -133,9 +133,8 @@ struct gl_renderer::state {
     GLuint program_for(const variant& v, cloud_shape shape, bool compile_time, clouds_pass pass, std::string& why) {
         // One program per permutation (variant, shape and pass) compiled in, one for the
         // uber-shader (its pass a uniform).
-        const std::string key = compile_time ? variant_spec(v) + (shape == cloud_shape::detailed ? "/detailed" : "/classic") +
-                                                   "/pass" + std::to_string(static_cast<int>(pass))
-                                             : std::string();
+        const std::string key =
+            compile_time ? permutation_key(v, shape) + "/pass" + std::to_string(static_cast<int>(pass)) : std::string();
         const auto found = programs.find(key);
         if (found != programs.end()) return found->second;
         const GLuint vs = gl.compile(GL_VERTEX_SHADER, vertex_shader_source(), "vertex shader", why);
@@ -576,8 +575,7 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
     if (shadow == 0 && !why.empty()) return false;
     // The shadow map a slice a frame (temporal_shadow_rows): the whole of it on a first frame,
     // after a full frame drew it, or when the variant, the shape or the shader form changed.
-    const std::string map_key = variant_spec(v) + (sc.shape == cloud_shape::detailed ? "/detailed" : "/classic") +
-                                (compile_time ? "" : "/run-time");
+    const std::string map_key = permutation_key(v, sc.shape) + (compile_time ? "" : "/run-time");
     const bool whole_map = !t.has_history || map_key != t.shadow_map_key;
     t.shadow_map_key = map_key;
     const GLuint background = bind_clouds(*s_, shading, v, compile_time, width, height, clouds_pass::background, offset, why);

@@ -175,6 +175,8 @@ glm::vec2 cloud_band(const scene& s) {
 
 const char* name(cloud_shape c) { return c == cloud_shape::classic ? "classic" : "detailed"; }
 
+std::string permutation_key(const variant& v, cloud_shape shape) { return variant_spec(v) + "/" + name(shape); }
+
 const char* name(light_mode l) { return l == light_mode::cone ? "cone" : l == light_mode::march ? "march" : "map"; }
 const char* name(step_schedule s) { return s == step_schedule::uniform ? "uniform" : "growing"; }
 const char* name(integration_mode i) { return i == integration_mode::analytic ? "analytic" : "naive"; }

@@ -270,6 +270,9 @@ glm::vec3 pixel_direction(const frame_constants& k, int x, int y, int width, int
 std::string apply_variant_spec(const std::string& spec, variant& v);
 // The same notation back, every field.
 std::string variant_spec(const variant& v);
+// The variant and the density field's shape as one key, "<variant_spec>/<shape>": what a
+// compiled-in permutation, and what is drawn for it (the temporal scheme's shadow map), is for.
+std::string permutation_key(const variant& v, cloud_shape shape);
 const char* name(phase_model p);
 const char* name(light_mode l);
 const char* name(step_schedule s);

@@ -371,6 +371,8 @@ row_filter select_all() {
     return [](const reference_row&) { return true; };
 }
 
+bool row_counts(const reference_row& row, const row_filter& select) { return row.radiance > 0.0 && select(row); }
+
 namespace {
 
 // Per-row weights of the selection: 1 / (selected rows of the row's class), 0 if not
@@ -380,7 +382,7 @@ std::vector<double> selection_weights(const reference_set& set, const row_filter
     std::vector<bool> use(set.rows.size());
     for (std::size_t i = 0; i < set.rows.size(); ++i) {
         const reference_row& r = set.rows[i];
-        use[i] = r.radiance > 0.0 && select(r);
+        use[i] = row_counts(r, select);
         if (use[i]) (r.is_sphere() ? sphere : slab) += 1;
     }
     std::vector<double> w(set.rows.size(), 0.0);

@@ -136,6 +136,9 @@ struct error_summary {
     std::size_t max_row = 0;  // index of the row of the maximum
     std::size_t rows = 0;
 };
+// True when a row counts in the selection's measures and fits: selected, and its reference
+// radiance > 0 (the relative errors divide by it).
+[[nodiscard]] bool row_counts(const reference_row& row, const row_filter& select);
 // Per row: the mean reference radiance of its image (Lbar above).
 [[nodiscard]] std::vector<double> image_means(const reference_set& set);
 // Rows where the reference is not > 0 are skipped. model has one value per row of set.

@@ -320,7 +320,7 @@ report_summary write_report(const report_options& o) {
     // invalid_argument, exit 2, named no file).
     for (const row_subset& range : fit_ranges()) {
         std::size_t selected = 0;
-        for (const reference_row& r : set.rows) if (r.radiance > 0.0 && range.select(r)) ++selected;
+        for (const reference_row& r : set.rows) if (row_counts(r, range.select)) ++selected;
         if (selected == 0)
             throw std::runtime_error(o.reference_path + ": no row with radiance > 0 in the fit range '" + range.id +
                                      "' (" + std::to_string(set.rows.size()) +
