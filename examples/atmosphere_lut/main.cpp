@@ -1,10 +1,17 @@
-// examples/atmosphere_lut: the atmosphere's transmittance LUT generated on the GPU by a GLSL
-// compute shader built from cloudmath's twins (cm_atmosphere_transmittance_lut_altitude_mu,
-// then cm_atmosphere_transmittance at each texel centre), timed, read back and compared
-// texel for texel with the CPU reference (cloudmath::atmosphere_transmittance_lut).
+// examples/atmosphere_lut: the atmosphere's LUTs generated on the GPU by a GLSL compute
+// shader built from cloudmath's twins, timed, read back and compared texel for texel with
+// the CPU reference:
+//   transmittance         cm_atmosphere_transmittance_lut_altitude_mu, then
+//                         cm_atmosphere_transmittance at each texel centre
+//                         (cloudmath::atmosphere_transmittance_lut)
+//   multiple-scattering   cm_atmosphere_multiple_scattering_lut_altitude_mu, then
+//                         cm_atmosphere_multiple_scattering (64 directions, 32 sun steps;
+//                         cloudmath::atmosphere_multiple_scattering_lut)
 //
-//   cloudmath_atmosphere_lut [--width W] [--height H] [--steps N] [--runs R] | --print-shader
-//   defaults: 256 x 64 (Hillaire 2020's size), 64 steps, 5 timed runs after one warm-up.
+//   cloudmath_atmosphere_lut [--lut transmittance|multiple-scattering] [--width W] [--height H]
+//                            [--steps N] [--runs R] | --print-shader
+//   defaults: transmittance 256 x 64 with 64 steps, multiple scattering 32 x 32 with 20 steps
+//   (Hillaire 2020's sizes), 5 timed runs after one warm-up.
 // Prints the device, the median time per generation (host clock from the dispatch to the end
 // of glFinish: on llvmpipe the GPU timestamps are taken when the work is queued) and the
 // largest difference from the CPU LUT. Exit status: 0 when that difference is at most 1e-5,
@@ -27,9 +34,15 @@
 
 namespace {
 
-const char* const usage = "usage: cloudmath_atmosphere_lut [--width W] [--height H] [--steps N] [--runs R] | --print-shader\n"
-                          "  W, H: 2..4096 (default 256 x 64); N: light steps 1..1024 (default 64); R: timed runs 1..100 (default 5)\n"
-                          "  --print-shader: print the compute shader and exit\n";
+const char* const usage =
+    "usage: cloudmath_atmosphere_lut [--lut transmittance|multiple-scattering] [--width W] [--height H] [--steps N] [--runs R]\n"
+    "                                [--print-shader]\n"
+    "  W, H: 2..4096 (default 256 x 64; multiple scattering 32 x 32); N: steps per ray 1..1024 (default 64;\n"
+    "  multiple scattering 20); R: timed runs 1..100 (default 5)\n"
+    "  --print-shader: print the compute shader and exit\n";
+
+// The multiple-scattering LUT's fixed counts (Hillaire 2020): rays per texel, sun steps.
+constexpr int ms_directions = 64, ms_sun_steps = 32;
 
 // The whole number in [lo, hi] that `text` spells, or -1.
 int whole(const char* text, int lo, int hi) {
@@ -40,7 +53,14 @@ int whole(const char* text, int lo, int hi) {
 }
 
 // The compute shader: one invocation per texel, the library's GLSL for the math.
-std::string compute_source() {
+std::string compute_source(bool multiple_scattering) {
+    const std::string texel =
+        multiple_scattering
+            ? "    vec2 am = cm_atmosphere_multiple_scattering_lut_altitude_mu(air, (vec2(texel) + 0.5) / vec2(size), vec2(size));\n"
+              "    imageStore(u_lut, texel, vec4(cm_atmosphere_multiple_scattering(air, am.x, am.y, " +
+                  std::to_string(ms_directions) + ", u_steps, " + std::to_string(ms_sun_steps) + "), 1.0));\n"
+            : "    vec2 am = cm_atmosphere_transmittance_lut_altitude_mu(air, (vec2(texel) + 0.5) / vec2(size), vec2(size));\n"
+              "    imageStore(u_lut, texel, vec4(cm_atmosphere_transmittance(air, am.x, am.y, u_steps), 1.0));\n";
     return "#version 430 core\n"
            "layout(local_size_x = 8, local_size_y = 8) in;\n"
            "layout(rgba32f, binding = 0) uniform writeonly image2D u_lut;\n"
@@ -50,16 +70,15 @@ std::string compute_source() {
            "    ivec2 size = imageSize(u_lut);\n"
            "    ivec2 texel = ivec2(gl_GlobalInvocationID.xy);\n"
            "    if (texel.x >= size.x || texel.y >= size.y) return;\n"
-           "    CmAtmosphere air = cm_earth_atmosphere();\n"
-           "    vec2 am = cm_atmosphere_transmittance_lut_altitude_mu(air, (vec2(texel) + 0.5) / vec2(size), vec2(size));\n"
-           "    imageStore(u_lut, texel, vec4(cm_atmosphere_transmittance(air, am.x, am.y, u_steps), 1.0));\n"
-           "}\n";
+           "    CmAtmosphere air = cm_earth_atmosphere();\n" +
+           texel + "}\n";
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    int width = 256, height = 64, steps = 64, runs = 5;
+    int width = -1, height = -1, steps = -1, runs = 5;
+    bool multiple_scattering = false, print_shader = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--help" || a == "-h") {
@@ -67,8 +86,13 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (a == "--print-shader") {  // the compute shader as compiled (for static cost counts)
-            std::fputs(compute_source().c_str(), stdout);
-            return 0;
+            print_shader = true;
+            continue;
+        }
+        if (a == "--lut" && i + 1 < argc &&
+            (std::strcmp(argv[i + 1], "transmittance") == 0 || std::strcmp(argv[i + 1], "multiple-scattering") == 0)) {
+            multiple_scattering = std::strcmp(argv[++i], "multiple-scattering") == 0;
+            continue;
         }
         int* target = a == "--width" ? &width : a == "--height" ? &height : a == "--steps" ? &steps : a == "--runs" ? &runs : nullptr;
         const int hi = a == "--steps" ? 1024 : a == "--runs" ? 100 : 4096;
@@ -78,6 +102,13 @@ int main(int argc, char** argv) {
             return 2;
         }
         ++i;
+    }
+    if (width < 0) width = multiple_scattering ? 32 : 256;
+    if (height < 0) height = multiple_scattering ? 32 : 64;
+    if (steps < 0) steps = multiple_scattering ? 20 : 64;
+    if (print_shader) {
+        std::fputs(compute_source(multiple_scattering).c_str(), stdout);
+        return 0;
     }
 
     std::string why;
@@ -95,7 +126,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "cloudmath_atmosphere_lut: the driver lacks %s\n", missing.c_str());
         return 1;
     }
-    const GLuint shader = gl.compile(GL_COMPUTE_SHADER, compute_source(), "the LUT compute shader", why);
+    const GLuint shader = gl.compile(GL_COMPUTE_SHADER, compute_source(multiple_scattering), "the LUT compute shader", why);
     const GLuint program = shader != 0 ? gl.link(&shader, 1, "the LUT compute program", why) : 0;
     if (program == 0) {
         std::fprintf(stderr, "cloudmath_atmosphere_lut: %s\n", why.c_str());
@@ -135,7 +166,9 @@ int main(int argc, char** argv) {
 
     const auto air = cloudmath::earth_atmosphere<float>();
     const auto start = std::chrono::steady_clock::now();
-    const std::vector<glm::vec3> cpu = cloudmath::atmosphere_transmittance_lut(air, width, height, steps);
+    const std::vector<glm::vec3> cpu =
+        multiple_scattering ? cloudmath::atmosphere_multiple_scattering_lut(air, width, height, ms_directions, steps, ms_sun_steps)
+                            : cloudmath::atmosphere_transmittance_lut(air, width, height, steps);
     const double cpu_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     double worst = 0.0;
     for (std::size_t i = 0; i < cpu.size(); ++i)
@@ -143,8 +176,8 @@ int main(int argc, char** argv) {
 
     const char* renderer = reinterpret_cast<const char*>(gl.GetString(GL_RENDERER));
     std::printf("device: %s\n", renderer != nullptr ? renderer : "unknown");
-    std::printf("transmittance LUT %d x %d, %d steps: GPU %.2f ms (median of %d; min %.2f, max %.2f), CPU %.1f ms (one thread); "
+    std::printf("%s LUT %d x %d, %d steps: GPU %.2f ms (median of %d; min %.2f, max %.2f), CPU %.1f ms (one thread); "
                 "largest difference from the CPU LUT %.3g\n",
-                width, height, steps, median, runs, ms.front(), ms.back(), cpu_ms, worst);
+                multiple_scattering ? "multiple-scattering" : "transmittance", width, height, steps, median, runs, ms.front(), ms.back(), cpu_ms, worst);
     return worst <= 1e-5 ? 0 : 1;
 }

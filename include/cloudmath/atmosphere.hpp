@@ -1,15 +1,20 @@
-// cloudmath/atmosphere.hpp: a physical atmosphere for the clouds' sun and sky (part one): the
-// parameters of a planet's air with Earth's as the documented default, the extinction at an
-// altitude, the optical depth and transmittance along a ray by quadrature, the transmittance
-// LUT's parametrisation (Bruneton 2017) with a CPU baker and lookup, and the exposure of
+// cloudmath/atmosphere.hpp: a physical atmosphere for the clouds' sun and sky: the parameters
+// of a planet's air with Earth's as the documented default, the extinction at an altitude,
+// the optical depth and transmittance along a ray by quadrature, the transmittance LUT's
+// parametrisation (Bruneton 2017) with a CPU baker and lookup, the scattering coefficients,
+// Hillaire 2020's multiple scattering with its LUT, the aerial perspective (in-scattering and
+// transmittance to a point), the sky's radiance, the sun's illuminance, and the exposure of
 // physically based engines (EV100).
 //
 // Use:      #include <cloudmath/atmosphere.hpp>
 //           const auto air = cloudmath::earth_atmosphere<float>();
 //           glm::vec3 T_sun = cloudmath::atmosphere_transmittance(air, camera_altitude, sun_dir.y);
-//           // or once per sun change, then per pixel:
-//           std::vector<glm::vec3> lut = cloudmath::atmosphere_transmittance_lut(air, 256, 64);
-//           T_sun = cloudmath::atmosphere_transmittance_from_lut(air, lut, 256, 64, altitude, mu);
+//           // once per atmosphere, then per pixel (directions in the camera's frame, +y up):
+//           std::vector<glm::vec3> ms_lut = cloudmath::atmosphere_multiple_scattering_lut(air, 32, 32);
+//           cloudmath::atmosphere_multiple_scattering_table<float> ms{&ms_lut, 32, 32};
+//           glm::vec3 sky = sun_lux * cloudmath::atmosphere_sky_radiance(air, ms, camera_altitude, view_dir, sun_dir);
+//           auto haze = cloudmath::atmosphere_inscatter(air, ms, camera_altitude, view_dir, sun_dir, distance);
+//           glm::vec3 seen = surface * haze.transmittance + sun_lux * haze.radiance;
 //           float exposure = cloudmath::exposure_from_ev100(cloudmath::ev100_from_camera(16.f, 1 / 100.f, 100.f));
 // Units:    lengths in metres, altitudes above the ground sphere (bottom_radius), scattering and
 //           absorption coefficients in 1/m; the three channels are the wavelengths 680, 550 and
@@ -26,20 +31,30 @@
 //           LUT's bilinear lookup is within 2.5e-3 more than 0.06 in cosine from the horizon
 //           (worst at 40 km, the ozone tent's kink between two rows; 256 x 128: 1.0e-3) and
 //           within 0.02 nearer to it.
-// GLSL twin: cloudmath/glsl/atmosphere.glsl (the LUT baker and lookup are C++ only: a shader
-//           samples its own texture at cm_atmosphere_transmittance_lut_uv).
+//           The sky (atmosphere_sky_radiance, float, 32 x 32 multiple-scattering LUT, 32 steps)
+//           is within 1.7-5.5% rms of a path tracer with every order of scattering for the sun
+//           at 90-10 degrees and 10-11% at 2 and -2 (docs/atmosphere_truth.md); it is too dark
+//           at the horizon in blue as the sun sets (isotropic multiple scattering).
+// Light:    per unit of the sun's illuminance above the air: radiance in 1/sr, to be multiplied
+//           by the sun's illuminance (lux per channel gives cd/m^2; docs/atmosphere.md).
+// GLSL twin: cloudmath/glsl/atmosphere.glsl (the LUT bakers and lookups, atmosphere_inscatter
+//           and atmosphere_sky_radiance are C++ only: a shader samples its own textures).
 #ifndef CLOUDMATH_ATMOSPHERE_HPP
 #define CLOUDMATH_ATMOSPHERE_HPP
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "core.hpp"
 #include "geometry.hpp"
+#include "phase.hpp"
 
 namespace cloudmath {
 
@@ -201,6 +216,23 @@ template <class T>
     return lut;
 }
 
+namespace detail {
+// A LUT of width x height texels sampled as GL_LINEAR with clamp-to-edge would at uv.
+template <class T>
+inline glm::vec<3, T> lut_bilinear(const std::vector<glm::vec<3, T>>& lut, int w, int h, const glm::vec<2, T>& uv) noexcept {
+    if (w < 2 || h < 2 || lut.size() < static_cast<std::size_t>(w) * static_cast<std::size_t>(h)) return glm::vec<3, T>(T(0));
+    const T x = uv.x * T(w) - T(0.5), y = uv.y * T(h) - T(0.5);
+    const int x0 = floor_to_int(x, 0, w - 2), y0 = floor_to_int(y, 0, h - 2);
+    const T fx = saturate(x - T(x0)), fy = saturate(y - T(y0));
+    const auto at = [&](int i, int j) {
+        return lut[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)];
+    };
+    const glm::vec<3, T> bottom = at(x0, y0) * (T(1) - fx) + at(x0 + 1, y0) * fx;
+    const glm::vec<3, T> upper = at(x0, y0 + 1) * (T(1) - fx) + at(x0 + 1, y0 + 1) * fx;
+    return bottom * (T(1) - fy) + upper * fy;
+}
+}  // namespace detail
+
 // atmosphere_transmittance_from_lut(air, lut, width, height, altitude, cos_zenith): the LUT
 // sampled as GL_LINEAR with clamp-to-edge would at atmosphere_transmittance_lut_uv; 0 when
 // the ray meets the ground (the LUT holds only rays to the top). lut must hold width x height
@@ -209,19 +241,246 @@ template <class T>
 [[nodiscard]] inline glm::vec<3, T> atmosphere_transmittance_from_lut(const atmosphere_parameters<T>& air,
                                                                       const std::vector<glm::vec<3, T>>& lut, int width,
                                                                       int height, T altitude, T cos_zenith) noexcept {
-    const int w = width > 2 ? width : 2, h = height > 2 ? height : 2;
-    if (lut.size() < static_cast<std::size_t>(w) * static_cast<std::size_t>(h)) return glm::vec<3, T>(T(0));
     if (atmosphere_ray_hits_ground(air, altitude, cos_zenith)) return glm::vec<3, T>(T(0));
-    const glm::vec<2, T> uv = atmosphere_transmittance_lut_uv(air, altitude, cos_zenith, glm::vec<2, T>(T(w), T(h)));
-    const T x = uv.x * T(w) - T(0.5), y = uv.y * T(h) - T(0.5);
-    const int x0 = detail::floor_to_int(x, 0, w - 2), y0 = detail::floor_to_int(y, 0, h - 2);
-    const T fx = saturate(x - T(x0)), fy = saturate(y - T(y0));
-    const auto at = [&](int i, int j) {
-        return lut[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)];
-    };
-    const glm::vec<3, T> bottom = at(x0, y0) * (T(1) - fx) + at(x0 + 1, y0) * fx;
-    const glm::vec<3, T> upper = at(x0, y0 + 1) * (T(1) - fx) + at(x0 + 1, y0 + 1) * fx;
-    return bottom * (T(1) - fy) + upper * fy;
+    return detail::lut_bilinear(lut, width, height,
+                                atmosphere_transmittance_lut_uv(air, altitude, cos_zenith, glm::vec<2, T>(T(width), T(height))));
+}
+
+// ---------------------------------------------------------------------------------------
+// Scattering, multiple scattering (Hillaire 2020), sky radiance, sun illuminance and aerial
+// perspective. Light is given per unit of the sun's illuminance above the air: pass the sun's
+// extraterrestrial illuminance (lux, or W/m^2 per channel) and radiance comes out in the same
+// unit per steradian (cd/m^2 for lux; luminance is then dot(rec709, rgb), see docs/atmosphere.md).
+
+// atmosphere_scattering_coefficient(air, altitude): sigma_s (1/m per channel): Rayleigh plus
+// Mie scattering (ozone only absorbs). What the isotropic multiple-scattering term multiplies.
+template <class T>
+[[nodiscard]] inline glm::vec<3, T> atmosphere_scattering_coefficient(const atmosphere_parameters<T>& air, T altitude) noexcept {
+    const T h = detail::max(altitude, T(0));
+    return air.rayleigh_scattering * std::exp(-h / air.rayleigh_scale_height) +
+           glm::vec<3, T>(air.mie_scattering * std::exp(-h / air.mie_scale_height));
+}
+
+// atmosphere_scattering(air, altitude, cos_theta): the scattering coefficient times the phase
+// function (1/(m sr) per channel) for light turned by the angle whose cosine is cos_theta
+// (between the sun's direction and the view ray's, both pointing away from the point):
+// Rayleigh's phase for the molecules, Cornette-Shanks with mie_g for the aerosols.
+template <class T>
+[[nodiscard]] inline glm::vec<3, T> atmosphere_scattering(const atmosphere_parameters<T>& air, T altitude, T cos_theta) noexcept {
+    const T h = detail::max(altitude, T(0));
+    return air.rayleigh_scattering * (std::exp(-h / air.rayleigh_scale_height) * phase_rayleigh(cos_theta)) +
+           glm::vec<3, T>(air.mie_scattering * std::exp(-h / air.mie_scale_height) * phase_cornette_shanks(cos_theta, air.mie_g));
+}
+
+// atmosphere_sun_illuminance(air, altitude, cos_sun_zenith, sun_illuminance): the sun's
+// illuminance on a plane facing it at `altitude` (per channel, in the unit of
+// sun_illuminance, the value above the air): sun_illuminance times atmosphere_transmittance
+// (64 steps); 0 once the sun is behind the ground. Earth's shadow is sharp here: the sun's
+// disc is a point.
+template <class T>
+[[nodiscard]] inline glm::vec<3, T> atmosphere_sun_illuminance(const atmosphere_parameters<T>& air, T altitude, T cos_sun_zenith,
+                                                               const glm::vec<3, T>& sun_illuminance) noexcept {
+    return sun_illuminance * atmosphere_transmittance(air, altitude, cos_sun_zenith, 64);
+}
+
+// atmosphere_multiple_scattering(air, altitude, cos_sun_zenith, directions, steps,
+// sun_steps): Hillaire 2020's Psi_ms (5.5), the radiance that every order of scattering from
+// the second on sends into a point, per unit sun illuminance and per unit scattering
+// coefficient; the point's multiple scattering is sigma_s Psi_ms, isotropic. From the point it
+// marches `directions` rays spread evenly over the sphere (a spherical Fibonacci set), each
+// over `steps` equal steps to the top or the ground, and gathers
+//   L2  = mean over rays of the singly scattered light arriving along the ray (isotropic
+//         phase, sun transmittance by atmosphere_transmittance with sun_steps steps) plus the
+//         Lambertian ground's reflection where the ray meets it,
+//   f   = mean over rays of the fraction of isotropic light scattered back towards the point,
+// and sums the orders as a geometric series: Psi_ms = L2 / (1 - f). Each step is integrated
+// exactly for its constant medium, (1 - e^-sigma_t ds)/sigma_t (Hillaire 2015), so thin and
+// thick steps both conserve energy. Hillaire's LUT uses 64 directions and 20 steps.
+template <class T>
+[[nodiscard]] inline glm::vec<3, T> atmosphere_multiple_scattering(const atmosphere_parameters<T>& air, T altitude,
+                                                                   T cos_sun_zenith, int directions, int steps,
+                                                                   int sun_steps) noexcept {
+    const int n_dir = directions > 1 ? directions : 1, n = steps > 1 ? steps : 1;
+    const T h = detail::clamp(altitude, T(0), air.top_radius - air.bottom_radius);
+    const T r = air.bottom_radius + h;
+    const T mu_s = detail::clamp(cos_sun_zenith, T(-1), T(1));
+    const glm::vec<3, T> sun(std::sqrt(detail::max(T(1) - mu_s * mu_s, T(0))), mu_s, T(0));
+    const T golden_angle = pi_v<T> * (T(3) - std::sqrt(T(5)));
+    glm::vec<3, T> L2(T(0)), f(T(0));
+    for (int k = 0; k < n_dir; ++k) {
+        // Spherical Fibonacci: cosines evenly spaced in (-1, 1), azimuths by the golden angle.
+        const T mu = T(1) - (T(2) * T(k) + T(1)) / T(n_dir);
+        const T phi = golden_angle * T(k);
+        const T sin_zenith = std::sqrt(detail::max(T(1) - mu * mu, T(0)));
+        const glm::vec<3, T> dir(sin_zenith * std::cos(phi), mu, sin_zenith * std::sin(phi));
+        const bool ground = atmosphere_ray_hits_ground(air, h, mu);
+        const T length = ground ? ray_sphere_intersect_altitude(h, mu, air.bottom_radius, T(0)).x
+                                : atmosphere_distance_to_top(air, h, mu);
+        const T ds = length / T(n);
+        const T nu = glm::dot(dir, sun);
+        glm::vec<3, T> throughput(T(1)), L(T(0)), F(T(0));
+        for (int i = 0; i < n; ++i) {
+            const T t = (T(i) + T(0.5)) * ds;
+            const T hy = altitude_along_ray(h, mu, air.bottom_radius, t);
+            const T mu_sy = detail::clamp((r * mu_s + t * nu) / (air.bottom_radius + hy), T(-1), T(1));
+            const glm::vec<3, T> sigma_t = atmosphere_extinction(air, hy);
+            const glm::vec<3, T> sigma_s = atmosphere_scattering_coefficient(air, hy);
+            const glm::vec<3, T> step_t(std::exp(-sigma_t.x * ds), std::exp(-sigma_t.y * ds), std::exp(-sigma_t.z * ds));
+            // (1 - e^-sigma ds)/sigma, sigma > 0 for any air with Rayleigh scattering.
+            const glm::vec<3, T> integral = (glm::vec<3, T>(T(1)) - step_t) / glm::max(sigma_t, glm::vec<3, T>(T(1e-30)));
+            const glm::vec<3, T> sun_t = atmosphere_transmittance(air, hy, mu_sy, sun_steps);
+            L += throughput * sigma_s * sun_t * integral * inv_four_pi_v<T>;
+            F += throughput * sigma_s * integral;
+            throughput *= step_t;
+        }
+        if (ground) {
+            const T mu_sg = detail::clamp((r * mu_s + length * nu) / air.bottom_radius, T(-1), T(1));
+            L += throughput * atmosphere_transmittance(air, T(0), mu_sg, sun_steps) *
+                 (detail::max(mu_sg, T(0)) * air.ground_albedo * inv_pi_v<T>);
+        }
+        L2 += L;
+        f += F;
+    }
+    L2 /= T(n_dir);
+    f /= T(n_dir);
+    // f < 1 for any air that absorbs or lets light escape; the clamp keeps 1/(1 - f) finite.
+    const glm::vec<3, T> one(T(1));
+    return L2 / (one - glm::min(f, glm::vec<3, T>(T(0.999))));
+}
+
+// The multiple-scattering LUT's parametrisation (Hillaire 2020): u = 0.5 + 0.5 cos_sun_zenith,
+// v = altitude / (top - bottom), with x = 0 and 1 at the centres of the first and last texels.
+// atmosphere_multiple_scattering_lut_uv(air, altitude, cos_sun_zenith, size): the (u, v).
+template <class T>
+[[nodiscard]] inline glm::vec<2, T> atmosphere_multiple_scattering_lut_uv(const atmosphere_parameters<T>& air, T altitude,
+                                                                          T cos_sun_zenith, const glm::vec<2, T>& size) noexcept {
+    const T x_mu = saturate(T(0.5) + T(0.5) * cos_sun_zenith);
+    const T x_h = saturate(altitude / (air.top_radius - air.bottom_radius));
+    return glm::vec<2, T>(T(0.5) / size.x + x_mu * (T(1) - T(1) / size.x), T(0.5) / size.y + x_h * (T(1) - T(1) / size.y));
+}
+
+// atmosphere_multiple_scattering_lut_altitude_mu(air, uv, size): the inverse, (altitude,
+// cos_sun_zenith) at texture coordinate uv.
+template <class T>
+[[nodiscard]] inline glm::vec<2, T> atmosphere_multiple_scattering_lut_altitude_mu(const atmosphere_parameters<T>& air,
+                                                                                   const glm::vec<2, T>& uv,
+                                                                                   const glm::vec<2, T>& size) noexcept {
+    const T x_mu = saturate((uv.x - T(0.5) / size.x) / (T(1) - T(1) / size.x));
+    const T x_h = saturate((uv.y - T(0.5) / size.y) / (T(1) - T(1) / size.y));
+    return glm::vec<2, T>(x_h * (air.top_radius - air.bottom_radius), T(2) * x_mu - T(1));
+}
+
+
+// atmosphere_multiple_scattering_lut(air, width, height, directions, steps, sun_steps): the
+// LUT on the CPU, row-major (v = 0 first), each texel atmosphere_multiple_scattering at its
+// centre; width, height >= 2. Hillaire's size is 32 x 32 with 64 directions and 20 steps.
+template <class T>
+[[nodiscard]] inline std::vector<glm::vec<3, T>> atmosphere_multiple_scattering_lut(const atmosphere_parameters<T>& air, int width,
+                                                                                   int height, int directions = 64,
+                                                                                   int steps = 20, int sun_steps = 32) {
+    const int w = width > 2 ? width : 2, h = height > 2 ? height : 2;
+    const glm::vec<2, T> size{T(w), T(h)};
+    std::vector<glm::vec<3, T>> lut(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) {
+            const glm::vec<2, T> am = atmosphere_multiple_scattering_lut_altitude_mu(
+                air, glm::vec<2, T>((T(i) + T(0.5)) / size.x, (T(j) + T(0.5)) / size.y), size);
+            lut[static_cast<std::size_t>(j) * static_cast<std::size_t>(w) + static_cast<std::size_t>(i)] =
+                atmosphere_multiple_scattering(air, am.x, am.y, directions, steps, sun_steps);
+        }
+    return lut;
+}
+
+// atmosphere_multiple_scattering_from_lut(air, lut, width, height, altitude, cos_sun_zenith):
+// the LUT's bilinear lookup at atmosphere_multiple_scattering_lut_uv.
+template <class T>
+[[nodiscard]] inline glm::vec<3, T> atmosphere_multiple_scattering_from_lut(const atmosphere_parameters<T>& air,
+                                                                            const std::vector<glm::vec<3, T>>& lut, int width,
+                                                                            int height, T altitude, T cos_sun_zenith) noexcept {
+    return detail::lut_bilinear(lut, width, height,
+                                atmosphere_multiple_scattering_lut_uv(air, altitude, cos_sun_zenith,
+                                                                      glm::vec<2, T>(T(width), T(height))));
+}
+
+// What a view ray gathers: the transmittance along it and the light scattered into it.
+template <class T>
+struct atmosphere_segment {
+    glm::vec<3, T> transmittance;  // from the camera to the segment's end
+    glm::vec<3, T> radiance;       // in-scattered, per unit sun illuminance, 1/sr
+};
+
+// The multiple-scattering LUT as atmosphere_inscatter reads it.
+template <class T>
+struct atmosphere_multiple_scattering_table {
+    const std::vector<glm::vec<3, T>>* texels = nullptr;  // atmosphere_multiple_scattering_lut's
+    int width = 0, height = 0;                            // nothing (no multiple scattering) if empty
+};
+
+// atmosphere_inscatter(air, ms, altitude, view_dir, sun_dir, distance, steps, sun_steps): the
+// light that the air scatters into the view ray between the camera and `distance` metres
+// along it (or where the ray leaves the air or meets the ground, if nearer), and the
+// transmittance over the same stretch: aerial perspective for a point at that distance, the
+// sky for an infinite one. Directions are unit vectors in the camera's frame with +y up (the
+// radial direction through the camera at `altitude` inside the air). Per step: the sun's
+// single scattering (atmosphere_scattering times the sun's transmittance, 0 in the planet's
+// shadow) plus sigma_s times the multiple-scattering LUT (none if ms is empty), integrated
+// exactly for the step's constant medium. Steps grow quadratically with distance (t_i = D
+// (i/steps)^2) because the air thins as the ray climbs. Radiance is per unit sun
+// illuminance; multiply by the sun's illuminance above the air.
+template <class T>
+[[nodiscard]] inline atmosphere_segment<T> atmosphere_inscatter(const atmosphere_parameters<T>& air,
+                                                                 const atmosphere_multiple_scattering_table<T>& ms, T altitude,
+                                                                 const glm::vec<3, T>& view_dir, const glm::vec<3, T>& sun_dir,
+                                                                 T distance, int steps = 32, int sun_steps = 32) noexcept {
+    const int n = steps > 1 ? steps : 1;
+    const T h = detail::clamp(altitude, T(0), air.top_radius - air.bottom_radius);
+    const T r = air.bottom_radius + h;
+    const T mu = detail::clamp(view_dir.y, T(-1), T(1));
+    const T mu_s = detail::clamp(sun_dir.y, T(-1), T(1));
+    const T nu = detail::clamp(glm::dot(view_dir, sun_dir), T(-1), T(1));
+    const T edge = atmosphere_ray_hits_ground(air, h, mu) ? ray_sphere_intersect_altitude(h, mu, air.bottom_radius, T(0)).x
+                                                          : atmosphere_distance_to_top(air, h, mu);
+    const T D = detail::clamp(distance, T(0), edge);  // a NaN distance stays NaN: NaN out
+    const bool use_ms = ms.texels != nullptr && !ms.texels->empty();
+    atmosphere_segment<T> out{glm::vec<3, T>(T(1)), glm::vec<3, T>(T(0))};
+    for (int i = 0; i < n; ++i) {
+        const T x0 = T(i) / T(n), x1 = T(i + 1) / T(n);
+        const T t0 = D * x0 * x0, t1 = D * x1 * x1;
+        const T ds = t1 - t0, t = T(0.5) * (t0 + t1);
+        const T hy = altitude_along_ray(h, mu, air.bottom_radius, t);
+        const T mu_sy = detail::clamp((r * mu_s + t * nu) / (air.bottom_radius + hy), T(-1), T(1));
+        const glm::vec<3, T> sigma_t = atmosphere_extinction(air, hy);
+        glm::vec<3, T> source = atmosphere_scattering(air, hy, nu) * atmosphere_transmittance(air, hy, mu_sy, sun_steps);
+        if (use_ms)
+            source += atmosphere_scattering_coefficient(air, hy) *
+                      atmosphere_multiple_scattering_from_lut(air, *ms.texels, ms.width, ms.height, hy, mu_sy);
+        const glm::vec<3, T> step_t(std::exp(-sigma_t.x * ds), std::exp(-sigma_t.y * ds), std::exp(-sigma_t.z * ds));
+        const glm::vec<3, T> integral = (glm::vec<3, T>(T(1)) - step_t) / glm::max(sigma_t, glm::vec<3, T>(T(1e-30)));
+        out.radiance += out.transmittance * source * integral;
+        out.transmittance *= step_t;
+    }
+    return out;
+}
+
+// atmosphere_sky_radiance(air, ms, altitude, view_dir, sun_dir, steps, sun_steps): the sky's
+// radiance along view_dir (per unit sun illuminance, 1/sr; the sun's disc itself excluded):
+// atmosphere_inscatter to the end of the air, plus, for rays that meet the ground, the
+// Lambertian ground lit by the sun (albedo/pi cos T_sun) seen through the air.
+template <class T>
+[[nodiscard]] inline glm::vec<3, T> atmosphere_sky_radiance(const atmosphere_parameters<T>& air,
+                                                            const atmosphere_multiple_scattering_table<T>& ms, T altitude,
+                                                            const glm::vec<3, T>& view_dir, const glm::vec<3, T>& sun_dir,
+                                                            int steps = 32, int sun_steps = 32) noexcept {
+    const T inf = std::numeric_limits<T>::max();
+    const atmosphere_segment<T> seg = atmosphere_inscatter(air, ms, altitude, view_dir, sun_dir, inf, steps, sun_steps);
+    const T h = detail::clamp(altitude, T(0), air.top_radius - air.bottom_radius);
+    const T mu = detail::clamp(view_dir.y, T(-1), T(1));
+    if (!atmosphere_ray_hits_ground(air, h, mu)) return seg.radiance;
+    const T t = ray_sphere_intersect_altitude(h, mu, air.bottom_radius, T(0)).x;
+    const T mu_sg = detail::clamp(((air.bottom_radius + h) * sun_dir.y + t * glm::dot(view_dir, sun_dir)) / air.bottom_radius,
+                                  T(-1), T(1));
+    return seg.radiance + seg.transmittance * atmosphere_transmittance(air, T(0), mu_sg, sun_steps) *
+                              (detail::max(mu_sg, T(0)) * air.ground_albedo * inv_pi_v<T>);
 }
 
 // ---------------------------------------------------------------------------------------

@@ -17,7 +17,8 @@ inline constexpr file files[] = {
      R"cm_glsl(// cloudmath/glsl/atmosphere.glsl: GLSL twin of cloudmath/atmosphere.hpp: a planet's air
 // (CmAtmosphere, Earth's from cm_earth_atmosphere()), its extinction at an altitude, the
 // optical depth and transmittance along a ray by quadrature, the transmittance LUT's
-// parametrisation (Bruneton 2017) both ways, and EV100 exposure.
+// parametrisation (Bruneton 2017) both ways, the scattering coefficients, the sun's illuminance,
+// Hillaire 2020's multiple scattering and its LUT's parametrisation, and EV100 exposure.
 // Use: CmAtmosphere air = cm_earth_atmosphere();
 //      vec3 T_sun = cm_atmosphere_transmittance(air, altitude, sun_dir.y, 64);
 //      vec3 T_lut = texture(u_transmittance_lut, cm_atmosphere_transmittance_lut_uv(air, altitude, mu, vec2(256.0, 64.0))).rgb;
@@ -27,6 +28,7 @@ inline constexpr file files[] = {
 
 #include "core.glsl"
 #include "geometry.glsl"
+#include "phase.glsl"
 
 // atmosphere_parameters (atmosphere.hpp), field for field.
 struct CmAtmosphere {
@@ -72,10 +74,10 @@ bool cm_atmosphere_ray_hits_ground(CmAtmosphere air, float altitude, float cos_z
 }
 
 // Optical depth along `distance` metres of the ray: the midpoint rule over `steps` steps.
-vec3 cm_atmosphere_optical_depth(CmAtmosphere air, float altitude, float cos_zenith, float distance, int steps) {
-    int n = max(steps, 1);
 )cm_glsl"
-     R"cm_glsl(    float ds = max(distance, 0.0) / float(n);
+     R"cm_glsl(vec3 cm_atmosphere_optical_depth(CmAtmosphere air, float altitude, float cos_zenith, float distance, int steps) {
+    int n = max(steps, 1);
+    float ds = max(distance, 0.0) / float(n);
     vec3 tau = vec3(0.0);
     for (int i = 0; i < n; ++i) {
         float t = (float(i) + 0.5) * ds;
@@ -115,6 +117,91 @@ vec2 cm_atmosphere_transmittance_lut_altitude_mu(CmAtmosphere air, vec2 uv, vec2
     float d = d_min + x_mu * (d_max - d_min);
     float mu = d > 0.0 ? clamp((H * H - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0) : 1.0;
     return vec2(r - R, mu);
+}
+
+// sigma_s (1/m per channel): Rayleigh plus Mie scattering at an altitude (ozone only absorbs).
+vec3 cm_atmosphere_scattering_coefficient(CmAtmosphere air, float altitude) {
+    float h = max(altitude, 0.0);
+    return air.rayleigh_scattering * exp(-h / air.rayleigh_scale_height) + vec3(air.mie_scattering * exp(-h / air.mie_scale_height));
+}
+
+// Scattering times phase (1/(m sr)): Rayleigh's phase for the molecules, Cornette-Shanks for
+// the aerosols; cos_theta between the sun's and the view ray's directions (both outward).
+vec3 cm_atmosphere_scattering(CmAtmosphere air, float altitude, float cos_theta) {
+    float h = max(altitude, 0.0);
+    return air.rayleigh_scattering * (exp(-h / air.rayleigh_scale_height) * cm_phase_rayleigh(cos_theta)) +
+           vec3(air.mie_scattering * exp(-h / air.mie_scale_height) * cm_phase_cornette_shanks(cos_theta, air.mie_g));
+}
+
+// The sun's illuminance on a plane facing it: sun_illuminance (above the air) x transmittance.
+vec3 cm_atmosphere_sun_illuminance(CmAtmosphere air, float altitude, float cos_sun_zenith, vec3 sun_illuminance) {
+)cm_glsl"
+     R"cm_glsl(    return sun_illuminance * cm_atmosphere_transmittance(air, altitude, cos_sun_zenith, 64);
+}
+
+// Hillaire 2020's Psi_ms (see atmosphere_multiple_scattering in atmosphere.hpp): every order of
+// scattering from the second on, per unit sun illuminance and scattering coefficient, from
+// `directions` rays (spherical Fibonacci) of `steps` steps, sun transmittance in sun_steps steps.
+vec3 cm_atmosphere_multiple_scattering(CmAtmosphere air, float altitude, float cos_sun_zenith, int directions, int steps,
+                                       int sun_steps) {
+    int n_dir = max(directions, 1);
+    int n = max(steps, 1);
+    float h = clamp(altitude, 0.0, air.top_radius - air.bottom_radius);
+    float r = air.bottom_radius + h;
+    float mu_s = clamp(cos_sun_zenith, -1.0, 1.0);
+    vec3 sun = vec3(sqrt(max(1.0 - mu_s * mu_s, 0.0)), mu_s, 0.0);
+    float golden_angle = CM_PI * (3.0 - sqrt(5.0));
+    vec3 L2 = vec3(0.0);
+    vec3 f = vec3(0.0);
+    for (int k = 0; k < n_dir; ++k) {
+        float mu = 1.0 - (2.0 * float(k) + 1.0) / float(n_dir);
+        float phi = golden_angle * float(k);
+        float sin_zenith = sqrt(max(1.0 - mu * mu, 0.0));
+        vec3 dir = vec3(sin_zenith * cos(phi), mu, sin_zenith * sin(phi));
+        bool ground = cm_atmosphere_ray_hits_ground(air, h, mu);
+        float len = ground ? cm_ray_sphere_intersect_altitude(h, mu, air.bottom_radius, 0.0).x
+                           : cm_atmosphere_distance_to_top(air, h, mu);
+        float ds = len / float(n);
+        float nu = dot(dir, sun);
+        vec3 throughput = vec3(1.0);
+        vec3 L = vec3(0.0);
+        vec3 F = vec3(0.0);
+        for (int i = 0; i < n; ++i) {
+            float t = (float(i) + 0.5) * ds;
+            float hy = cm_altitude_along_ray(h, mu, air.bottom_radius, t);
+            float mu_sy = clamp((r * mu_s + t * nu) / (air.bottom_radius + hy), -1.0, 1.0);
+            vec3 sigma_t = cm_atmosphere_extinction(air, hy);
+            vec3 sigma_s = cm_atmosphere_scattering_coefficient(air, hy);
+            vec3 step_t = exp(-sigma_t * ds);
+            vec3 integral = (vec3(1.0) - step_t) / max(sigma_t, vec3(1e-30));
+            vec3 sun_t = cm_atmosphere_transmittance(air, hy, mu_sy, sun_steps);
+            L += throughput * sigma_s * sun_t * integral * CM_INV_FOUR_PI;
+            F += throughput * sigma_s * integral;
+            throughput *= step_t;
+        }
+        if (ground) {
+            float mu_sg = clamp((r * mu_s + len * nu) / air.bottom_radius, -1.0, 1.0);
+            L += throughput * cm_atmosphere_transmittance(air, 0.0, mu_sg, sun_steps) * (max(mu_sg, 0.0) * air.ground_albedo * CM_INV_PI);
+        }
+        L2 += L;
+        f += F;
+    }
+    L2 /= float(n_dir);
+    f /= float(n_dir);
+    return L2 / (vec3(1.0) - min(f, vec3(0.999)));
+}
+
+// The multiple-scattering LUT's (u, v) of (altitude, cos_sun_zenith), and the inverse.
+vec2 cm_atmosphere_multiple_scattering_lut_uv(CmAtmosphere air, float altitude, float cos_sun_zenith, vec2 size) {
+    float x_mu = cm_saturate(0.5 + 0.5 * cos_sun_zenith);
+    float x_h = cm_saturate(altitude / (air.top_radius - air.bottom_radius));
+    return vec2(0.5 / size.x + x_mu * (1.0 - 1.0 / size.x), 0.5 / size.y + x_h * (1.0 - 1.0 / size.y));
+)cm_glsl"
+     R"cm_glsl(}
+vec2 cm_atmosphere_multiple_scattering_lut_altitude_mu(CmAtmosphere air, vec2 uv, vec2 size) {
+    float x_mu = cm_saturate((uv.x - 0.5 / size.x) / (1.0 - 1.0 / size.x));
+    float x_h = cm_saturate((uv.y - 0.5 / size.y) / (1.0 - 1.0 / size.y));
+    return vec2(x_h * (air.top_radius - air.bottom_radius), 2.0 * x_mu - 1.0);
 }
 
 // EV100 of a camera (f-number, shutter seconds, ISO), of an average luminance, and the exposure.

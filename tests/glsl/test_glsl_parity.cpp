@@ -799,6 +799,50 @@ std::vector<parity_case> make_cases() {
              "vec4(cm_atmosphere_transmittance_lut_altitude_mu(cm_earth_atmosphere(), a.xy, b.xy) * vec2(1e-4, 1.0), 0.0, 0.0)",
              [earth](vec4 a, vec4 b) { return vec4(cm::atmosphere_transmittance_lut_altitude_mu(earth, vec2(a), vec2(b)) * vec2(1e-4f, 1.0f), 0.0f, 0.0f); },
              texels, 2, 1.0f, 1e-4});
+        // Scattering with its phase: altitudes as above, scattering cosines from back to forward.
+        std::vector<std::pair<vec4, vec4>> scatterings;
+        for (float h : {0.0f, 1500.0f, 25000.0f, 60000.0f})
+            for (float nu : {-1.0f, -0.3f, 0.0f, 0.7f, 0.99f, 1.0f}) scatterings.push_back({vec4(h, nu, 0.0f, 0.0f), vec4(0)});
+        add({"cm_atmosphere_scattering_coefficient", "vec4(cm_atmosphere_scattering_coefficient(cm_earth_atmosphere(), a.x) * 1e6, 0.0)",
+             [earth](vec4 a, vec4) { return vec4(cm::atmosphere_scattering_coefficient(earth, a.x) * 1e6f, 0.0f); }, scatterings, 3, 1.0f, 1e-5});
+        add({"cm_atmosphere_scattering", "vec4(cm_atmosphere_scattering(cm_earth_atmosphere(), a.x, a.y) * 1e6, 0.0)",
+             [earth](vec4 a, vec4) { return vec4(cm::atmosphere_scattering(earth, a.x, a.y) * 1e6f, 0.0f); }, scatterings, 3, 1.0f, 1e-5});
+        add({"cm_atmosphere_sun_illuminance", "vec4(cm_atmosphere_sun_illuminance(cm_earth_atmosphere(), a.x, a.y, vec3(1.0, 2.0, 3.0)), 0.0)",
+             [earth](vec4 a, vec4) { return vec4(cm::atmosphere_sun_illuminance(earth, a.x, a.y, vec3(1.0f, 2.0f, 3.0f)), 0.0f); },
+             rays, 3, 1.0f, 1e-5});
+        // Multiple scattering at a few points with small counts (b: directions, steps, sun
+        // steps, through int() so --fuzz keeps them), then the whole default 32 x 32 LUT (64
+        // directions, 20 steps, 32 sun steps) texel for texel against the CPU reference.
+        std::vector<std::pair<vec4, vec4>> ms_points;
+        for (float h : {0.0f, 2000.0f, 30000.0f, 60000.0f})
+            for (float mu_s : {-1.0f, -0.1f, 0.0f, 0.2f, 1.0f}) ms_points.push_back({vec4(h, mu_s, 0.0f, 0.0f), vec4(16.0f, 8.0f, 8.0f, 0.0f)});
+        add({"cm_atmosphere_multiple_scattering",
+             "vec4(cm_atmosphere_multiple_scattering(cm_earth_atmosphere(), a.x, a.y, int(b.x), int(b.y), int(b.z)) * 100.0, 0.0)",
+             [earth](vec4 a, vec4 b) {
+                 return vec4(cm::atmosphere_multiple_scattering(earth, a.x, a.y, int(b.x), int(b.y), int(b.z)) * 100.0f, 0.0f); },
+             ms_points, 3, 1.0f, 1e-4});
+        std::vector<std::pair<vec4, vec4>> ms_texels;
+        for (int j = 0; j < 32; ++j)
+            for (int i = 0; i < 32; ++i) ms_texels.push_back({vec4(float(i), float(j), 0.0f, 0.0f), vec4(32.0f, 32.0f, 64.0f, 20.0f)});
+        const std::vector<vec3> ms_lut = cm::atmosphere_multiple_scattering_lut(earth, 32, 32, 64, 20, 32);
+        add({"cm_atmosphere_multiple_scattering",
+             "vec4(cm_atmosphere_multiple_scattering(cm_earth_atmosphere(), cm_atmosphere_multiple_scattering_lut_altitude_mu(cm_earth_atmosphere(), (a.xy + 0.5) / b.xy, b.xy).x, "
+             "cm_atmosphere_multiple_scattering_lut_altitude_mu(cm_earth_atmosphere(), (a.xy + 0.5) / b.xy, b.xy).y, int(b.z), int(b.w), 32) * 100.0, 0.0)",
+             [ms_lut](vec4 a, vec4) {
+                 const std::size_t i = std::size_t(std::clamp(a.x, 0.0f, 31.0f)), j = std::size_t(std::clamp(a.y, 0.0f, 31.0f));
+                 return vec4(ms_lut[j * 32u + i] * 100.0f, 0.0f); },
+             ms_texels, 3, 1.0f, 1e-4});
+        std::vector<std::pair<vec4, vec4>> ms_uv;
+        for (float h : {-10.0f, 0.0f, 1000.0f, 30000.0f, 60000.0f, 70000.0f})
+            for (float mu_s : {-1.0f, -0.5f, 0.0f, 0.3f, 1.0f}) ms_uv.push_back({vec4(h, mu_s, 0.0f, 0.0f), vec4(32.0f, 32.0f, 0.0f, 0.0f)});
+        add({"cm_atmosphere_multiple_scattering_lut_uv",
+             "vec4(cm_atmosphere_multiple_scattering_lut_uv(cm_earth_atmosphere(), a.x, a.y, b.xy), 0.0, 0.0)",
+             [earth](vec4 a, vec4 b) { return vec4(cm::atmosphere_multiple_scattering_lut_uv(earth, a.x, a.y, vec2(b)), 0.0f, 0.0f); },
+             ms_uv, 2, 1.0f, 1e-5});
+        add({"cm_atmosphere_multiple_scattering_lut_altitude_mu",
+             "vec4(cm_atmosphere_multiple_scattering_lut_altitude_mu(cm_earth_atmosphere(), a.xy, b.xy) * vec2(1e-4, 1.0), 0.0, 0.0)",
+             [earth](vec4 a, vec4 b) { return vec4(cm::atmosphere_multiple_scattering_lut_altitude_mu(earth, vec2(a), vec2(b)) * vec2(1e-4f, 1.0f), 0.0f, 0.0f); },
+             texels, 2, 1.0f, 1e-4});
         std::vector<std::pair<vec4, vec4>> cameras;
         for (float n : {1.4f, 2.8f, 16.0f})
             for (float t : {1.0f / 1000.0f, 1.0f / 100.0f, 1.0f})

@@ -1337,7 +1337,8 @@ fn cm_texture_lod(footprint: f32, texel_size: f32) -> f32 {
 // cloudmath/glsl/atmosphere.glsl: GLSL twin of cloudmath/atmosphere.hpp: a planet's air
 // (CmAtmosphere, Earth's from cm_earth_atmosphere()), its extinction at an altitude, the
 // optical depth and transmittance along a ray by quadrature, the transmittance LUT's
-// parametrisation (Bruneton 2017) both ways, and EV100 exposure.
+// parametrisation (Bruneton 2017) both ways, the scattering coefficients, the sun's illuminance,
+// Hillaire 2020's multiple scattering and its LUT's parametrisation, and EV100 exposure.
 // Use: CmAtmosphere air = cm_earth_atmosphere();
 //      vec3 T_sun = cm_atmosphere_transmittance(air, altitude, sun_dir.y, 64);
 //      vec3 T_lut = texture(u_transmittance_lut, cm_atmosphere_transmittance_lut_uv(air, altitude, mu, vec2(256.0, 64.0))).rgb;
@@ -1431,6 +1432,91 @@ fn cm_atmosphere_transmittance_lut_altitude_mu(air: CmAtmosphere, uv: vec2f, siz
     let d: f32 = d_min + x_mu * (d_max - d_min);
     let mu: f32 = select(1.0, clamp((H * H - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0), d > 0.0);
     return vec2f(r - R, mu);
+}
+
+// sigma_s (1/m per channel): Rayleigh plus Mie scattering at an altitude (ozone only absorbs).
+fn cm_atmosphere_scattering_coefficient(air: CmAtmosphere, altitude: f32) -> vec3f {
+    let h: f32 = max(altitude, 0.0);
+    return air.rayleigh_scattering * exp(-h / air.rayleigh_scale_height) + vec3f(air.mie_scattering * exp(-h / air.mie_scale_height));
+}
+
+// Scattering times phase (1/(m sr)): Rayleigh's phase for the molecules, Cornette-Shanks for
+// the aerosols; cos_theta between the sun's and the view ray's directions (both outward).
+fn cm_atmosphere_scattering(air: CmAtmosphere, altitude: f32, cos_theta: f32) -> vec3f {
+    let h: f32 = max(altitude, 0.0);
+    return air.rayleigh_scattering * (exp(-h / air.rayleigh_scale_height) * cm_phase_rayleigh(cos_theta)) + vec3f(air.mie_scattering * exp(-h / air.mie_scale_height) * cm_phase_cornette_shanks(cos_theta, air.mie_g));
+}
+
+// The sun's illuminance on a plane facing it: sun_illuminance (above the air) x transmittance.
+fn cm_atmosphere_sun_illuminance(air: CmAtmosphere, altitude: f32, cos_sun_zenith: f32, sun_illuminance: vec3f) -> vec3f {
+    return sun_illuminance * cm_atmosphere_transmittance(air, altitude, cos_sun_zenith, 64);
+}
+
+// Hillaire 2020's Psi_ms (see atmosphere_multiple_scattering in atmosphere.hpp): every order of
+// scattering from the second on, per unit sun illuminance and scattering coefficient, from
+// `directions` rays (spherical Fibonacci) of `steps` steps, sun transmittance in sun_steps steps.
+fn cm_atmosphere_multiple_scattering(air: CmAtmosphere, altitude: f32, cos_sun_zenith: f32, directions: i32, steps: i32, sun_steps: i32) -> vec3f {
+    let n_dir: i32 = max(directions, 1);
+    let n: i32 = max(steps, 1);
+    let h: f32 = clamp(altitude, 0.0, air.top_radius - air.bottom_radius);
+    let r: f32 = air.bottom_radius + h;
+    let mu_s: f32 = clamp(cos_sun_zenith, -1.0, 1.0);
+    let sun: vec3f = vec3f(sqrt(max(1.0 - mu_s * mu_s, 0.0)), mu_s, 0.0);
+    let golden_angle: f32 = CM_PI * (3.0 - sqrt(5.0));
+    var L2: vec3f = vec3f(0.0);
+    var f: vec3f = vec3f(0.0);
+    for (var k: i32 = 0; k < n_dir; k++) {
+        let mu: f32 = 1.0 - (2.0 * f32(k) + 1.0) / f32(n_dir);
+        let phi: f32 = golden_angle * f32(k);
+        let sin_zenith: f32 = sqrt(max(1.0 - mu * mu, 0.0));
+        let dir: vec3f = vec3f(sin_zenith * cos(phi), mu, sin_zenith * sin(phi));
+        let ground: bool = cm_atmosphere_ray_hits_ground(air, h, mu);
+        var len: f32;
+        if (ground) {
+            len = cm_ray_sphere_intersect_altitude(h, mu, air.bottom_radius, 0.0).x;
+        } else {
+            len = cm_atmosphere_distance_to_top(air, h, mu);
+        }
+        let ds: f32 = len / f32(n);
+        let nu: f32 = dot(dir, sun);
+        var throughput: vec3f = vec3f(1.0);
+        var L: vec3f = vec3f(0.0);
+        var F: vec3f = vec3f(0.0);
+        for (var i: i32 = 0; i < n; i++) {
+            let t: f32 = (f32(i) + 0.5) * ds;
+            let hy: f32 = cm_altitude_along_ray(h, mu, air.bottom_radius, t);
+            let mu_sy: f32 = clamp((r * mu_s + t * nu) / (air.bottom_radius + hy), -1.0, 1.0);
+            let sigma_t: vec3f = cm_atmosphere_extinction(air, hy);
+            let sigma_s: vec3f = cm_atmosphere_scattering_coefficient(air, hy);
+            let step_t: vec3f = exp(-sigma_t * ds);
+            let integral: vec3f = (vec3f(1.0) - step_t) / max(sigma_t, vec3f(1e-30));
+            let sun_t: vec3f = cm_atmosphere_transmittance(air, hy, mu_sy, sun_steps);
+            L += throughput * sigma_s * sun_t * integral * CM_INV_FOUR_PI;
+            F += throughput * sigma_s * integral;
+            throughput *= step_t;
+        }
+        if (ground) {
+            let mu_sg: f32 = clamp((r * mu_s + len * nu) / air.bottom_radius, -1.0, 1.0);
+            L += throughput * cm_atmosphere_transmittance(air, 0.0, mu_sg, sun_steps) * (max(mu_sg, 0.0) * air.ground_albedo * CM_INV_PI);
+        }
+        L2 += L;
+        f += F;
+    }
+    L2 /= vec3f(f32(n_dir));
+    f /= vec3f(f32(n_dir));
+    return L2 / (vec3f(1.0) - min(f, vec3f(0.999)));
+}
+
+// The multiple-scattering LUT's (u, v) of (altitude, cos_sun_zenith), and the inverse.
+fn cm_atmosphere_multiple_scattering_lut_uv(air: CmAtmosphere, altitude: f32, cos_sun_zenith: f32, size: vec2f) -> vec2f {
+    let x_mu: f32 = cm_saturate(0.5 + 0.5 * cos_sun_zenith);
+    let x_h: f32 = cm_saturate(altitude / (air.top_radius - air.bottom_radius));
+    return vec2f(0.5 / size.x + x_mu * (1.0 - 1.0 / size.x), 0.5 / size.y + x_h * (1.0 - 1.0 / size.y));
+}
+fn cm_atmosphere_multiple_scattering_lut_altitude_mu(air: CmAtmosphere, uv: vec2f, size: vec2f) -> vec2f {
+    let x_mu: f32 = cm_saturate((uv.x - 0.5 / size.x) / (1.0 - 1.0 / size.x));
+    let x_h: f32 = cm_saturate((uv.y - 0.5 / size.y) / (1.0 - 1.0 / size.y));
+    return vec2f(x_h * (air.top_radius - air.bottom_radius), 2.0 * x_mu - 1.0);
 }
 
 // EV100 of a camera (f-number, shutter seconds, ISO), of an average luminance, and the exposure.

@@ -1,0 +1,65 @@
+# tools/reference/atmosphere_truth.cmake: the sky's ground truth (issue 26; included by
+# CMakeLists.txt).
+#   cloudmath_atmosphere_lib     atmosphere_tracer.cpp: path tracer of a planet's air;
+#                                atmosphere_truth.cpp: the truth set, its file, the model's
+#                                errors against it
+#   cloudmath_atmosphere_truth   the CLI: `render` traces docs/data/atmosphere_truth.csv,
+#                                `report` writes docs/atmosphere_truth.md and its images
+#   reference.atmosphere_tracer  the tracer against closed forms and the library's quadrature;
+#                                the model against the stored truth (issue 26's targets)
+#   reference.atmosphere_truth_cli  command-line errors, a tiny render, and the committed
+#                                report reproduced from the stored truth
+add_library(cloudmath_atmosphere_lib STATIC atmosphere_tracer.cpp atmosphere_truth.cpp)
+cloudmath_reference_target(cloudmath_atmosphere_lib)
+target_include_directories(cloudmath_atmosphere_lib PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}")
+target_link_libraries(cloudmath_atmosphere_lib PUBLIC cloudmath_montecarlo_lib)
+
+add_executable(cloudmath_atmosphere_truth atmosphere_truth_main.cpp $<TARGET_OBJECTS:cloudmath_stb_image_write>)
+cloudmath_reference_target(cloudmath_atmosphere_truth)
+target_include_directories(cloudmath_atmosphere_truth SYSTEM PRIVATE "${CLOUDMATH_STB_INCLUDE_DIR}")
+target_link_libraries(cloudmath_atmosphere_truth PRIVATE cloudmath_atmosphere_lib)
+
+if(CLOUDMATH_BUILD_TESTS)
+  cloudmath_reference_test(atmosphere_tracer test_atmosphere_tracer.cpp)
+  target_link_libraries(cloudmath_reference_test_atmosphere_tracer PRIVATE cloudmath_atmosphere_lib)
+
+  add_test(NAME reference.atmosphere_truth_cli
+    COMMAND sh -c [=[
+      set -u
+      tool=$1 out=$2 src=$3
+      "$tool" 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "no command: exit $s, want 2"; exit 1; }
+      "$tool" --help >/dev/null || { echo "--help failed"; exit 1; }
+      "$tool" nowhere 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "bad command: exit $s, want 2"; exit 1; }
+      for bad in "--bogus 1" "--out" "--table-paths 10" "--out x.csv --table-paths 0" "--out x.csv --table-paths 1.5" \
+                 "--out x.csv --panorama-paths nan" "--out x.csv --seed -1" "--out x.csv --threads 2xyz"; do
+        "$tool" render $bad 2>/dev/null; s=$?
+        [ $s -eq 2 ] || { echo "render $bad: exit $s, want 2"; exit 1; }
+      done
+      rm -rf "$out"; mkdir -p "$out/docs/images"
+      "$tool" render --out "$out/no_such_dir/t.csv" --quiet 2>"$out.err"; s=$?
+      [ $s -eq 1 ] && grep -q "no_such_dir/t.csv" "$out.err" || { echo "render into a missing directory: exit $s"; exit 1; }
+      "$tool" report --data "$out/none.csv" --docs "$out/docs" 2>"$out.err"; s=$?
+      [ $s -eq 1 ] && grep -q "none.csv" "$out.err" || { echo "missing truth: exit $s"; exit 1; }
+      "$tool" render --out "$out/t.csv" --table-paths 64 --panorama-paths 4 --threads 2 --quiet || { echo "render failed"; exit 1; }
+      [ "$(grep -c '^table,' "$out/t.csv")" -eq 35 ] && [ "$(grep -c '^panorama,' "$out/t.csv")" -eq 4320 ] ||
+        { echo "want 35 table and 4320 panorama rows"; exit 1; }
+      "$tool" report --data "$out/t.csv" --docs "$out/docs" >/dev/null || { echo "report failed"; exit 1; }
+      for f in atmosphere_truth.md images/atmosphere_sun_90.png images/atmosphere_sun_m2.png; do
+        [ -s "$out/docs/$f" ] || { echo "missing $f"; exit 1; }
+      done
+      # A malformed row and a truncated file: exit 1 naming the file.
+      sed '5s/,0\./,x./' "$out/t.csv" >"$out/bad.csv"
+      "$tool" report --data "$out/bad.csv" --docs "$out/docs" 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "bad.csv:5: malformed row" "$out.err" || { echo "malformed: exit $s"; cat "$out.err"; exit 1; }
+      head -n 20 "$out/t.csv" >"$out/short.csv"
+      "$tool" report --data "$out/short.csv" --docs "$out/docs" 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "short.csv: 16 rows" "$out.err" || { echo "truncated: exit $s"; cat "$out.err"; exit 1; }
+      # The committed report is what the stored truth gives.
+      mkdir -p "$out/committed/images"
+      "$tool" report --data "$src/docs/data/atmosphere_truth.csv" --docs "$out/committed" >/dev/null || { echo "report of the stored truth failed"; exit 1; }
+      sed "s|$src/||" "$out/committed/atmosphere_truth.md" | cmp -s - "$src/docs/atmosphere_truth.md" ||
+        { echo "docs/atmosphere_truth.md differs from the report of the stored truth"; exit 1; }
+      exit 0
+      ]=] sh $<TARGET_FILE:cloudmath_atmosphere_truth> "${CMAKE_CURRENT_BINARY_DIR}/atmosphere_truth_cli_test"
+        "${PROJECT_SOURCE_DIR}")
+endif()

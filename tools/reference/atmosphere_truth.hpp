@@ -1,0 +1,54 @@
+// tools/reference/atmosphere_truth.hpp: the sky's ground truth set and its comparison with
+// the library's model (issue 26). The set: for each sun elevation (90, 30, 10, 2, -2
+// degrees, sun at azimuth 0, camera at sea level) a table of 7 directions (the zenith; the
+// horizon at 1 degree elevation towards the sun, across and away from it; 5 and 15 degrees
+// above the sun, or below it for the sun at zenith; 20 degrees beside it) and a panorama of
+// the half sky on the sun's side of symmetry (36 azimuths 0-180 x 24 elevations 0-90, cell
+// centres). The model: atmosphere_sky_radiance in float with a 32 x 32 multiple-scattering
+// LUT (64 directions, 20 steps), 32 view and 32 sun steps: the defaults docs/atmosphere.md
+// documents.
+#ifndef CLOUDMATH_TOOLS_ATMOSPHERE_TRUTH_HPP
+#define CLOUDMATH_TOOLS_ATMOSPHERE_TRUTH_HPP
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "atmosphere_tracer.hpp"
+
+namespace cloudmath::reference::atmo {
+
+inline constexpr std::array<double, 5> truth_sun_elevations{90.0, 30.0, 10.0, 2.0, -2.0};
+inline constexpr int panorama_azimuths = 36, panorama_elevations = 24;
+
+// One row of the truth file.
+struct truth_row {
+    std::string set;  // "table" or "panorama"
+    std::string name;  // table: zenith, horizon_sun, horizon_side, horizon_away, sun_5, sun_15, sun_side; panorama: az_el
+    double sun_elevation = 0, view_elevation = 0, view_azimuth = 0;
+    double radiance[3] = {0, 0, 0}, std_error[3] = {0, 0, 0};
+};
+
+// The rows of the set with their directions (radiance not filled in).
+std::vector<truth_row> truth_set();
+
+// Reads a truth CSV (as `cloudmath_atmosphere_truth render` writes it); throws
+// std::runtime_error naming the path (and the line) if it is missing, malformed, or not the
+// set truth_set() gives.
+std::vector<truth_row> read_truth(const std::string& path);
+
+// The model's radiance (per unit sun illuminance, 1/sr) for each row, float, as documented.
+std::vector<std::array<double, 3>> model_radiance(const std::vector<truth_row>& rows);
+
+// Relative errors (model / truth - 1) over the channels of the rows selected: rms and worst
+// (the largest magnitude, with its sign), and the rms of the truth's relative standard errors.
+struct error_summary {
+    double rms = 0, worst = 0, noise = 0;
+    int count = 0;
+};
+error_summary summarise(const std::vector<truth_row>& rows, const std::vector<std::array<double, 3>>& model,
+                        const std::string& set, double sun_elevation);
+
+}  // namespace cloudmath::reference::atmo
+
+#endif  // CLOUDMATH_TOOLS_ATMOSPHERE_TRUTH_HPP
