@@ -3,7 +3,9 @@
 // independent long double quadrature at every altitude and zenith angle (the 1e-3 target),
 // the LUT mapping's round trip and the LUT's lookup, and EV100's closed forms.
 #include <cloudmath/atmosphere.hpp>
+#include <cloudmath/density.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
@@ -336,5 +338,43 @@ TEST_CASE("global illuminance at sea level for a zenith sun: 110-130 klux (REFER
         CHECK(zenith < last);
         CHECK(zenith > 10.0);
         last = zenith;
+    }
+}
+
+TEST_CASE("the renderer's haze against atmosphere_inscatter: its transmittance agrees, its one-colour in-scattering does not") {
+    // density.hpp's air_optical_depth (the example renderer's aerial perspective) against the
+    // atmosphere's transmittance along the same rays, and the one-colour haze (the horizon's
+    // mean radiance times 1 - T, as the renderer's physical sky draws it) against the
+    // atmosphere's in-scattering. docs/atmosphere.md quotes the ratios.
+    const auto a = earth_atmosphere<float>();
+    const std::vector<glm::vec3> lut = atmosphere_multiple_scattering_lut(a, 32, 32);
+    const atmosphere_multiple_scattering_table<float> ms{&lut, 32, 32};
+    const float deg = 3.14159265f / 180.0f;
+    const auto lum = [](const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; };
+    for (const float sun_elevation : {30.0f, 2.0f, -2.0f}) {
+        const glm::vec3 sun(std::cos(sun_elevation * deg), std::sin(sun_elevation * deg), 0.0f);
+        glm::vec3 horizon(0.0f);
+        for (int i = 0; i < 8; ++i) {
+            const float az = float(i) * 45.0f * deg;
+            horizon += atmosphere_sky_radiance(a, ms, 2.0f, glm::vec3(std::cos(az) * std::cos(2.0f * deg), std::sin(2.0f * deg),
+                                                                      std::sin(az) * std::cos(2.0f * deg)), sun);
+        }
+        horizon /= 8.0f;
+        float lo = 1e30f, hi = 0.0f;
+        for (const float el : {2.0f, 10.0f})
+            for (const float az : {0.0f, 180.0f})
+                for (const float d : {10000.0f, 30000.0f, 60000.0f}) {
+                    const glm::vec3 v(std::cos(el * deg) * std::cos(az * deg), std::sin(el * deg), std::cos(el * deg) * std::sin(az * deg));
+                    const atmosphere_segment<float> seg = atmosphere_inscatter(a, ms, 2.0f, v, sun, d);
+                    const glm::vec3 tau = air_optical_depth(2.0f, v.y, d);
+                    const glm::vec3 T(std::exp(-tau.x), std::exp(-tau.y), std::exp(-tau.z));
+                    for (int c = 0; c < 3; ++c) CHECK(double(T[c]) == doctest::Approx(double(seg.transmittance[c])).epsilon(0.03));
+                    const float ratio = lum(horizon * (glm::vec3(1.0f) - T)) / lum(seg.radiance);
+                    lo = std::min(lo, ratio);
+                    hi = std::max(hi, ratio);
+                }
+        MESSAGE("sun at " << sun_elevation << " degrees: the one-colour haze's in-scattering is " << lo << " to " << hi
+                          << " times the atmosphere's (elevations 2 and 10, towards and away from the sun, 10-60 km)");
+        CHECK(hi / lo > 1.5f);  // direction matters: one colour cannot be right both ways
     }
 }

@@ -476,7 +476,7 @@ struct pixel_program {
     // main() of the shader: the display colour, dithered for the 8-bit store.
     vec4 shade(int x, int y, int width, int height) const {
         const vec4 c = shade_linear(x, y, width, height);
-        vec3 display = tonemap(vec3(c), s.exposure);
+        vec3 display = tonemap(vec3(c), k.exposure);
         if (v.dither) display += cm::triangular_dither(dither_hash(x, y, s.frame)) * (1.0f / 255.0f);
         return vec4(display, c.a);
     }
@@ -692,7 +692,7 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
         color[i] = c;
         aux[i] = a;
         // Display: the layer over what lies behind it, clouds.frag's tonemap and dither.
-        vec3 shown = tonemap(behind * (1.0f - c.a) + vec3(c), s.exposure);
+        vec3 shown = tonemap(behind * (1.0f - c.a) + vec3(c), program.k.exposure);
         if (v.dither) shown += cm::triangular_dither(dither_hash(x, y, s.frame)) * (1.0f / 255.0f);
         return vec4(shown, c.a);
     });

@@ -334,6 +334,7 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
     u.v3("u_sky_horizon", k.sky_horizon);
     u.v3("u_ground", k.ground);
     u.f1("u_sun_angular_radius", k.sun_angular_radius);
+    u.f1("u_aureole", k.aureole);
     u.f1("u_coverage", sc.coverage);
     u.f1("u_cloud_type", sc.cloud_type);
     u.f1("u_extinction", sc.extinction);
@@ -344,7 +345,7 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
     u.f1("u_weather_tile", sc.weather_tile);
     u.v2("u_wind", sc.wind);
     gl.Uniform1ui(u.loc("u_frame"), sc.frame);
-    u.f1("u_exposure", sc.exposure);
+    u.f1("u_exposure", k.exposure);
     u.f1("u_phase_g", k.phase_g);
     u.f1("u_phase_g_back", k.phase_g_back);
     u.f1("u_phase_w", k.phase_w);
@@ -608,7 +609,7 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
     u.f1("u_max_samples", float(temporal_max_samples));
     u.f1("u_tolerance", temporal_reprojection_tolerance);
     u.f1("u_fill_blend", temporal_fill_blend);
-    u.f1("u_exposure", sc.exposure);
+    u.f1("u_exposure", k.exposure);
     gl.Uniform1ui(u.loc("u_frame"), sc.frame);
     u.i1("u_dither", v.dither ? 1 : 0);
     const char* samplers[5] = {"u_fresh", "u_fresh_depth", "u_history", "u_history_aux", "u_background"};

@@ -71,6 +71,11 @@ const char* usage_text() {
            "  --altitude M, --yaw DEG, --pitch DEG, --fov DEG          camera\n"
            "  --sun-elevation DEG, --sun-azimuth DEG                   sun\n"
            "  --coverage X, --cloud-type X (0 stratus .. 1 cumulus), --exposure X\n"
+           "  --sky S             the sun and sky: artistic (hand-made colours, --exposure) or physical\n"
+           "                      (cloudmath's atmosphere: lux and cd/m^2, exposure from EV100; the\n"
+           "                      presets sunrise and sunset use it)\n"
+           "  --ev100 X           --sky physical: the exposure value (-10..25; default: the one that\n"
+           "                      exposes the sky's mean luminance to middle grey)\n"
            "  --shape S           the density field: detailed (default: per-cloud type and top from the\n"
            "                      weather map, rounded tops, curl-distorted detail, crisp edges, a\n"
            "                      240 km weather period) or classic (one profile, 60 km period)\n"
@@ -152,7 +157,14 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
         else if (a == "--coverage") err = number(0, 1, [&](double x) { o.sc.coverage = float(x); });
         else if (a == "--cloud-type") err = number(0, 1, [&](double x) { o.sc.cloud_type = float(x); });
         else if (a == "--exposure") err = number(0.01, 100, [&](double x) { o.sc.exposure = float(x); });
-        else if (a == "--shape") {
+        else if (a == "--ev100") err = number(-10, 25, [&](double x) { o.sc.ev100 = float(x); });
+        else if (a == "--sky") {
+            std::string v;
+            if (!value(v)) return "--sky needs artistic or physical";
+            if (v == "artistic") o.sc.sky = sky_model::artistic;
+            else if (v == "physical") o.sc.sky = sky_model::physical;
+            else return "--sky must be artistic or physical, not '" + v + "'";
+        } else if (a == "--shape") {
             std::string v;
             if (!value(v)) return "--shape needs classic or detailed";
             if (v == "classic") o.sc.shape = cloud_shape::classic;

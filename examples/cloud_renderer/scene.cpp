@@ -2,16 +2,19 @@
 
 #include "strict_number.hpp"
 
+#include <cloudmath/atmosphere.hpp>
 #include <cloudmath/density.hpp>
 #include <cloudmath/phase.hpp>
 #include <cloudmath/sun.hpp>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <cmath>
 #include <cstdlib>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 namespace cloud_renderer {
 namespace {
@@ -76,6 +79,20 @@ const std::vector<scene>& presets() {
         // preset.
         v.push_back(make("low_sun_ahead", "on the ground facing a sun 3 degrees up", 2, 100, 8, 3, 95, 0.3f, 0.7f));
         v.push_back(make("low_sun_behind", "on the ground, a sun 3 degrees up behind the camera", 2, 20, 12, 3, 200, 0.3f, 0.7f));
+        // The physical sky (sky_model::physical, cloudmath's atmosphere): cumulus at sunrise,
+        // the sun 2 degrees up ahead; and just after sunset, the sun 2 degrees below the
+        // horizon, lighting from below a layer at 4-9 km (above the 3.9 km where the Earth's
+        // shadow ends for a sun at -2 degrees).
+        scene sunrise = make("sunrise", "physical sky: cumulus at sunrise, the sun 2 degrees up ahead", 2, 80, 10, 2, 90, 0.3f, 0.9f);
+        sunrise.sky = sky_model::physical;
+        v.push_back(sunrise);
+        scene sunset = make("sunset", "physical sky: just after sunset, the sun 2 degrees down, a 4-9 km layer lit from below", 2, 260, 12, -2,
+                            270, 0.3f, 1.0f);
+        sunset.sky = sky_model::physical;
+        sunset.layer_bottom = 4000.0f;
+        sunset.layer_top = 9000.0f;
+        sunset.max_distance = 60000.0f;
+        v.push_back(sunset);
         return v;
     }();
     return all;
@@ -87,15 +104,10 @@ const scene* find_preset(const std::string& name) {
     return nullptr;
 }
 
-frame_constants make_frame_constants(const scene& s) {
-    frame_constants f{};
-    const float pitch = s.pitch > 89.0f ? 89.0f : (s.pitch < -89.0f ? -89.0f : s.pitch);
-    f.forward = direction(s.yaw, pitch);
-    f.right = glm::normalize(glm::vec3(std::cos(s.yaw * degrees), 0.0f, std::sin(s.yaw * degrees)));
-    f.up = glm::cross(f.right, f.forward);
-    f.tan_half_fov = std::tan(0.5f * s.fov_y * degrees);
-    f.sun_dir = direction(s.sun_azimuth, s.sun_elevation);
+namespace {
 
+// The artistic sky: hand-made colours in display units.
+void artistic_sky(const scene& s, frame_constants& f) {
     // Sunlight reddens toward the horizon: Beer-Lambert through the Kasten-Young air mass
     // with a per-channel optical depth (a look, not a sky model).
     const float e = s.sun_elevation < -2.0f ? -2.0f : s.sun_elevation;
@@ -110,6 +122,101 @@ frame_constants make_frame_constants(const scene& s) {
     f.ground = glm::vec3(0.12f, 0.11f, 0.09f) * day;
     f.ambient_top = glm::mix(f.sky_zenith, f.sky_horizon, 0.4f) * 1.1f;
     f.ambient_bottom = f.ground * 1.5f + 0.25f * f.ambient_top;
+    f.aureole = 0.05f;
+}
+
+// Earth's air and its multiple-scattering LUT (32 x 32, Hillaire 2020's size), made once.
+struct physical_air {
+    cloudmath::atmosphere_parameters<float> air = cloudmath::earth_atmosphere<float>();
+    std::vector<glm::vec3> ms_lut = cloudmath::atmosphere_multiple_scattering_lut(air, 32, 32);
+    cloudmath::atmosphere_multiple_scattering_table<float> ms{&ms_lut, 32, 32};
+};
+const physical_air& earth_air() {
+    static const physical_air a;
+    return a;
+}
+
+// The sun above the air: a white 128 klux (REFERENCES.md), so radiance comes out in cd/m^2.
+constexpr float sun_lux = 128000.0f;
+
+float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+// The physical sky (scene.hpp's sky_model::physical), from cloudmath's atmosphere.
+void physical_sky(const scene& s, frame_constants& f) {
+    const physical_air& a = earth_air();
+    const float band_middle = 0.5f * (f.band.x + f.band.y);
+    const float camera = std::fmax(s.camera_altitude, 0.0f);
+    const auto sky = [&](float altitude, glm::vec3 dir) {
+        return sun_lux * cloudmath::atmosphere_sky_radiance(a.air, a.ms, altitude, dir, f.sun_dir);
+    };
+    // The clouds' sun: its illuminance at the band's middle (one colour for the whole layer).
+    f.sun_radiance = cloudmath::atmosphere_sun_illuminance(a.air, band_middle, f.sun_dir.y, glm::vec3(sun_lux));
+    // The sky gradient: the zenith, and the horizon (2 degrees up) averaged over 8 azimuths.
+    f.sky_zenith = sky(camera, glm::vec3(0.0f, 1.0f, 0.0f));
+    glm::vec3 horizon(0.0f);
+    for (int i = 0; i < 8; ++i) {
+        const float az = float(i) * 45.0f * degrees;
+        horizon += sky(camera, glm::vec3(std::cos(az) * std::cos(2.0f * degrees), std::sin(2.0f * degrees),
+                                         std::sin(az) * std::cos(2.0f * degrees)));
+    }
+    f.sky_horizon = horizon / 8.0f;
+    // The glow around the sun: the HG(0.75) aureole's strength that gives the sky's own
+    // luminance 10 degrees above the sun (on top of the gradient there).
+    const float up = std::fmin(s.sun_elevation + 10.0f, 89.0f) * degrees;
+    const glm::vec3 sun_flat = glm::length(glm::vec3(f.sun_dir.x, 0.0f, f.sun_dir.z)) > 1e-4f
+                                   ? glm::normalize(glm::vec3(f.sun_dir.x, 0.0f, f.sun_dir.z))
+                                   : glm::vec3(1.0f, 0.0f, 0.0f);
+    const glm::vec3 near_sun = sun_flat * std::cos(up) + glm::vec3(0.0f, std::sin(up), 0.0f);
+    const float gradient = luminance(glm::mix(f.sky_horizon, f.sky_zenith, std::sqrt(cloudmath::saturate(near_sun.y))));
+    const float glow = luminance(f.sun_radiance) * cloudmath::phase_hg(glm::dot(near_sun, f.sun_dir), 0.75f);
+    f.aureole = glow > 0.0f ? std::fmax(luminance(sky(camera, near_sun)) - gradient, 0.0f) / glow : 0.0f;
+    // The sky's light at the band's middle: the hemisphere's mean radiance (isotropic sky
+    // light), and its irradiance on the ground (6 cosines x 8 azimuths, midpoint in cosine).
+    glm::vec3 mean_up(0.0f), irradiance(0.0f);
+    for (int j = 0; j < 6; ++j)
+        for (int i = 0; i < 8; ++i) {
+            const float c = (float(j) + 0.5f) / 6.0f, sn = std::sqrt(1.0f - c * c), az = (float(i) + 0.5f) * 45.0f * degrees;
+            const glm::vec3 dir(sn * std::cos(az), c, sn * std::sin(az));
+            mean_up += sky(band_middle, dir);
+            irradiance += sky(camera, dir) * c;
+        }
+    mean_up /= 48.0f;
+    irradiance *= 2.0f * 3.14159265f / 48.0f;
+    // The ground: Lambertian with the air's albedo, lit by the sun at the camera and the sky.
+    const glm::vec3 sun_ground = cloudmath::atmosphere_sun_illuminance(a.air, camera, f.sun_dir.y, glm::vec3(sun_lux));
+    f.ground = a.air.ground_albedo / 3.14159265f * (sun_ground * std::fmax(f.sun_dir.y, 0.0f) + irradiance);
+    f.ambient_top = mean_up;
+    f.ambient_bottom = f.ground;
+}
+
+}  // namespace
+
+float auto_ev100(const scene& s) { return make_frame_constants(s).ev100; }
+
+float display_exposure(const scene& s) { return make_frame_constants(s).exposure; }
+
+frame_constants make_frame_constants(const scene& s) {
+    frame_constants f{};
+    const float pitch = s.pitch > 89.0f ? 89.0f : (s.pitch < -89.0f ? -89.0f : s.pitch);
+    f.forward = direction(s.yaw, pitch);
+    f.right = glm::normalize(glm::vec3(std::cos(s.yaw * degrees), 0.0f, std::sin(s.yaw * degrees)));
+    f.up = glm::cross(f.right, f.forward);
+    f.tan_half_fov = std::tan(0.5f * s.fov_y * degrees);
+    f.sun_dir = direction(s.sun_azimuth, s.sun_elevation);
+
+    f.band = cloud_band(s);
+    if (s.sky == sky_model::physical) {
+        physical_sky(s, f);
+        // EV100: the scene's, or the one that exposes the sky's mean luminance to middle grey.
+        f.ev100 = s.ev100 > -50.0f ? s.ev100
+                                   : cloudmath::ev100_from_luminance(
+                                         std::fmax(0.5f * (luminance(f.sky_zenith) + luminance(f.sky_horizon)), 1e-3f));
+        f.exposure = cloudmath::exposure_from_ev100(f.ev100);
+    } else {
+        artistic_sky(s, f);
+        f.ev100 = 0.0f;
+        f.exposure = s.exposure;
+    }
     f.sun_angular_radius = cloudmath::sun_angular_radius<float>();  // the real Sun: 0.27 degrees
 
     f.phase_g = 0.8f;
@@ -125,7 +232,6 @@ frame_constants make_frame_constants(const scene& s) {
     f.cone_far_length = 900.0f;
     f.light_march_max = 6000.0f;
     f.march_near_distance = 1000.0f;
-    f.band = cloud_band(s);
     f.min_transmittance = 0.01f;
 
     // The shadow map's frame. The sun's elevation is clamped to 3 degrees for the plane's

@@ -130,6 +130,14 @@ struct variant {
 // tops rounded by coverage that narrows with height, curl-noise distortion of the detail, a
 // density scale for crisp edges, and the wide weather map (240 km period).
 enum class cloud_shape { classic, detailed };
+enum class sky_model { artistic, physical };
+// The sun and sky: `artistic`, the renderer's hand-made colours (a sky gradient with a glow
+// around the sun, a sun reddened by a Kasten-Young air mass, display units, the exposure
+// setting), or `physical`, from cloudmath's atmosphere (atmosphere.hpp, Earth's air): the sun's
+// illuminance in lux at the cloud band's middle altitude (128 klux above the air), the sky's
+// zenith and horizon luminance (cd/m^2) with an aureole fitted to the sky near the sun, the
+// ground and the clouds' ambient light from the same sky, and the display exposure from EV100
+// (exposure_from_ev100). See make_frame_constants and docs/atmosphere.md.
 
 // The picture: camera, sun, sky, clouds. Angles in degrees, lengths in metres.
 struct scene {
@@ -161,8 +169,19 @@ struct scene {
     float density_scale = 4.0f;      // detailed density = saturate(eroded density * this)
     glm::vec2 wind{1200.0f, -800.0f};  // offset of the textures (animate it for wind)
     std::uint32_t frame = 0;         // frame number: advances each pixel's march jitter (frame_jitter)
-    float exposure = 1.0f;
+    float exposure = 1.0f;           // the display's exposure with the artistic sky
+    enum sky_model sky = sky_model::artistic;
+    float ev100 = -100.0f;           // the physical sky's exposure value; below -50: from the sky (auto_ev100)
 };
+
+// The exposure the tonemap uses (frame_constants::exposure): scene::exposure with the artistic
+// sky; with the physical one exposure_from_ev100(ev100) = 1 / (1.2 2^EV100) for luminance in
+// cd/m^2, EV100 the scene's or auto_ev100. The tonemap (tonemap in cloud_density.hpp,
+// cr_tonemap in clouds.frag) is then (1 - e^(-exposure L))^(1 / 2.2) per channel.
+float display_exposure(const scene& s);
+// The physical sky's EV100 when the scene does not set one: ev100_from_luminance of the sky's
+// mean luminance (zenith and horizon), which exposes it to middle grey.
+float auto_ev100(const scene& s);
 
 // The default before the renderer's rework (issue 15's baseline, with --shape classic): the
 // octaves with powder, the cone toward the sun, flat sky light, no refinement.
@@ -235,6 +254,9 @@ struct frame_constants {
     glm::vec3 ambient_top, ambient_bottom;  // isotropic sky light at the layer top / bottom
     glm::vec3 sky_zenith, sky_horizon, ground;
     float sun_angular_radius;        // the sun disc's angular radius (radians)
+    float aureole;                   // the glow around the sun: aureole sun_radiance HG(mu, 0.75) in the sky
+    float exposure;                  // the tonemap's (display_exposure)
+    float ev100;                     // the physical sky's EV100 (0 with the artistic sky)
     float phase_g, phase_g_back, phase_w;   // HG / Cornette-Shanks g; dual lobe second g, weight
     float droplet_diameter;          // Mie fit, micrometres
     float ms_a, ms_b, ms_c;          // octave factors (attenuation, contribution, eccentricity)

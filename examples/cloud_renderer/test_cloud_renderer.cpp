@@ -8,6 +8,7 @@
 #include "options.hpp"
 
 #define DOCTEST_CONFIG_IMPLEMENT  // our main() below: skip (77) without OpenGL
+#include <cloudmath/atmosphere.hpp>
 #include <cloudmath/phase.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -654,6 +655,9 @@ TEST_CASE("command-line errors are clear") {
     CHECK(parse({"--width", "100.5"}) == "--width must be a whole number, not '100.5'");
     CHECK(parse({"--coverage", "nan"}).find("--coverage must be a number from 0 to 1") == 0);
     CHECK(parse({"--preset", "nowhere"}).find("unknown preset 'nowhere' (known: ground,") == 0);
+    CHECK(parse({"--sky", "physical", "--ev100", "14"}).empty());
+    CHECK(parse({"--sky", "blue"}) == "--sky must be artistic or physical, not 'blue'");
+    CHECK(parse({"--ev100", "40"}).find("--ev100 must be a number from -10 to 25") == 0);
     CHECK(parse({"--variant", "octaves=9"}) == "--variant: octaves must be an integer from 1 to 8, not '9'");
     CHECK(parse({"--variant", "phase=rayleigh"}).find("phase must be hg, dual_hg, cs or mie") != std::string::npos);
     CHECK(parse({"--variant", "colour=red"}).find("unknown variant key 'colour'") != std::string::npos);
@@ -695,4 +699,56 @@ int main(int argc, char** argv) {
     std::printf("OpenGL: %s\n", shared().gpu->device().c_str());
     doctest::Context context(argc, argv);
     return context.run();
+}
+
+TEST_CASE("the physical sky: cloudmath's atmosphere in lux and cd/m^2, exposure from EV100; GPU and CPU agree") {
+    const auto luminance = [](glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; };
+    // The artistic sky keeps its numbers: the glow's 0.05 and the scene's exposure.
+    const frame_constants art = make_frame_constants(*find_preset("ground"));
+    CHECK(art.aureole == 0.05f);
+    CHECK(art.exposure == find_preset("ground")->exposure);
+    // A zenith sun with the physical sky: the sun at the band's middle carries more than the
+    // 112 klux it keeps at sea level and less than the 128 klux above the air; the ground is a
+    // 0.1-albedo Lambertian under the global illuminance (test_atmosphere: 119.8 klux), so
+    // about 0.1 / pi x 120 klux = 3.8 kcd/m^2.
+    scene noon = *find_preset("ground");
+    noon.sky = sky_model::physical;
+    noon.sun_elevation = 90.0f;
+    const frame_constants k = make_frame_constants(noon);
+    CHECK(luminance(k.sun_radiance) > 112000.0f);
+    CHECK(luminance(k.sun_radiance) < 128000.0f);
+    CHECK(luminance(k.ground) == doctest::Approx(0.1 / 3.14159265 * 119800.0).epsilon(0.03));
+    CHECK(k.sky_zenith.z > k.sky_zenith.x);  // blue
+    CHECK(k.aureole >= 0.0f);
+    // EV100 from the sky's mean luminance exposes it to middle grey; a set EV100 wins.
+    CHECK(k.exposure == doctest::Approx(cloudmath::exposure_from_ev100(k.ev100)).epsilon(1e-6));
+    CHECK(k.ev100 == doctest::Approx(std::log2(0.5 * (luminance(k.sky_zenith) + luminance(k.sky_horizon)) * 100.0 / 12.5)).epsilon(1e-4));
+    noon.ev100 = 15.0f;
+    CHECK(display_exposure(noon) == doctest::Approx(1.0 / (1.2 * std::exp2(15.0))).epsilon(1e-6));
+    // Sunrise from sea level (sun 2 degrees up): the zenith's luminance test_atmosphere
+    // measured, 298 cd/m^2. Sunset (sun 2 degrees down): a red sun still lights the 4-9 km
+    // layer's middle, and the sky is darker than at sunrise.
+    const frame_constants rise = make_frame_constants(*find_preset("sunrise"));
+    CHECK(luminance(rise.sky_zenith) == doctest::Approx(298.4).epsilon(0.02));
+    const frame_constants set = make_frame_constants(*find_preset("sunset"));
+    CHECK(set.sun_radiance.x > 3.0f * set.sun_radiance.z);
+    CHECK(luminance(set.sun_radiance) > 100.0f);
+    CHECK(luminance(set.sky_zenith) < 0.5f * luminance(rise.sky_zenith));
+    CHECK(set.ev100 < rise.ev100);
+    // Both renderers draw it alike.
+    if (!shared().gpu) return;
+    for (const char* name : {"sunrise", "sunset"}) {
+        CAPTURE(std::string(name));
+        const scene& s = *find_preset(name);
+        const variant v;
+        const image g = render_gpu(s, v);
+        const image c = render_cpu(s, v, shared().textures, 160, 90);
+        const image_difference d = compare(g, c);
+        MESSAGE(std::string(name) << ": PSNR " << d.psnr_db << " dB");
+        CHECK(d.psnr_db >= 35.0);
+        const image_stats st = statistics(c);
+        CHECK(st.nan_pixels == 0);
+        CHECK(st.mean_brightness >= 0.1);
+        CHECK(st.mean_brightness <= 0.9);
+    }
 }

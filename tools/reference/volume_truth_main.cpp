@@ -671,7 +671,7 @@ int run_report(int argc, char** argv) {
             const auto& [vname, v] = variants[vi];
             if (!quiet) std::cerr << "report: " << names[p] << " / " << vname << '\n';
             const cr::image model = render_mean(s, v, textures, t.width, t.height, frames, threads);
-            const image_errors e = compare(t, model, s.exposure);
+            const image_errors e = compare(t, model, cr::display_exposure(s));
             rms[vi][p] = e.rms;
             excess[vi][p] = e.excess;
             psnr[vi][p] = e.psnr_db;
@@ -681,7 +681,7 @@ int run_report(int argc, char** argv) {
                   << " | " << signed_percent(e.worst_bias) << " |\n";
             // truth | model | difference for every variant: the first inline, the others linked.
             const std::string png = "truth_" + names[p] + (first ? std::string() : "_" + vname) + ".png";
-            write_side_by_side(docs + "/images/" + png, t, model, s.exposure);
+            write_side_by_side(docs + "/images/" + png, t, model, cr::display_exposure(s));
             if (first) {
                 sections << "\n\n![truth | " << vname << " | difference](images/" << png << ")\n\n";
                 first = false;
@@ -1008,8 +1008,8 @@ int run_fit_clouds(int argc, char** argv) {
         truth_image t;
         load(item, s, t);
         const image_errors before =
-            compare(t, render_mean(s, v, textures, t.width, t.height, frames, threads, &cloudmath::diffusion_models::fitted), s.exposure);
-        const image_errors after = compare(t, render_mean(s, v, textures, t.width, t.height, frames, threads, &m), s.exposure);
+            compare(t, render_mean(s, v, textures, t.width, t.height, frames, threads, &cloudmath::diffusion_models::fitted), cr::display_exposure(s));
+        const image_errors after = compare(t, render_mean(s, v, textures, t.width, t.height, frames, threads, &m), cr::display_exposure(s));
         std::cout << "eval " << item << ": excess " << percent(before.excess) << " -> " << percent(after.excess) << ", PSNR "
                   << fixed(before.psnr_db, 1) << " -> " << fixed(after.psnr_db, 1) << " dB, bias " << signed_percent(before.bias)
                   << " -> " << signed_percent(after.bias) << '\n';

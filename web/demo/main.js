@@ -216,7 +216,7 @@ function cloudUniforms(state) {
     u_forward: f.forward, u_right: f.right, u_up: f.up, u_tan_half_fov: f.tanHalfFov,
     u_cam_altitude: s.cameraAltitude, u_planet_radius: s.planetRadius, u_layer_bottom: s.layerBottom, u_layer_top: s.layerTop,
     u_sun_dir: f.sunDir, u_sun_radiance: f.sunRadiance, u_ambient_top: f.ambientTop, u_ambient_bottom: f.ambientBottom,
-    u_sky_zenith: f.skyZenith, u_sky_horizon: f.skyHorizon, u_ground: f.ground, u_sun_angular_radius: f.sunAngularRadius,
+    u_sky_zenith: f.skyZenith, u_sky_horizon: f.skyHorizon, u_ground: f.ground, u_sun_angular_radius: f.sunAngularRadius, u_aureole: 0.05,
     u_coverage: s.coverage, u_cloud_type: s.cloudType, u_extinction: s.extinction, u_albedo: s.albedo, u_max_distance: s.maxDistance,
     u_base_tile: s.baseTile, u_detail_tile: s.detailTile, u_weather_tile: s.weatherTile, u_wind: s.wind,
     u_exposure: s.exposure,

@@ -54,6 +54,7 @@ uniform float u_cam_altitude, u_planet_radius, u_layer_bottom, u_layer_top;
 uniform vec3 u_sun_dir, u_sun_radiance, u_ambient_top, u_ambient_bottom;
 uniform vec3 u_sky_zenith, u_sky_horizon, u_ground;
 uniform float u_sun_angular_radius;
+uniform float u_aureole;  // the glow around the sun: u_aureole u_sun_radiance HG(mu, 0.75)
 uniform float u_coverage, u_cloud_type, u_extinction, u_albedo, u_max_distance;
 uniform float u_base_tile, u_detail_tile, u_weather_tile;
 uniform float u_weather_wide_tile, u_curl_tile, u_curl_strength, u_type_spread, u_top_rounding, u_density_scale;
@@ -307,7 +308,7 @@ vec3 cr_background(vec3 dir) {
     if (ground.x >= 0.0 && ground.y > ground.x) return u_shadows != 0 ? u_ground * cr_ground_shadow(dir * ground.x) : u_ground;
     float mu = dot(dir, u_sun_dir);
     vec3 sky = mix(u_sky_horizon, u_sky_zenith, sqrt(cm_saturate(dir.y)));
-    sky += u_sun_radiance * (0.05 * cm_phase_hg(mu, 0.75));  // glow around the sun
+    sky += u_sun_radiance * (u_aureole * cm_phase_hg(mu, 0.75));  // glow around the sun
     if (u_sun_disc != 0) sky += u_sun_radiance * cm_sun_disc_radiance(1.0, mu, u_sun_angular_radius, 0.6);  // physical disc
     return sky;
 }

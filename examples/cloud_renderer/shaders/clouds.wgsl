@@ -67,6 +67,7 @@ struct CrUniforms {
     u_sun_dir: vec3f, u_sun_radiance: vec3f, u_ambient_top: vec3f, u_ambient_bottom: vec3f,
     u_sky_zenith: vec3f, u_sky_horizon: vec3f, u_ground: vec3f,
     u_sun_angular_radius: f32,
+    u_aureole: f32,  // the glow around the sun: u_aureole u_sun_radiance HG(mu, 0.75)
     u_coverage: f32, u_cloud_type: f32, u_extinction: f32, u_albedo: f32, u_max_distance: f32,
     u_base_tile: f32, u_detail_tile: f32, u_weather_tile: f32,
     u_weather_wide_tile: f32, u_curl_tile: f32, u_curl_strength: f32, u_type_spread: f32, u_top_rounding: f32, u_density_scale: f32,
@@ -290,7 +291,7 @@ fn cr_background(dir: vec3f) -> vec3f {
     }
     let mu = dot(dir, U.u_sun_dir);
     var sky = mix(U.u_sky_horizon, U.u_sky_zenith, sqrt(cm_saturate(dir.y)));
-    sky += U.u_sun_radiance * (0.05 * cm_phase_hg(mu, 0.75));
+    sky += U.u_sun_radiance * (U.u_aureole * cm_phase_hg(mu, 0.75));
     if (u_sun_disc != 0) { sky += U.u_sun_radiance * cm_sun_disc_radiance(1.0, mu, U.u_sun_angular_radius, 0.6); }
     return sky;
 }
