@@ -1,5 +1,7 @@
 #include "cpu_renderer.hpp"
 
+#include "physical_sky.hpp"
+
 #include "cloud_density.hpp"
 
 #include <cloudmath/cloudmath.hpp>
@@ -90,6 +92,7 @@ struct pixel_program {
     float phase_g_mean;  // the diffusion model's g
     vec2 band;           // altitudes of the cloud type's band (height_range_for_type): no density outside
     const cm::diffusion_model* model;  // the diffusion model's fitted numbers
+    const haze_table* haze = nullptr;  // the physical sky's aerial perspective (physical_sky.hpp)
     std::vector<vec3> shadow_map;  // the Beer shadow map (needs_shadow_map), row j = 0 first
     long shadow_map_reads = 0;     // texture reads of building it (once per frame)
     float map_footprint = 0.0f;    // its texels' width with LOD, else 0
@@ -101,7 +104,8 @@ struct pixel_program {
         : s(sc), v(va), k(make_frame_constants(sc)), field(sc, t), mie(cm::mie_approx_params(k.droplet_diameter)),
           phase_g_mean(phase_mean_cosine(k, va.phase)),
           band(k.band),
-          model(m != nullptr ? m : va.table == diffusion_table::clouds ? &cm::diffusion_models::clouds : &cm::diffusion_models::fitted) {
+          model(m != nullptr ? m : va.table == diffusion_table::clouds ? &cm::diffusion_models::clouds : &cm::diffusion_models::fitted),
+          haze(sc.sky == sky_model::physical ? &physical_haze(sc.camera_altitude, k.sun_dir) : nullptr) {
         if (needs_shadow_map(v)) {
             if (v.lod) map_footprint = 2.0f * k.shadow_half_extent / float(shadow_map_size);
             shadow_map.resize(static_cast<std::size_t>(shadow_map_size) * static_cast<std::size_t>(shadow_map_size));
@@ -445,12 +449,17 @@ struct pixel_program {
             }
             // Aerial perspective: the air between the camera and the cloud's
             // transmittance-weighted depth dims its light and adds the horizon's haze in
-            // proportion to its opacity (the sky behind already holds its air).
+            // proportion to its opacity (the sky behind already holds its air). The physical
+            // sky's haze is the atmosphere's in-scattering along this direction to that depth.
             const float opacity = 1.0f - acc.transmittance.r;
             if (depth != nullptr && opacity > 0.0f) *depth = depth_sum / opacity;
             if (v.haze && opacity > 0.0f) {
                 const vec3 tau_air = cm::air_optical_depth(s.camera_altitude, dir.y, depth_sum / opacity);
-                acc.luminance = cm::aerial_perspective(acc.luminance, k.sky_horizon * opacity, tau_air);
+                if (haze != nullptr) {
+                    acc.luminance = acc.luminance * glm::exp(-tau_air) + haze_lookup(*haze, dir, k.sun_dir, depth_sum / opacity) * opacity;
+                } else {
+                    acc.luminance = cm::aerial_perspective(acc.luminance, k.sky_horizon * opacity, tau_air);
+                }
             }
         }
         const vec3 t = acc.transmittance;

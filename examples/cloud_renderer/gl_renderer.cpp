@@ -1,5 +1,7 @@
 #include "gl_renderer.hpp"
 
+#include "physical_sky.hpp"
+
 #include "clouds_frag.hpp"
 
 #include <cloudmath/glsl.hpp>
@@ -77,8 +79,9 @@ std::string with_cloudmath(std::string body) {
 
 }  // namespace
 
-std::string fragment_shader_source(const variant& v, cloud_shape shape, bool compile_time, clouds_pass pass) {
+std::string fragment_shader_source(const variant& v, cloud_shape shape, bool compile_time, clouds_pass pass, sky_model sky) {
     std::string head = "#version 410 core\n";
+    if (sky == sky_model::physical) head += "#define CR_PHYSICAL_SKY 1\n";
     if (compile_time) {
         head += "#define CR_PARAM(type, name)\n";
         head += "const int u_pass = " + std::to_string(static_cast<int>(pass)) + ";\n";
@@ -103,6 +106,8 @@ struct gl_renderer::state {
     GLuint vao = 0, queries[2] = {0, 0};  // GL_TIMESTAMP before and after the draw
     GLuint textures[5] = {0, 0, 0, 0, 0};  // base, detail, weather, weather_wide, curl
     GLuint fbo = 0, target = 0;      // offscreen float target for render()
+    GLuint haze = 0;                 // the physical sky's aerial-perspective table (physical_sky.hpp)
+    const haze_table* haze_uploaded = nullptr;  // the table `haze` holds
     GLuint shadow_fbo = 0, shadow_map = 0;  // the Beer shadow map (clouds.frag's pass 2)
     int target_w = 0, target_h = 0;
     std::map<std::string, GLuint> programs;  // "" for the run-time program, else the variant spec
@@ -130,16 +135,17 @@ struct gl_renderer::state {
         return gl.link(shaders, 2, "shader program", why);
     }
 
-    GLuint program_for(const variant& v, cloud_shape shape, bool compile_time, clouds_pass pass, std::string& why) {
-        // One program per permutation (variant, shape and pass) compiled in, one for the
-        // uber-shader (its pass a uniform).
+    GLuint program_for(const variant& v, cloud_shape shape, bool compile_time, clouds_pass pass, sky_model sky, std::string& why) {
+        // One program per permutation (variant, shape, pass and sky) compiled in, one per sky
+        // for the uber-shader (its pass a uniform).
         const std::string key =
-            compile_time ? permutation_key(v, shape) + "/pass" + std::to_string(static_cast<int>(pass)) : std::string();
+            (compile_time ? permutation_key(v, shape) + "/pass" + std::to_string(static_cast<int>(pass)) : std::string()) +
+            (sky == sky_model::physical ? "/physical" : "");
         const auto found = programs.find(key);
         if (found != programs.end()) return found->second;
         const GLuint vs = gl.compile(GL_VERTEX_SHADER, vertex_shader_source(), "vertex shader", why);
         if (vs == 0) return 0;
-        const GLuint fs = gl.compile(GL_FRAGMENT_SHADER, fragment_shader_source(v, shape, compile_time, pass), "fragment shader", why);
+        const GLuint fs = gl.compile(GL_FRAGMENT_SHADER, fragment_shader_source(v, shape, compile_time, pass, sky), "fragment shader", why);
         if (fs == 0) {
             gl.DeleteShader(vs);
             return 0;
@@ -156,6 +162,7 @@ struct gl_renderer::state {
         gl.DeleteTextures(5, textures);
         if (target) gl.DeleteTextures(1, &target);
         if (shadow_map) gl.DeleteTextures(1, &shadow_map);
+        if (haze) gl.DeleteTextures(1, &haze);
         if (shadow_fbo) gl.DeleteFramebuffers(1, &shadow_fbo);
         if (fbo) gl.DeleteFramebuffers(1, &fbo);
         if (vao) gl.DeleteVertexArrays(1, &vao);
@@ -307,7 +314,7 @@ struct uniform_setter {
 GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bool compile_time, int width, int height,
                    clouds_pass pass, glm::uvec2 offset, std::string& why) {
     const gl_api& gl = st.gl;
-    const GLuint program = st.program_for(v, sc.shape, compile_time, pass, why);
+    const GLuint program = st.program_for(v, sc.shape, compile_time, pass, sc.sky, why);
     if (program == 0) return 0;
     gl.UseProgram(program);
     const uniform_setter u{gl, program};
@@ -394,6 +401,23 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
     u.f1("u_top_rounding", sc.top_rounding);
     u.f1("u_density_scale", sc.density_scale);
     u.v2("u_band", k.band);
+    if (sc.sky == sky_model::physical) {
+        // The aerial-perspective table on unit 6, uploaded when it changes (RGB32F, no filtering:
+        // clouds.frag interpolates it as haze_lookup does).
+        const haze_table& t = physical_haze(sc.camera_altitude, k.sun_dir);
+        gl.ActiveTexture(GL_TEXTURE6);
+        if (st.haze == 0) gl.GenTextures(1, &st.haze);
+        gl.BindTexture(GL_TEXTURE_2D, st.haze);
+        if (st.haze_uploaded != &t) {
+            gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, t.n_d * t.n_az, t.n_el, 0, GL_RGB, GL_FLOAT, t.texels.data());
+            gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            st.haze_uploaded = &t;
+        }
+        u.i1("u_haze_table", 6);
+        u.v3("u_haze_table_size", glm::vec3(float(t.n_d), float(t.n_az), float(t.n_el)));
+        u.f1("u_haze_table_distance", t.max_distance);
+    }
     return program;
 }
 

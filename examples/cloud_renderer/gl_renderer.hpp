@@ -18,11 +18,12 @@ namespace cloud_renderer {
 // Beer shadow map, the temporal scheme's background.
 enum class clouds_pass { frame = 0, temporal_shading = 1, shadow_map = 2, background = 3 };
 
-// The fragment shader for a variant, as compiled: #version, the permutation block (the
-// variant, the shape and the pass as constants when compile_time; as uniforms otherwise, where
-// `pass` is unused), the shader file with cloudmath.glsl resolved in.
+// The fragment shader for a variant, as compiled: #version, `#define CR_PHYSICAL_SKY 1` for the
+// physical sky (its aerial-perspective table), the permutation block (the variant, the shape and
+// the pass as constants when compile_time; as uniforms otherwise, where `pass` is unused), the
+// shader file with cloudmath.glsl resolved in.
 std::string fragment_shader_source(const variant& v, cloud_shape shape, bool compile_time,
-                                   clouds_pass pass = clouds_pass::frame);
+                                   clouds_pass pass = clouds_pass::frame, sky_model sky = sky_model::artistic);
 std::string vertex_shader_source();
 // shaders/temporal_resolve.frag as compiled (#version, cloudmath.glsl resolved in).
 std::string temporal_resolve_shader_source();

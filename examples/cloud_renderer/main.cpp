@@ -559,7 +559,7 @@ int main(int argc, char** argv) {
                         s.description.c_str(), double(s.camera_altitude), double(s.pitch), double(s.sun_elevation),
                         double(s.coverage), double(s.cloud_type));
         return 0;
-    case run_mode::dump_shader: std::printf("%s", fragment_shader_source(o.var, o.sc.shape, o.compile_time, static_cast<clouds_pass>(o.pass)).c_str()); return 0;
+    case run_mode::dump_shader: std::printf("%s", fragment_shader_source(o.var, o.sc.shape, o.compile_time, static_cast<clouds_pass>(o.pass), o.sc.sky).c_str()); return 0;
     case run_mode::headless: return run_headless(o);
     case run_mode::cpu: return run_cpu(o);
     case run_mode::compare: return run_compare(o);

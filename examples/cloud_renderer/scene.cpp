@@ -1,5 +1,7 @@
 #include "scene.hpp"
 
+#include "physical_sky.hpp"
+
 #include "strict_number.hpp"
 
 #include <cloudmath/atmosphere.hpp>
@@ -124,20 +126,6 @@ void artistic_sky(const scene& s, frame_constants& f) {
     f.ambient_bottom = f.ground * 1.5f + 0.25f * f.ambient_top;
     f.aureole = 0.05f;
 }
-
-// Earth's air and its multiple-scattering LUT (32 x 32, Hillaire 2020's size), made once.
-struct physical_air {
-    cloudmath::atmosphere_parameters<float> air = cloudmath::earth_atmosphere<float>();
-    std::vector<glm::vec3> ms_lut = cloudmath::atmosphere_multiple_scattering_lut(air, 32, 32);
-    cloudmath::atmosphere_multiple_scattering_table<float> ms{&ms_lut, 32, 32};
-};
-const physical_air& earth_air() {
-    static const physical_air a;
-    return a;
-}
-
-// The sun above the air: a white 128 klux (REFERENCES.md), so radiance comes out in cd/m^2.
-constexpr float sun_lux = 128000.0f;
 
 float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 

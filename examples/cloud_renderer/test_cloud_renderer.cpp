@@ -6,6 +6,7 @@
 #include "cpu_renderer.hpp"
 #include "gl_renderer.hpp"
 #include "options.hpp"
+#include "physical_sky.hpp"
 
 #define DOCTEST_CONFIG_IMPLEMENT  // our main() below: skip (77) without OpenGL
 #include <cloudmath/atmosphere.hpp>
@@ -735,6 +736,30 @@ TEST_CASE("the physical sky: cloudmath's atmosphere in lux and cd/m^2, exposure 
     CHECK(luminance(set.sun_radiance) > 100.0f);
     CHECK(luminance(set.sky_zenith) < 0.5f * luminance(rise.sky_zenith));
     CHECK(set.ev100 < rise.ev100);
+    // The aerial-perspective table against atmosphere_inscatter between its nodes: directions
+    // from 1 to 60 degrees up all round, 3 to 120 km (the renderer's haze, physical_sky.hpp).
+    for (const char* name : {"sunrise", "sunset"}) {
+        const scene& s = *find_preset(name);
+        const frame_constants f = make_frame_constants(s);
+        const haze_table& t = physical_haze(s.camera_altitude, f.sun_dir);
+        double sum = 0.0, worst = 0.0;
+        int n = 0;
+        for (float el : {1.3f, 4.7f, 11.0f, 23.0f, 47.0f})
+            for (float az : {7.0f, 62.0f, 131.0f, 203.0f, 299.0f})
+                for (float d : {3100.0f, 17000.0f, 45000.0f, 118000.0f}) {
+                    const float e = el * 0.01745329f, a = az * 0.01745329f;
+                    const glm::vec3 dir(std::cos(e) * std::sin(a), std::sin(e), -std::cos(e) * std::cos(a));
+                    const glm::vec3 want =
+                        sun_lux * cloudmath::atmosphere_inscatter(earth_air().air, earth_air().ms, s.camera_altitude, dir, f.sun_dir, d, 32, 32).radiance;
+                    const double err = std::fabs(double(luminance(haze_lookup(t, dir, f.sun_dir, d))) / double(luminance(want)) - 1.0);
+                    sum += err * err;
+                    worst = std::max(worst, err);
+                    ++n;
+                }
+        MESSAGE(std::string(name) << ": the haze table against atmosphere_inscatter: rms " << std::sqrt(sum / n) << ", worst " << worst);
+        CHECK(std::sqrt(sum / n) < 0.05);
+        CHECK(worst < 0.15);
+    }
     // Both renderers draw it alike.
     if (!shared().gpu) return;
     for (const char* name : {"sunrise", "sunset"}) {

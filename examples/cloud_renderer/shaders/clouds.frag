@@ -77,6 +77,14 @@ uniform sampler2D u_weather;   // 256^2 RGB8: R coverage (the classic shape read
 uniform sampler2D u_weather_wide;  // 1024^2 RGB8: R coverage, G type, B top (the detailed shape)
 uniform sampler2D u_curl;      // 128^2 RGB8: curl noise, curl_bake_encode
 uniform sampler2D u_shadow_map;  // CR_SHADOW_MAP_SIZE^2 RGBA32F: (front, mean extinction, optical depth) of pass 2
+#ifdef CR_PHYSICAL_SKY
+// The physical sky's aerial perspective (physical_sky.hpp, defined by the host for
+// sky_model::physical): the atmosphere's in-scattered radiance by the view's zenith cosine,
+// its azimuth from the sun's and the distance, nodes in an (n_d n_az) x n_el RGB32F image.
+uniform sampler2D u_haze_table;
+uniform vec3 u_haze_table_size;  // n_d, n_az, n_el
+uniform float u_haze_table_distance;
+#endif
 
 // The passes (u_pass): 0 a full frame. 1 the shading pass of the temporal scheme
 // (temporal_resolve.frag), one pixel of every 4 x 4 block: the output pixel (i, j) shades the
@@ -303,6 +311,27 @@ float cr_ground_shadow(vec3 g) {
     return mix(CR_GROUND_SKY_SHARE, 1.0, cm_beer_shadow_transmittance(cr_shadow_lookup(uvd.xy), uvd.z));
 }
 
+#ifdef CR_PHYSICAL_SKY
+// The air's light between the camera and `distance` along dir: physical_sky.cpp's haze_lookup.
+vec3 cr_haze_node(int d, int az, int el, ivec3 size) { return texelFetch(u_haze_table, ivec2(d + size.x * az, el), 0).rgb; }
+vec3 cr_haze(vec3 dir, float distance) {
+    ivec3 size = ivec3(u_haze_table_size + 0.5);
+    float mu = clamp(dir.y, -1.0, 1.0);
+    float el = (0.5 + 0.5 * sign(mu) * sqrt(abs(mu))) * float(size.z - 1);
+    float h = length(dir.xz), hs = length(u_sun_dir.xz);
+    float cos_phi = h > 1e-6 && hs > 1e-6 ? clamp(dot(dir.xz, u_sun_dir.xz) / (h * hs), -1.0, 1.0) : 1.0;
+    float az = acos(cos_phi) / CM_PI * float(size.y - 1);
+    float d = sqrt(clamp(distance / u_haze_table_distance, 0.0, 1.0)) * float(size.x - 1);
+    ivec3 i0 = clamp(ivec3(vec3(d, az, el)), ivec3(0), size - 2);
+    vec3 f = clamp(vec3(d, az, el) - vec3(i0), 0.0, 1.0);
+    vec3 r00 = mix(cr_haze_node(i0.x, i0.y, i0.z, size), cr_haze_node(i0.x + 1, i0.y, i0.z, size), f.x);
+    vec3 r10 = mix(cr_haze_node(i0.x, i0.y + 1, i0.z, size), cr_haze_node(i0.x + 1, i0.y + 1, i0.z, size), f.x);
+    vec3 r01 = mix(cr_haze_node(i0.x, i0.y, i0.z + 1, size), cr_haze_node(i0.x + 1, i0.y, i0.z + 1, size), f.x);
+    vec3 r11 = mix(cr_haze_node(i0.x, i0.y + 1, i0.z + 1, size), cr_haze_node(i0.x + 1, i0.y + 1, i0.z + 1, size), f.x);
+    return mix(mix(r00, r10, f.y), mix(r01, r11, f.y), f.z);
+}
+#endif
+
 vec3 cr_background(vec3 dir) {
     vec2 ground = cm_ray_sphere_intersect_altitude(u_cam_altitude, dir.y, u_planet_radius, 0.0);
     if (ground.x >= 0.0 && ground.y > ground.x) return u_shadows != 0 ? u_ground * cr_ground_shadow(dir * ground.x) : u_ground;
@@ -494,7 +523,11 @@ void main() {
         if (opacity > 0.0) cloud_depth = depth_sum / opacity;
         if (u_haze != 0 && opacity > 0.0) {
             vec3 tau_air = cm_air_optical_depth(u_cam_altitude, dir.y, depth_sum / opacity);
+#ifdef CR_PHYSICAL_SKY
+            acc.luminance = acc.luminance * exp(-tau_air) + cr_haze(dir, depth_sum / opacity) * opacity;
+#else
             acc.luminance = cm_aerial_perspective(acc.luminance, u_sky_horizon * opacity, tau_air);
+#endif
         }
     }
     float alpha = 1.0 - (acc.transmittance.r + acc.transmittance.g + acc.transmittance.b) / 3.0;

@@ -1,0 +1,86 @@
+// physical_sky.cpp: see physical_sky.hpp.
+#include "physical_sky.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <tuple>
+
+namespace cloud_renderer {
+namespace {
+
+constexpr float pi = 3.14159265358979f;
+
+// The table coordinates of a direction and distance (physical_sky.hpp), as clouds.frag's
+// cr_haze_coordinates computes them.
+glm::vec3 coordinates(const haze_table& t, const glm::vec3& dir, const glm::vec3& sun_dir, float distance) {
+    const float mu = std::clamp(dir.y, -1.0f, 1.0f);
+    const float el = (0.5f + 0.5f * std::copysign(std::sqrt(std::fabs(mu)), mu)) * float(t.n_el - 1);
+    const float h = std::sqrt(dir.x * dir.x + dir.z * dir.z), hs = std::sqrt(sun_dir.x * sun_dir.x + sun_dir.z * sun_dir.z);
+    const float cos_phi = h > 1e-6f && hs > 1e-6f ? std::clamp((dir.x * sun_dir.x + dir.z * sun_dir.z) / (h * hs), -1.0f, 1.0f) : 1.0f;
+    const float az = std::acos(cos_phi) / pi * float(t.n_az - 1);
+    const float d = std::sqrt(std::clamp(distance / t.max_distance, 0.0f, 1.0f)) * float(t.n_d - 1);
+    return {d, az, el};
+}
+
+haze_table make_table(float camera_altitude, const glm::vec3& sun_dir) {
+    const physical_air& a = earth_air();
+    haze_table t;
+    t.texels.resize(static_cast<std::size_t>(t.n_d * t.n_az * t.n_el));
+    // The sun at azimuth 0 in the table's frame: only its elevation matters.
+    const glm::vec3 sun(std::sqrt(std::max(1.0f - sun_dir.y * sun_dir.y, 0.0f)), sun_dir.y, 0.0f);
+    for (int j = 0; j < t.n_el; ++j) {
+        const float s = 2.0f * float(j) / float(t.n_el - 1) - 1.0f;  // sign(mu) sqrt|mu|
+        const float mu = std::copysign(s * s, s);
+        const float sin_zenith = std::sqrt(std::max(1.0f - mu * mu, 0.0f));
+        for (int i = 0; i < t.n_az; ++i) {
+            const float phi = pi * float(i) / float(t.n_az - 1);
+            const glm::vec3 dir(sin_zenith * std::cos(phi), mu, sin_zenith * std::sin(phi));
+            for (int k = 0; k < t.n_d; ++k) {
+                const float x = float(k) / float(t.n_d - 1);
+                const float d = t.max_distance * x * x;
+                const glm::vec3 L =
+                    k == 0 ? glm::vec3(0.0f)
+                           : sun_lux * cloudmath::atmosphere_inscatter(a.air, a.ms, camera_altitude, dir, sun, d, 16, 16).radiance;
+                t.texels[static_cast<std::size_t>(j * t.n_d * t.n_az + i * t.n_d + k)] = L;
+            }
+        }
+    }
+    return t;
+}
+
+}  // namespace
+
+const physical_air& earth_air() {
+    static const physical_air a;
+    return a;
+}
+
+const haze_table& physical_haze(float camera_altitude, const glm::vec3& sun_dir) {
+    static std::mutex mutex;
+    static std::map<std::tuple<float, float, float, float>, std::unique_ptr<haze_table>> tables;
+    const std::lock_guard<std::mutex> lock(mutex);
+    auto& slot = tables[{camera_altitude, sun_dir.x, sun_dir.y, sun_dir.z}];
+    if (!slot) slot = std::make_unique<haze_table>(make_table(camera_altitude, sun_dir));
+    return *slot;
+}
+
+glm::vec3 haze_lookup(const haze_table& t, const glm::vec3& dir, const glm::vec3& sun_dir, float distance) {
+    const glm::vec3 c = coordinates(t, dir, sun_dir, distance);
+    const int d0 = std::clamp(int(c.x), 0, t.n_d - 2), a0 = std::clamp(int(c.y), 0, t.n_az - 2), e0 = std::clamp(int(c.z), 0, t.n_el - 2);
+    const float fd = std::clamp(c.x - float(d0), 0.0f, 1.0f), fa = std::clamp(c.y - float(a0), 0.0f, 1.0f),
+                fe = std::clamp(c.z - float(e0), 0.0f, 1.0f);
+    const auto at = [&](int d, int az, int el) {
+        return t.texels[static_cast<std::size_t>(el * t.n_d * t.n_az + az * t.n_d + d)];
+    };
+    const auto row = [&](int az, int el) { return glm::mix(at(d0, az, el), at(d0 + 1, az, el), fd); };
+    const glm::vec3 lower = glm::mix(row(a0, e0), row(a0 + 1, e0), fa);
+    const glm::vec3 upper = glm::mix(row(a0, e0 + 1), row(a0 + 1, e0 + 1), fa);
+    return glm::mix(lower, upper, fe);
+}
+
+}  // namespace cloud_renderer

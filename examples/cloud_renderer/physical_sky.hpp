@@ -1,0 +1,51 @@
+// physical_sky.hpp: what the physical sky (scene.hpp's sky_model::physical) takes from
+// cloudmath's atmosphere beyond the frame constants: Earth's air with its multiple-scattering
+// LUT, made once, and the aerial-perspective table, the light the air scatters into a view ray
+// between the camera and a cloud, by direction and distance (Hillaire 2020's aerial-perspective
+// volume, here over the camera's whole sphere of directions: the sky is symmetric about the
+// sun's vertical plane, so two angles and a distance).
+//
+// Table: nodes over the view's zenith cosine mu (c = (0.5 + 0.5 sign(mu) sqrt|mu|) (n_el - 1):
+// crowded at the horizon), its azimuth from the sun's, phi in [0, pi] (c = phi / pi (n_az - 1)),
+// and the distance (c = sqrt(d / max_distance) (n_d - 1), 0 at the camera); each node
+// sun_lux x atmosphere_inscatter's radiance (cd/m^2). Stored as a width n_d n_az by height n_el
+// image (x = d + n_d az, y = el) that clouds.frag reads with texelFetch and interpolates
+// exactly as haze_lookup does.
+#ifndef CLOUD_RENDERER_PHYSICAL_SKY_HPP
+#define CLOUD_RENDERER_PHYSICAL_SKY_HPP
+
+#include <cloudmath/atmosphere.hpp>
+
+#include <glm/vec3.hpp>
+
+#include <vector>
+
+namespace cloud_renderer {
+
+// The sun above the air: a white 128 klux (REFERENCES.md), so radiance comes out in cd/m^2.
+inline constexpr float sun_lux = 128000.0f;
+
+struct physical_air {
+    cloudmath::atmosphere_parameters<float> air = cloudmath::earth_atmosphere<float>();
+    std::vector<glm::vec3> ms_lut = cloudmath::atmosphere_multiple_scattering_lut(air, 32, 32);  // Hillaire's 32 x 32
+    cloudmath::atmosphere_multiple_scattering_table<float> ms{&ms_lut, 32, 32};
+};
+// Earth's air and its multiple-scattering LUT, made at the first call (about 0.45 s).
+const physical_air& earth_air();
+
+struct haze_table {
+    int n_d = 16, n_az = 16, n_el = 32;
+    float max_distance = 160000.0f;  // metres; farther reads the last node
+    std::vector<glm::vec3> texels;   // n_d n_az x n_el, row-major
+};
+// The table for a camera at `camera_altitude` and a sun in direction sun_dir (camera frame,
+// +y up); made once per pair and kept (about 40 ms each).
+const haze_table& physical_haze(float camera_altitude, const glm::vec3& sun_dir);
+
+// The in-scattered radiance (cd/m^2) between the camera and `distance` metres along the unit
+// direction dir, interpolated from the table's 8 nearest nodes.
+glm::vec3 haze_lookup(const haze_table& t, const glm::vec3& dir, const glm::vec3& sun_dir, float distance);
+
+}  // namespace cloud_renderer
+
+#endif  // CLOUD_RENDERER_PHYSICAL_SKY_HPP
