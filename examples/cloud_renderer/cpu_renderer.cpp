@@ -263,9 +263,10 @@ struct pixel_program {
                                                         *model, phase_fn)
                         : cm::multiple_scattering_with(tau_light, mu, k.ms_a, k.ms_b, k.ms_c, v.octaves, phase_fn);
         if (v.powder) sun *= glm::mix(2.0f * cm::powder(tau_light, 2.0f), 1.0f, 0.5f + 0.5f * mu);
-        if (!v.occluded_ambient) return k.sun_radiance * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
+        const vec3 sun_light = sun_at_height(k, haze != nullptr, h);  // the physical sky's sun by height
+        if (!v.occluded_ambient) return sun_light * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
         const vec2 o = sky_occlusion(tau_light, tau_behind);
-        return k.sun_radiance * sun + glm::mix(k.ambient_bottom * o.y, k.ambient_top * o.x, h);
+        return sun_light * sun + glm::mix(k.ambient_bottom * o.y, k.ambient_top * o.x, h);
     }
 
     // variant::occluded_ambient: what reaches the sample of the sky light from above (x) and

@@ -417,6 +417,7 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
         u.i1("u_haze_table", 6);
         u.v3("u_haze_table_size", glm::vec3(float(t.n_d), float(t.n_az), float(t.n_el)));
         u.f1("u_haze_table_distance", t.max_distance);
+        for (int i = 0; i < sun_heights; ++i) u.v3(("u_sun_by_height[" + std::to_string(i) + "]").c_str(), k.sun_by_height[i]);
     }
     return program;
 }

@@ -12,6 +12,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <optional>
@@ -137,8 +138,13 @@ void physical_sky(const scene& s, frame_constants& f) {
     const auto sky = [&](float altitude, glm::vec3 dir) {
         return sun_lux * cloudmath::atmosphere_sky_radiance(a.air, a.ms, altitude, dir, f.sun_dir);
     };
-    // The clouds' sun: its illuminance at the band's middle (one colour for the whole layer).
+    // The sun: its illuminance at the band's middle (the sky's glow and disc), and on the
+    // clouds by height in the layer.
     f.sun_radiance = cloudmath::atmosphere_sun_illuminance(a.air, band_middle, f.sun_dir.y, glm::vec3(sun_lux));
+    for (int i = 0; i < sun_heights; ++i) {
+        const float altitude = s.layer_bottom + (s.layer_top - s.layer_bottom) * float(i) / float(sun_heights - 1);
+        f.sun_by_height[i] = cloudmath::atmosphere_sun_illuminance(a.air, altitude, f.sun_dir.y, glm::vec3(sun_lux));
+    }
     // The sky gradient: the zenith, and the horizon (2 degrees up) averaged over 8 azimuths.
     f.sky_zenith = sky(camera, glm::vec3(0.0f, 1.0f, 0.0f));
     glm::vec3 horizon(0.0f);
@@ -181,6 +187,13 @@ void physical_sky(const scene& s, frame_constants& f) {
 
 float auto_ev100(const scene& s) { return make_frame_constants(s).ev100; }
 
+glm::vec3 sun_at_height(const frame_constants& k, bool physical, float h) {
+    if (!physical) return k.sun_radiance;
+    const float x = cloudmath::saturate(h) * float(sun_heights - 1);
+    const int i = std::min(int(x), sun_heights - 2);
+    return glm::mix(k.sun_by_height[i], k.sun_by_height[i + 1], x - float(i));
+}
+
 float display_exposure(const scene& s) { return make_frame_constants(s).exposure; }
 
 frame_constants make_frame_constants(const scene& s) {
@@ -202,6 +215,7 @@ frame_constants make_frame_constants(const scene& s) {
         f.exposure = cloudmath::exposure_from_ev100(f.ev100);
     } else {
         artistic_sky(s, f);
+        for (glm::vec3& sun : f.sun_by_height) sun = f.sun_radiance;
         f.ev100 = 0.0f;
         f.exposure = s.exposure;
     }

@@ -134,7 +134,7 @@ enum class sky_model { artistic, physical };
 // The sun and sky: `artistic`, the renderer's hand-made colours (a sky gradient with a glow
 // around the sun, a sun reddened by a Kasten-Young air mass, display units, the exposure
 // setting), or `physical`, from cloudmath's atmosphere (atmosphere.hpp, Earth's air): the sun's
-// illuminance in lux at the cloud band's middle altitude (128 klux above the air), the sky's
+// illuminance in lux by height in the layer (128 klux above the air), the sky's
 // zenith and horizon luminance (cd/m^2) with an aureole fitted to the sky near the sun, the
 // ground and the clouds' ambient light from the same sky, and the display exposure from EV100
 // (exposure_from_ev100). See make_frame_constants and docs/atmosphere.md.
@@ -255,6 +255,11 @@ struct frame_constants {
     glm::vec3 sky_zenith, sky_horizon, ground;
     float sun_angular_radius;        // the sun disc's angular radius (radians)
     float aureole;                   // the glow around the sun: aureole sun_radiance HG(mu, 0.75) in the sky
+    // The physical sky's sun on the clouds by height in the layer: its illuminance at altitudes
+    // layer_bottom + h (layer_top - layer_bottom), h = i / (sun_heights - 1), linear between
+    // (at sunset the layer's bottom lies in the Earth's shadow while its top is lit); unused
+    // with the artistic sky, whose clouds see sun_radiance everywhere.
+    glm::vec3 sun_by_height[8];
     float exposure;                  // the tonemap's (display_exposure)
     float ev100;                     // the physical sky's EV100 (0 with the artistic sky)
     float phase_g, phase_g_back, phase_w;   // HG / Cornette-Shanks g; dual lobe second g, weight
@@ -273,6 +278,11 @@ struct frame_constants {
 };
 
 frame_constants make_frame_constants(const scene& s);
+// Entries of frame_constants::sun_by_height.
+inline constexpr int sun_heights = 8;
+// The sun on a cloud at height fraction h of the layer: sun_by_height interpolated with the
+// physical sky, sun_radiance with the artistic one (clouds.frag's cr_sun_at).
+glm::vec3 sun_at_height(const frame_constants& k, bool physical, float h);
 
 // The altitudes (bottom, top) outside which the scene's field has no density: the cloud
 // type's height_range_for_type, or with the detailed shape the union over the types the

@@ -733,6 +733,15 @@ TEST_CASE("the physical sky: cloudmath's atmosphere in lux and cd/m^2, exposure 
     CHECK(luminance(rise.sky_zenith) == doctest::Approx(298.4).epsilon(0.02));
     const frame_constants set = make_frame_constants(*find_preset("sunset"));
     CHECK(set.sun_radiance.x > 3.0f * set.sun_radiance.z);
+    // By height in the 4-9 km layer the sunset's sun grows: the bottom's grazes the ground
+    // through far more air. sun_at_height interpolates the nodes; the artistic sky ignores them.
+    for (int i = 1; i < sun_heights; ++i) CHECK(luminance(set.sun_by_height[i]) > luminance(set.sun_by_height[i - 1]));
+    CHECK(luminance(set.sun_by_height[0]) < 0.5f * luminance(set.sun_by_height[sun_heights - 1]));
+    CHECK(sun_at_height(set, true, 0.0f) == set.sun_by_height[0]);
+    CHECK(sun_at_height(set, true, 1.0f) == set.sun_by_height[sun_heights - 1]);
+    CHECK(luminance(sun_at_height(set, true, 0.5f)) > luminance(set.sun_by_height[3]));
+    CHECK(luminance(sun_at_height(set, true, 0.5f)) < luminance(set.sun_by_height[4]));
+    CHECK(sun_at_height(art, false, 0.3f) == art.sun_radiance);
     CHECK(luminance(set.sun_radiance) > 100.0f);
     CHECK(luminance(set.sky_zenith) < 0.5f * luminance(rise.sky_zenith));
     CHECK(set.ev100 < rise.ev100);

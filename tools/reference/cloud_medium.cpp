@@ -253,6 +253,14 @@ lighting make_cloud_lighting(const cr::scene& s) {
     lighting l;
     l.sun_direction = {k.sun_dir.x, k.sun_dir.y, k.sun_dir.z};
     l.sun_irradiance = {k.sun_radiance.r, k.sun_radiance.g, k.sun_radiance.b};
+    if (s.sky == cr::sky_model::physical)
+        // The renderer's sun by height in the layer (scene.hpp's sun_at_height).
+        l.sun_at = [s, k](const vec3& p) {
+            const float altitude = cm::point_altitude(glm::vec3(static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)),
+                                                      s.camera_altitude, s.planet_radius);
+            const glm::vec3 c = cr::sun_at_height(k, true, cm::height_fraction(altitude, s.layer_bottom, s.layer_top));
+            return rgb{c.r, c.g, c.b};
+        };
     l.escaped = [k](const vec3&, const vec3& d, bool ground) {
         const glm::vec3 c = ground ? k.ground
                                    : cr::sky_radiance(k, glm::vec3(static_cast<float>(d.x), static_cast<float>(d.y),

@@ -157,7 +157,7 @@ rgb path_tracer::sample(const camera_ray& ray, random_stream& rng) const {
             const double tr = transmittance(pos, sun_, to_sun.distance, rng);
             if (tr > 0.0)
                 add_scaled(radiance, throughput * albedo_ * phase_.evaluate(dot(dir, sun_)) * tr,
-                           light_.sun_irradiance);
+                           light_.sun_at ? light_.sun_at(pos) : light_.sun_irradiance);
         }
         if (max_order_ != 0 && order >= max_order_) break;
         throughput *= albedo_;

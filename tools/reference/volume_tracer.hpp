@@ -136,6 +136,9 @@ private:
 struct lighting {
     vec3 sun_direction{0.0, 0.0, 1.0};  // toward the sun, normalised internally
     rgb sun_irradiance{1.0, 1.0, 1.0};  // perpendicular irradiance
+    // Optional: the sun's perpendicular irradiance at a point, when it varies (the renderer's
+    // physical sky: by altitude); replaces sun_irradiance when set.
+    std::function<rgb(const vec3& p)> sun_at;
     std::function<rgb(const vec3& p, const vec3& d, bool ground)> escaped;
 };
 

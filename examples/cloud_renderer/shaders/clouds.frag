@@ -84,6 +84,7 @@ uniform sampler2D u_shadow_map;  // CR_SHADOW_MAP_SIZE^2 RGBA32F: (front, mean e
 uniform sampler2D u_haze_table;
 uniform vec3 u_haze_table_size;  // n_d, n_az, n_el
 uniform float u_haze_table_distance;
+uniform vec3 u_sun_by_height[8];  // the sun on the clouds by height in the layer (frame_constants::sun_by_height)
 #endif
 
 // The passes (u_pass): 0 a full frame. 1 the shading pass of the temporal scheme
@@ -106,6 +107,18 @@ float cr_phase(float mu, float scale);
 #define CM_MS_PHASE cr_phase
 #define CM_DIFFUSION_PHASE cr_phase
 #include "cloudmath.glsl"
+
+// The sun on a cloud at height fraction h of the layer: with the physical sky, its
+// illuminance by height (scene.cpp's sun_at_height); else the one sun_radiance.
+#ifdef CR_PHYSICAL_SKY
+vec3 cr_sun_at(float h) {
+    float x = cm_saturate(h) * 7.0;
+    int i = min(int(x), 6);
+    return mix(u_sun_by_height[i], u_sun_by_height[i + 1], x - float(i));
+}
+#else
+vec3 cr_sun_at(float h) { return u_sun_radiance; }
+#endif
 
 const int CR_SKIP_BLOCK = 4;  // steps per empty-space probe (scene.hpp's skip_block)
 const int CR_LIGHT_FAR_STEP = 3;          // scene.hpp's light_far_step
@@ -277,10 +290,10 @@ vec3 cr_in_scattering(float tau_light, float tau_behind, float tau_view, float m
         // from the sun and gone looking into it (where the dark edges are not seen).
         sun *= mix(2.0 * cm_powder(tau_light, 2.0), 1.0, 0.5 + 0.5 * mu);
     }
-    if (u_occluded_ambient == 0) return u_sun_radiance * sun + mix(u_ambient_bottom, u_ambient_top, h);
+    if (u_occluded_ambient == 0) return cr_sun_at(h) * sun + mix(u_ambient_bottom, u_ambient_top, h);
     // Vertical optical depths above and below from the slanted light estimates.
     float up = max(u_sun_dir.y, 0.0);
-    return u_sun_radiance * sun + mix(u_ambient_bottom * cm_diffuse_transmittance(tau_behind * up, u_phase_mean_cosine),
+    return cr_sun_at(h) * sun + mix(u_ambient_bottom * cm_diffuse_transmittance(tau_behind * up, u_phase_mean_cosine),
                                       u_ambient_top * cm_diffuse_transmittance(tau_light * up, u_phase_mean_cosine), h);
 }
 
