@@ -55,6 +55,7 @@
 #include "core.hpp"
 #include "geometry.hpp"
 #include "phase.hpp"
+#include "transmittance.hpp"
 
 namespace cloudmath {
 
@@ -325,9 +326,9 @@ template <class T>
             const T mu_sy = detail::clamp((r * mu_s + t * nu) / (air.bottom_radius + hy), T(-1), T(1));
             const glm::vec<3, T> sigma_t = atmosphere_extinction(air, hy);
             const glm::vec<3, T> sigma_s = atmosphere_scattering_coefficient(air, hy);
-            const glm::vec<3, T> step_t(std::exp(-sigma_t.x * ds), std::exp(-sigma_t.y * ds), std::exp(-sigma_t.z * ds));
-            // (1 - e^-sigma ds)/sigma, sigma > 0 for any air with Rayleigh scattering.
-            const glm::vec<3, T> integral = (glm::vec<3, T>(T(1)) - step_t) / glm::max(sigma_t, glm::vec<3, T>(T(1e-30)));
+            const glm::vec<3, T> step_t = beer_lambert(sigma_t * ds);
+            // (1 - e^-sigma ds)/sigma without the textbook form's loss in thin air (core.hpp).
+            const glm::vec<3, T> integral = one_minus_exp_neg_over_x(sigma_t * ds) * ds;
             const glm::vec<3, T> sun_t = atmosphere_transmittance(air, hy, mu_sy, sun_steps);
             L += throughput * sigma_s * sun_t * integral * inv_four_pi_v<T>;
             F += throughput * sigma_s * integral;
@@ -454,8 +455,8 @@ template <class T>
         if (use_ms)
             source += atmosphere_scattering_coefficient(air, hy) *
                       atmosphere_multiple_scattering_from_lut(air, *ms.texels, ms.width, ms.height, hy, mu_sy);
-        const glm::vec<3, T> step_t(std::exp(-sigma_t.x * ds), std::exp(-sigma_t.y * ds), std::exp(-sigma_t.z * ds));
-        const glm::vec<3, T> integral = (glm::vec<3, T>(T(1)) - step_t) / glm::max(sigma_t, glm::vec<3, T>(T(1e-30)));
+        const glm::vec<3, T> step_t = beer_lambert(sigma_t * ds);
+        const glm::vec<3, T> integral = one_minus_exp_neg_over_x(sigma_t * ds) * ds;
         out.radiance += out.transmittance * source * integral;
         out.transmittance *= step_t;
     }

@@ -29,6 +29,7 @@ inline constexpr file files[] = {
 #include "core.glsl"
 #include "geometry.glsl"
 #include "phase.glsl"
+#include "transmittance.glsl"
 
 // atmosphere_parameters (atmosphere.hpp), field for field.
 struct CmAtmosphere {
@@ -73,9 +74,9 @@ bool cm_atmosphere_ray_hits_ground(CmAtmosphere air, float altitude, float cos_z
     return t.x >= 0.0 && t.y >= t.x;
 }
 
-// Optical depth along `distance` metres of the ray: the midpoint rule over `steps` steps.
 )cm_glsl"
-     R"cm_glsl(vec3 cm_atmosphere_optical_depth(CmAtmosphere air, float altitude, float cos_zenith, float distance, int steps) {
+     R"cm_glsl(// Optical depth along `distance` metres of the ray: the midpoint rule over `steps` steps.
+vec3 cm_atmosphere_optical_depth(CmAtmosphere air, float altitude, float cos_zenith, float distance, int steps) {
     int n = max(steps, 1);
     float ds = max(distance, 0.0) / float(n);
     vec3 tau = vec3(0.0);
@@ -134,9 +135,9 @@ vec3 cm_atmosphere_scattering(CmAtmosphere air, float altitude, float cos_theta)
 }
 
 // The sun's illuminance on a plane facing it: sun_illuminance (above the air) x transmittance.
-vec3 cm_atmosphere_sun_illuminance(CmAtmosphere air, float altitude, float cos_sun_zenith, vec3 sun_illuminance) {
 )cm_glsl"
-     R"cm_glsl(    return sun_illuminance * cm_atmosphere_transmittance(air, altitude, cos_sun_zenith, 64);
+     R"cm_glsl(vec3 cm_atmosphere_sun_illuminance(CmAtmosphere air, float altitude, float cos_sun_zenith, vec3 sun_illuminance) {
+    return sun_illuminance * cm_atmosphere_transmittance(air, altitude, cos_sun_zenith, 64);
 }
 
 // Hillaire 2020's Psi_ms (see atmosphere_multiple_scattering in atmosphere.hpp): every order of
@@ -172,8 +173,8 @@ vec3 cm_atmosphere_multiple_scattering(CmAtmosphere air, float altitude, float c
             float mu_sy = clamp((r * mu_s + t * nu) / (air.bottom_radius + hy), -1.0, 1.0);
             vec3 sigma_t = cm_atmosphere_extinction(air, hy);
             vec3 sigma_s = cm_atmosphere_scattering_coefficient(air, hy);
-            vec3 step_t = exp(-sigma_t * ds);
-            vec3 integral = (vec3(1.0) - step_t) / max(sigma_t, vec3(1e-30));
+            vec3 step_t = cm_beer_lambert(sigma_t * ds);
+            vec3 integral = cm_one_minus_exp_neg_over_x(sigma_t * ds) * ds;
             vec3 sun_t = cm_atmosphere_transmittance(air, hy, mu_sy, sun_steps);
             L += throughput * sigma_s * sun_t * integral * CM_INV_FOUR_PI;
             F += throughput * sigma_s * integral;
@@ -195,9 +196,9 @@ vec3 cm_atmosphere_multiple_scattering(CmAtmosphere air, float altitude, float c
 vec2 cm_atmosphere_multiple_scattering_lut_uv(CmAtmosphere air, float altitude, float cos_sun_zenith, vec2 size) {
     float x_mu = cm_saturate(0.5 + 0.5 * cos_sun_zenith);
     float x_h = cm_saturate(altitude / (air.top_radius - air.bottom_radius));
-    return vec2(0.5 / size.x + x_mu * (1.0 - 1.0 / size.x), 0.5 / size.y + x_h * (1.0 - 1.0 / size.y));
 )cm_glsl"
-     R"cm_glsl(}
+     R"cm_glsl(    return vec2(0.5 / size.x + x_mu * (1.0 - 1.0 / size.x), 0.5 / size.y + x_h * (1.0 - 1.0 / size.y));
+}
 vec2 cm_atmosphere_multiple_scattering_lut_altitude_mu(CmAtmosphere air, vec2 uv, vec2 size) {
     float x_mu = cm_saturate((uv.x - 0.5 / size.x) / (1.0 - 1.0 / size.x));
     float x_h = cm_saturate((uv.y - 0.5 / size.y) / (1.0 - 1.0 / size.y));

@@ -13,6 +13,7 @@
 #include "core.glsl"
 #include "geometry.glsl"
 #include "phase.glsl"
+#include "transmittance.glsl"
 
 // atmosphere_parameters (atmosphere.hpp), field for field.
 struct CmAtmosphere {
@@ -154,8 +155,8 @@ vec3 cm_atmosphere_multiple_scattering(CmAtmosphere air, float altitude, float c
             float mu_sy = clamp((r * mu_s + t * nu) / (air.bottom_radius + hy), -1.0, 1.0);
             vec3 sigma_t = cm_atmosphere_extinction(air, hy);
             vec3 sigma_s = cm_atmosphere_scattering_coefficient(air, hy);
-            vec3 step_t = exp(-sigma_t * ds);
-            vec3 integral = (vec3(1.0) - step_t) / max(sigma_t, vec3(1e-30));
+            vec3 step_t = cm_beer_lambert(sigma_t * ds);
+            vec3 integral = cm_one_minus_exp_neg_over_x(sigma_t * ds) * ds;
             vec3 sun_t = cm_atmosphere_transmittance(air, hy, mu_sy, sun_steps);
             L += throughput * sigma_s * sun_t * integral * CM_INV_FOUR_PI;
             F += throughput * sigma_s * integral;

@@ -19,6 +19,7 @@
 #include "core.hlsl"
 #include "geometry.hlsl"
 #include "phase.hlsl"
+#include "transmittance.hlsl"
 
 // atmosphere_parameters (atmosphere.hpp), field for field.
 struct CmAtmosphere {
@@ -176,8 +177,8 @@ float3 cm_atmosphere_multiple_scattering(CmAtmosphere air, float altitude, float
             float mu_sy = clamp((r * mu_s + t * nu) / (air.bottom_radius + hy), -1.0, 1.0);
             float3 sigma_t = cm_atmosphere_extinction(air, hy);
             float3 sigma_s = cm_atmosphere_scattering_coefficient(air, hy);
-            float3 step_t = exp(-sigma_t * ds);
-            float3 integral = (float3(1.0, 1.0, 1.0) - step_t) / max(sigma_t, float3(1e-30, 1e-30, 1e-30));
+            float3 step_t = cm_beer_lambert(sigma_t * ds);
+            float3 integral = cm_one_minus_exp_neg_over_x(sigma_t * ds) * ds;
             float3 sun_t = cm_atmosphere_transmittance(air, hy, mu_sy, sun_steps);
             L += throughput * sigma_s * sun_t * integral * CM_INV_FOUR_PI;
             F += throughput * sigma_s * integral;

@@ -4,7 +4,7 @@
 // keeps the name, later ones add their parameter types (cm_saturate_v3, docs/shading_languages.md).
 // The comments below are the GLSL twin's: docs/shading_languages.md says what its #include,
 // #define configuration and overloads become in WGSL.
-// Requires, before this file: core.wgsl, geometry.wgsl, phase.wgsl.
+// Requires, before this file: core.wgsl, geometry.wgsl, phase.wgsl, transmittance.wgsl.
 //
 // cloudmath/glsl/atmosphere.glsl: GLSL twin of cloudmath/atmosphere.hpp: a planet's air
 // (CmAtmosphere, Earth's from cm_earth_atmosphere()), its extinction at an altitude, the
@@ -160,8 +160,8 @@ fn cm_atmosphere_multiple_scattering(air: CmAtmosphere, altitude: f32, cos_sun_z
             let mu_sy: f32 = clamp((r * mu_s + t * nu) / (air.bottom_radius + hy), -1.0, 1.0);
             let sigma_t: vec3f = cm_atmosphere_extinction(air, hy);
             let sigma_s: vec3f = cm_atmosphere_scattering_coefficient(air, hy);
-            let step_t: vec3f = exp(-sigma_t * ds);
-            let integral: vec3f = (vec3f(1.0) - step_t) / max(sigma_t, vec3f(1e-30));
+            let step_t: vec3f = cm_beer_lambert_v3(sigma_t * ds);
+            let integral: vec3f = cm_one_minus_exp_neg_over_x_v3(sigma_t * ds) * ds;
             let sun_t: vec3f = cm_atmosphere_transmittance(air, hy, mu_sy, sun_steps);
             L += throughput * sigma_s * sun_t * integral * CM_INV_FOUR_PI;
             F += throughput * sigma_s * integral;
