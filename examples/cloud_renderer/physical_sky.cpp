@@ -5,10 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <memory>
-#include <mutex>
-#include <tuple>
 
 namespace cloud_renderer {
 namespace {
@@ -61,12 +57,8 @@ const physical_air& earth_air() {
 }
 
 const haze_table& physical_haze(float camera_altitude, const glm::vec3& sun_dir) {
-    static std::mutex mutex;
-    static std::map<std::tuple<float, float, float, float>, std::unique_ptr<haze_table>> tables;
-    const std::lock_guard<std::mutex> lock(mutex);
-    auto& slot = tables[{camera_altitude, sun_dir.x, sun_dir.y, sun_dir.z}];
-    if (!slot) slot = std::make_unique<haze_table>(make_table(camera_altitude, sun_dir));
-    return *slot;
+    return made_once<haze_table>({camera_altitude, sun_dir.x, sun_dir.y, sun_dir.z},
+                                 [&] { return make_table(camera_altitude, sun_dir); });
 }
 
 glm::vec3 haze_lookup(const haze_table& t, const glm::vec3& dir, const glm::vec3& sun_dir, float distance) {

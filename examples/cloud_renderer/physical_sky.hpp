@@ -18,6 +18,9 @@
 
 #include <glm/vec3.hpp>
 
+#include <map>
+#include <memory>
+#include <mutex>
 #include <vector>
 
 namespace cloud_renderer {
@@ -39,8 +42,21 @@ struct haze_table {
     std::vector<glm::vec3> texels;   // n_d n_az x n_el, row-major
 };
 // The table for a camera at `camera_altitude` and a sun in direction sun_dir (camera frame,
-// +y up); made once per pair and kept (about 40 ms each).
+// +y up); made once per pair and kept (made_once; about 40 ms each).
 const haze_table& physical_haze(float camera_altitude, const glm::vec3& sun_dir);
+
+// made_once<Value>(key, make): make() the first time `key` is asked for, then the kept value
+// (one table per Value type, thread-safe). What the physical sky derives from the sun and the
+// scene's geometry costs milliseconds to tenths of a second; renderers ask for it every frame.
+template <class Value, class Make>
+const Value& made_once(const std::vector<float>& key, Make&& make) {
+    static std::mutex mutex;
+    static std::map<std::vector<float>, std::unique_ptr<Value>> kept;
+    const std::lock_guard<std::mutex> lock(mutex);
+    std::unique_ptr<Value>& slot = kept[key];
+    if (!slot) slot = std::make_unique<Value>(make());
+    return *slot;
+}
 
 // The in-scattered radiance (cd/m^2) between the camera and `distance` metres along the unit
 // direction dir, interpolated from the table's 8 nearest nodes.

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <cstdlib>
 #include <optional>
 #include <sstream>
@@ -130,8 +131,9 @@ void artistic_sky(const scene& s, frame_constants& f) {
 
 float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
-// The physical sky (scene.hpp's sky_model::physical), from cloudmath's atmosphere.
-void physical_sky(const scene& s, frame_constants& f) {
+// The physical sky (scene.hpp's sky_model::physical), from cloudmath's atmosphere: about 110
+// sky marches, so physical_sky keeps it per sun and geometry.
+void compute_physical_sky(const scene& s, frame_constants& f) {
     const physical_air& a = earth_air();
     const float band_middle = 0.5f * (f.band.x + f.band.y);
     const float camera = std::fmax(s.camera_altitude, 0.0f);
@@ -181,6 +183,25 @@ void physical_sky(const scene& s, frame_constants& f) {
     f.ground = a.air.ground_albedo / 3.14159265f * (sun_ground * std::fmax(f.sun_dir.y, 0.0f) + irradiance);
     f.ambient_top = mean_up;
     f.ambient_bottom = f.ground;
+}
+
+// compute_physical_sky's fields of f, made once per sun direction and scene geometry.
+void physical_sky(const scene& s, frame_constants& f) {
+    const frame_constants& sky = made_once<frame_constants>(
+        {s.camera_altitude, s.sun_elevation, f.sun_dir.x, f.sun_dir.y, f.sun_dir.z, f.band.x, f.band.y, s.layer_bottom, s.layer_top},
+        [&] {
+            frame_constants g = f;
+            compute_physical_sky(s, g);
+            return g;
+        });
+    f.sun_radiance = sky.sun_radiance;
+    std::copy(std::begin(sky.sun_by_height), std::end(sky.sun_by_height), std::begin(f.sun_by_height));
+    f.sky_zenith = sky.sky_zenith;
+    f.sky_horizon = sky.sky_horizon;
+    f.aureole = sky.aureole;
+    f.ambient_top = sky.ambient_top;
+    f.ambient_bottom = sky.ambient_bottom;
+    f.ground = sky.ground;
 }
 
 }  // namespace
