@@ -27,6 +27,7 @@
 
 namespace atmo = cloudmath::reference::atmo;
 namespace mc = cloudmath::reference::mc;
+using cloudmath::reference::flags;
 using cloudmath::reference::usage_error;
 
 namespace {
@@ -46,30 +47,6 @@ const char* const usage_text =
     "           docs/images/atmosphere_sun_<E>.png (path-traced | model | difference)\n"
     "           flags: [--data docs/data/atmosphere_truth.csv] [--docs docs]\n";
 
-struct flags {
-    std::vector<std::pair<std::string, std::string>> items;
-    std::string get(const std::string& name, const std::string& fallback) const {
-        for (const auto& [k, v] : items)
-            if (k == name) return v;
-        return fallback;
-    }
-};
-
-flags parse_flags(int argc, char** argv, const std::vector<std::string>& known, const std::vector<std::string>& switches) {
-    flags f;
-    for (int i = 2; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (std::find(switches.begin(), switches.end(), a) != switches.end()) {
-            f.items.emplace_back(a, "1");
-            continue;
-        }
-        if (std::find(known.begin(), known.end(), a) == known.end()) throw usage_error("unknown flag " + a);
-        if (i + 1 >= argc) throw usage_error(a + " needs a value");
-        f.items.emplace_back(a, argv[++i]);
-    }
-    return f;
-}
-
 std::uint64_t count_flag(const flags& f, const std::string& name, const std::string& fallback) {
     const auto n = cloudmath::tools::parse_count(f.get(name, fallback));
     if (!n || *n == 0 || *n > 10000000000ULL) throw usage_error(name + " must be a count from 1 to 1e10");
@@ -82,7 +59,7 @@ void write_or_throw(const std::string& path, const std::string& bytes) {
 }
 
 int render(int argc, char** argv) {
-    const flags f = parse_flags(argc, argv, {"--out", "--table-paths", "--panorama-paths", "--seed", "--threads"}, {"--quiet"});
+    const flags f(argc, argv, {"--out", "--table-paths", "--panorama-paths", "--seed", "--threads"}, {"--quiet"});
     const std::string out = f.get("--out", "");
     if (out.empty()) throw usage_error("render needs --out");
     const std::uint64_t table_paths = count_flag(f, "--table-paths", "1000000");
@@ -91,7 +68,7 @@ int render(int argc, char** argv) {
     const auto threads = cloudmath::tools::parse_integer<unsigned>(f.get("--threads", "0"));
     if (!seed || !threads) throw usage_error("--seed and --threads must be non-negative integers");
     if (const std::string bad = cloudmath::tools::check_output_path(out); !bad.empty()) throw std::runtime_error(bad);
-    const bool quiet = f.get("--quiet", "") == "1";
+    const bool quiet = f.has("--quiet");
 
     const auto air = cloudmath::earth_atmosphere<double>();
     std::vector<atmo::truth_row> rows = atmo::truth_set();
@@ -222,7 +199,7 @@ std::string panorama_png(const std::vector<atmo::truth_row>& rows, const std::ve
 }
 
 int report(int argc, char** argv) {
-    const flags f = parse_flags(argc, argv, {"--data", "--docs"}, {});
+    const flags f(argc, argv, {"--data", "--docs"}, {});
     const std::string data = f.get("--data", "docs/data/atmosphere_truth.csv");
     const std::string docs = f.get("--docs", "docs");
     const std::vector<atmo::truth_row> rows = atmo::read_truth(data);
