@@ -157,6 +157,24 @@ template <class T>
     return glm::vec<3, T>(std::exp(-tau.x), std::exp(-tau.y), std::exp(-tau.z));
 }
 
+namespace detail {
+// The length of a ray in the air from `altitude` with zenith cosine mu: to the ground where it
+// meets it, else to the top.
+template <class T>
+inline T atmosphere_ray_length(const atmosphere_parameters<T>& air, T altitude, T cos_zenith) noexcept {
+    return atmosphere_ray_hits_ground(air, altitude, cos_zenith)
+               ? ray_sphere_intersect_altitude(altitude, cos_zenith, air.bottom_radius, T(0)).x
+               : atmosphere_distance_to_top(air, altitude, cos_zenith);
+}
+
+// The Lambertian ground's radiance per unit sun illuminance where the sun's zenith cosine is
+// mu_s: albedo / pi times the sun's cosine and transmittance (0 with the sun below it).
+template <class T>
+inline glm::vec<3, T> atmosphere_lit_ground(const atmosphere_parameters<T>& air, T mu_s, int sun_steps) noexcept {
+    return atmosphere_transmittance(air, T(0), mu_s, sun_steps) * (max(mu_s, T(0)) * air.ground_albedo * inv_pi_v<T>);
+}
+}  // namespace detail
+
 // The transmittance LUT's parametrisation (Bruneton 2017, 4.1.3): a texture of width x
 // height texels over (mu, r) for rays that reach the top without meeting the ground. With
 // H = sqrt(top^2 - bottom^2), rho = sqrt(r^2 - bottom^2) (the distance to the horizon) and d
@@ -315,8 +333,7 @@ template <class T>
         const T sin_zenith = std::sqrt(detail::max(T(1) - mu * mu, T(0)));
         const glm::vec<3, T> dir(sin_zenith * std::cos(phi), mu, sin_zenith * std::sin(phi));
         const bool ground = atmosphere_ray_hits_ground(air, h, mu);
-        const T length = ground ? ray_sphere_intersect_altitude(h, mu, air.bottom_radius, T(0)).x
-                                : atmosphere_distance_to_top(air, h, mu);
+        const T length = detail::atmosphere_ray_length(air, h, mu);
         const T ds = length / T(n);
         const T nu = glm::dot(dir, sun);
         glm::vec<3, T> throughput(T(1)), L(T(0)), F(T(0));
@@ -336,8 +353,7 @@ template <class T>
         }
         if (ground) {
             const T mu_sg = detail::clamp((r * mu_s + length * nu) / air.bottom_radius, T(-1), T(1));
-            L += throughput * atmosphere_transmittance(air, T(0), mu_sg, sun_steps) *
-                 (detail::max(mu_sg, T(0)) * air.ground_albedo * inv_pi_v<T>);
+            L += throughput * detail::atmosphere_lit_ground(air, mu_sg, sun_steps);
         }
         L2 += L;
         f += F;
@@ -439,8 +455,7 @@ template <class T>
     const T mu = detail::clamp(view_dir.y, T(-1), T(1));
     const T mu_s = detail::clamp(sun_dir.y, T(-1), T(1));
     const T nu = detail::clamp(glm::dot(view_dir, sun_dir), T(-1), T(1));
-    const T edge = atmosphere_ray_hits_ground(air, h, mu) ? ray_sphere_intersect_altitude(h, mu, air.bottom_radius, T(0)).x
-                                                          : atmosphere_distance_to_top(air, h, mu);
+    const T edge = detail::atmosphere_ray_length(air, h, mu);
     const T D = detail::clamp(distance, T(0), edge);  // a NaN distance stays NaN: NaN out
     const bool use_ms = ms.texels != nullptr && !ms.texels->empty();
     atmosphere_segment<T> out{glm::vec<3, T>(T(1)), glm::vec<3, T>(T(0))};
@@ -477,11 +492,10 @@ template <class T>
     const T h = detail::clamp(altitude, T(0), air.top_radius - air.bottom_radius);
     const T mu = detail::clamp(view_dir.y, T(-1), T(1));
     if (!atmosphere_ray_hits_ground(air, h, mu)) return seg.radiance;
-    const T t = ray_sphere_intersect_altitude(h, mu, air.bottom_radius, T(0)).x;
+    const T t = detail::atmosphere_ray_length(air, h, mu);
     const T mu_sg = detail::clamp(((air.bottom_radius + h) * sun_dir.y + t * glm::dot(view_dir, sun_dir)) / air.bottom_radius,
                                   T(-1), T(1));
-    return seg.radiance + seg.transmittance * atmosphere_transmittance(air, T(0), mu_sg, sun_steps) *
-                              (detail::max(mu_sg, T(0)) * air.ground_albedo * inv_pi_v<T>);
+    return seg.radiance + seg.transmittance * detail::atmosphere_lit_ground(air, mu_sg, sun_steps);
 }
 
 // ---------------------------------------------------------------------------------------
