@@ -129,8 +129,6 @@ void artistic_sky(const scene& s, frame_constants& f) {
     f.aureole = 0.05f;
 }
 
-float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
 // The physical sky (scene.hpp's sky_model::physical), from cloudmath's atmosphere: about 110
 // sky marches, so physical_sky keeps it per sun and geometry.
 void compute_physical_sky(const scene& s, frame_constants& f) {
@@ -205,6 +203,8 @@ void physical_sky(const scene& s, frame_constants& f) {
 }
 
 }  // namespace
+
+float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 float auto_ev100(const scene& s) { return make_frame_constants(s).ev100; }
 

@@ -182,6 +182,8 @@ float display_exposure(const scene& s);
 // The physical sky's EV100 when the scene does not set one: ev100_from_luminance of the sky's
 // mean luminance (zenith and horizon), which exposes it to middle grey.
 float auto_ev100(const scene& s);
+// Luminance of linear Rec. 709 rgb (cd/m^2 for the physical sky's radiance).
+float luminance(const glm::vec3& c);
 
 // The default before the renderer's rework (issue 15's baseline, with --shape classic): the
 // octaves with powder, the cone toward the sun, flat sky light, no refinement.

@@ -711,7 +711,6 @@ int main(int argc, char** argv) {
 }
 
 TEST_CASE("the physical sky: cloudmath's atmosphere in lux and cd/m^2, exposure from EV100; GPU and CPU agree") {
-    const auto luminance = [](glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; };
     // The artistic sky keeps its numbers: the glow's 0.05 and the scene's exposure.
     const frame_constants art = make_frame_constants(*find_preset("ground"));
     CHECK(art.aureole == 0.05f);

@@ -132,6 +132,9 @@ std::string elevation_name(double e) {
     return buf;
 }
 
+// Luminance of linear Rec. 709 rgb.
+double luminance(const double* rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+
 // sRGB encoding of a linear value in [0, 1].
 unsigned char srgb8(double x) {
     x = std::clamp(x, 0.0, 1.0);
@@ -162,7 +165,7 @@ std::string panorama_png(const std::vector<atmo::truth_row>& rows, const std::ve
                 model_rgb[k + c] = model[i][c];
             }
         }
-        mean += 0.2126 * r.radiance[0] + 0.7152 * r.radiance[1] + 0.0722 * r.radiance[2];
+        mean += luminance(r.radiance);
     }
     mean /= atmo::panorama_azimuths * atmo::panorama_elevations;
     const double exposure = mean > 0 ? 0.18 / mean : 1.0;
@@ -188,9 +191,7 @@ std::string panorama_png(const std::vector<atmo::truth_row>& rows, const std::ve
             };
             tone(truth_rgb, 0);
             tone(model_rgb, 1);
-            const auto lum = [&](const std::vector<double>& rgb) {
-                return 0.2126 * rgb[k] + 0.7152 * rgb[k + 1] + 0.0722 * rgb[k + 2];
-            };
+            const auto lum = [&](const std::vector<double>& rgb) { return luminance(&rgb[k]); };
             const double lt = lum(truth_rgb);
             const double d = lt > 0 ? std::clamp((lum(model_rgb) / lt - 1.0) / 0.2, -1.0, 1.0) : 0.0;
             put(2, d > 0 ? 1.0 : 1.0 + d, 1.0 - std::abs(d), d < 0 ? 1.0 : 1.0 - d);
