@@ -63,7 +63,9 @@ const haze_table& physical_haze(float camera_altitude, const glm::vec3& sun_dir)
 
 glm::vec3 haze_lookup(const haze_table& t, const glm::vec3& dir, const glm::vec3& sun_dir, float distance) {
     const glm::vec3 c = coordinates(t, dir, sun_dir, distance);
-    const int d0 = std::clamp(int(c.x), 0, t.n_d - 2), a0 = std::clamp(int(c.y), 0, t.n_az - 2), e0 = std::clamp(int(c.z), 0, t.n_el - 2);
+    // floor_to_int: a NaN direction or distance reads node 0, never an undefined int conversion.
+    const int d0 = cloudmath::detail::floor_to_int(c.x, 0, t.n_d - 2), a0 = cloudmath::detail::floor_to_int(c.y, 0, t.n_az - 2),
+              e0 = cloudmath::detail::floor_to_int(c.z, 0, t.n_el - 2);
     const float fd = std::clamp(c.x - float(d0), 0.0f, 1.0f), fa = std::clamp(c.y - float(a0), 0.0f, 1.0f),
                 fe = std::clamp(c.z - float(e0), 0.0f, 1.0f);
     const auto at = [&](int d, int az, int el) {

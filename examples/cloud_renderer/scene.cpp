@@ -211,7 +211,7 @@ float auto_ev100(const scene& s) { return make_frame_constants(s).ev100; }
 glm::vec3 sun_at_height(const frame_constants& k, bool physical, float h) {
     if (!physical) return k.sun_radiance;
     const float x = cloudmath::saturate(h) * float(sun_heights - 1);
-    const int i = std::min(int(x), sun_heights - 2);
+    const int i = cloudmath::detail::floor_to_int(x, 0, sun_heights - 2);  // a NaN height reads node 0
     return glm::mix(k.sun_by_height[i], k.sun_by_height[i + 1], x - float(i));
 }
 

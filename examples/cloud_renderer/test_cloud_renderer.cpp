@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <initializer_list>
 #include <cstdlib>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -749,6 +750,10 @@ TEST_CASE("the physical sky: cloudmath's atmosphere in lux and cd/m^2, exposure 
     CHECK(luminance(sun_at_height(set, true, 0.5f)) > luminance(set.sun_by_height[3]));
     CHECK(luminance(sun_at_height(set, true, 0.5f)) < luminance(set.sun_by_height[4]));
     CHECK(sun_at_height(art, false, 0.3f) == art.sun_radiance);
+    // NaN in, NaN out: no node index made from a NaN (floor_to_int).
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    CHECK(std::isnan(sun_at_height(set, true, nan).x));
+    CHECK(std::isnan(haze_lookup(physical_haze(2.0f, set.sun_dir), glm::vec3(0.0f, 1.0f, 0.0f), set.sun_dir, nan).x));
     CHECK(luminance(set.sun_radiance) > 100.0f);
     CHECK(luminance(set.sky_zenith) < 0.5f * luminance(rise.sky_zenith));
     CHECK(set.ev100 < rise.ev100);
