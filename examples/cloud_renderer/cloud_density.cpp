@@ -1,5 +1,7 @@
 #include "cloud_density.hpp"
 
+#include "physical_sky.hpp"
+
 #include <cloudmath/cloudmath.hpp>
 #include <cloudmath/noise_bake.hpp>
 
@@ -152,8 +154,13 @@ float cloud_density::detail_density(vec3 p, float alt, float covered, long* text
 
 vec3 sky_radiance(const frame_constants& k, vec3 dir, bool sun_disc) {
     const float mu = glm::dot(dir, k.sun_dir);
-    vec3 sky = glm::mix(k.sky_horizon, k.sky_zenith, std::sqrt(cm::saturate(dir.y)));
-    sky += k.sun_radiance * (k.aureole * cm::phase_hg(mu, 0.75f));
+    vec3 sky;
+    if (k.sky_view != nullptr) {
+        sky = sky_view_lookup(*k.sky_view, dir, k.sun_dir);  // the physical sky: its sky-view table
+    } else {
+        sky = glm::mix(k.sky_horizon, k.sky_zenith, std::sqrt(cm::saturate(dir.y)));
+        sky += k.sun_radiance * (k.aureole * cm::phase_hg(mu, 0.75f));
+    }
     // The disc at its physical radiance: the irradiance over its solid angle, limb-darkened.
     if (sun_disc) sky += k.sun_radiance * cm::sun_disc_radiance(1.0f, mu, k.sun_angular_radius, 0.6f);
     return sky;

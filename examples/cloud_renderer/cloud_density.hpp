@@ -82,10 +82,11 @@ private:
     linear_texture base_, detail_, weather_, weather_wide_, curl_;
 };
 
-// The sky seen in direction dir (unit, camera frame): the zenith-horizon gradient by dir.y,
-// the sun's aureole 0.05 HG(mu, 0.75) sun_radiance and, with sun_disc, the drawn disc
-// (sun_disc_radiance: the irradiance sun_radiance over the disc's solid angle, limb-darkened,
-// about 18,000 sun_radiance at its centre). No ground test.
+// The sky seen in direction dir (unit, camera frame): the zenith-horizon gradient by dir.y
+// and the sun's aureole aureole HG(mu, 0.75) sun_radiance (the artistic sky), or the physical
+// sky's sky-view table at the camera (frame_constants::sky_view); with sun_disc, the drawn disc
+// on top (sun_disc_radiance: the irradiance sun_radiance over the disc's solid angle,
+// limb-darkened, about 18,000 sun_radiance at its centre). No ground test.
 glm::vec3 sky_radiance(const frame_constants& k, glm::vec3 dir, bool sun_disc);
 // What the camera sees behind the clouds in direction dir (cr_background): the ground colour
 // where the ray from the camera hits the planet, else sky_radiance, with the disc if sun_disc.

@@ -1,5 +1,6 @@
 #include "cpu_renderer.hpp"
 
+#include "far_shadow.hpp"
 #include "physical_sky.hpp"
 
 #include "cloud_density.hpp"
@@ -93,6 +94,7 @@ struct pixel_program {
     vec2 band;           // altitudes of the cloud type's band (height_range_for_type): no density outside
     const cm::diffusion_model* model;  // the diffusion model's fitted numbers
     const haze_table* haze = nullptr;  // the physical sky's aerial perspective (physical_sky.hpp)
+    const far_shadow_table* far_field = nullptr;  // ... and its clouds' shadow beyond the light march (far_shadow.hpp)
     std::vector<vec3> shadow_map;  // the Beer shadow map (needs_shadow_map), row j = 0 first
     long shadow_map_reads = 0;     // texture reads of building it (once per frame)
     float map_footprint = 0.0f;    // its texels' width with LOD, else 0
@@ -105,7 +107,8 @@ struct pixel_program {
           phase_g_mean(phase_mean_cosine(k, va.phase)),
           band(k.band),
           model(m != nullptr ? m : va.table == diffusion_table::clouds ? &cm::diffusion_models::clouds : &cm::diffusion_models::fitted),
-          haze(sc.sky == sky_model::physical ? &physical_haze(sc.camera_altitude, k.sun_dir) : nullptr) {
+          haze(sc.sky == sky_model::physical ? &physical_haze(sc.camera_altitude, k.sun_dir) : nullptr),
+          far_field(sc.sky == sky_model::physical ? &far_shadow(sc, k.sun_dir, t, light_reach(va, k)) : nullptr) {
         if (needs_shadow_map(v)) {
             if (v.lod) map_footprint = 2.0f * k.shadow_half_extent / float(shadow_map_size);
             shadow_map.resize(static_cast<std::size_t>(shadow_map_size) * static_cast<std::size_t>(shadow_map_size));
@@ -255,18 +258,27 @@ struct pixel_program {
         return tau;
     }
 
-    // tau_behind and tau_view are used by the diffusion model only.
-    vec3 in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h) const {
+    // tau_behind and tau_view are used by the diffusion model only; far: the far shadow's
+    // transmittance (far_shadow_at), on the sun's light only.
+    vec3 in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h, float far_light = 1.0f) const {
         const auto phase_fn = [this](float m, float scale) { return phase(m, scale); };
         float sun = v.lighting == lighting_model::diffusion
                         ? cm::diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, phase_g_mean, s.albedo,
                                                         *model, phase_fn)
                         : cm::multiple_scattering_with(tau_light, mu, k.ms_a, k.ms_b, k.ms_c, v.octaves, phase_fn);
         if (v.powder) sun *= glm::mix(2.0f * cm::powder(tau_light, 2.0f), 1.0f, 0.5f + 0.5f * mu);
-        const vec3 sun_light = sun_at_height(k, haze != nullptr, h);  // the physical sky's sun by height
+        const vec3 sun_light = sun_at_height(k, haze != nullptr, h) * far_light;  // the physical sky's sun by height
         if (!v.occluded_ambient) return sun_light * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
         const vec2 o = sky_occlusion(tau_light, tau_behind);
         return sun_light * sun + glm::mix(k.ambient_bottom * o.y, k.ambient_top * o.x, h);
+    }
+
+    // The physical sky's far shadow at p (altitude alt): the table by the sun's zenith cosine
+    // at p (clouds.frag's cr_far_shadow); 1 with the artistic sky.
+    float far_shadow_at(vec3 p, float alt) const {
+        if (far_field == nullptr) return 1.0f;
+        const vec3 up = glm::normalize(vec3(p.x, p.y + (s.planet_radius + s.camera_altitude), p.z));
+        return far_shadow_lookup(*far_field, alt, glm::dot(k.sun_dir, up));
     }
 
     // variant::occluded_ambient: what reaches the sample of the sky light from above (x) and
@@ -349,7 +361,8 @@ struct pixel_program {
                                                  ? light_optical_depth(dir * e.t, alts, -k.sun_dir, v.behind, light_reads, footprint, lo)
                                                  : 0.0f;
                     const float h = cm::height_fraction(alts, s.layer_bottom, s.layer_top);
-                    const vec3 S = (s.albedo * e.sigma_t) * in_scattering(tau_light, tau_behind, e.tau_view, mu, h);
+                    const vec3 S = (s.albedo * e.sigma_t) *
+                                   in_scattering(tau_light, tau_behind, e.tau_view, mu, h, far_shadow_at(dir * e.t, alts));
                     if (grad != nullptr) {
                         // This step's weight in the pixel per unit source (add_segment's).
                         const float w = e.transmittance * s.albedo * e.sigma_t * cm::integrate_scattering(1.0f, e.sigma_t, e.ds);

@@ -1,5 +1,6 @@
 #include "gl_renderer.hpp"
 
+#include "far_shadow.hpp"
 #include "physical_sky.hpp"
 
 #include "clouds_frag.hpp"
@@ -108,6 +109,11 @@ struct gl_renderer::state {
     GLuint fbo = 0, target = 0;      // offscreen float target for render()
     GLuint haze = 0;                 // the physical sky's aerial-perspective table (physical_sky.hpp)
     const haze_table* haze_uploaded = nullptr;  // the table `haze` holds
+    GLuint sky_view = 0;             // ... its sky-view table at the camera
+    const sky_view_table* sky_view_uploaded = nullptr;  // the table `sky_view` holds
+    GLuint far_shadow = 0;           // ... and its clouds' shadow beyond the light march (far_shadow.hpp)
+    const far_shadow_table* far_shadow_uploaded = nullptr;  // the table `far_shadow` holds
+    cloud_textures cpu_textures;     // the uploaded textures' bytes: the far shadow marches the field on the CPU
     GLuint shadow_fbo = 0, shadow_map = 0;  // the Beer shadow map (clouds.frag's pass 2)
     int target_w = 0, target_h = 0;
     std::map<std::string, GLuint> programs;  // "" for the run-time program, else the variant spec
@@ -163,6 +169,8 @@ struct gl_renderer::state {
         if (target) gl.DeleteTextures(1, &target);
         if (shadow_map) gl.DeleteTextures(1, &shadow_map);
         if (haze) gl.DeleteTextures(1, &haze);
+        if (far_shadow) gl.DeleteTextures(1, &far_shadow);
+        if (sky_view) gl.DeleteTextures(1, &sky_view);
         if (shadow_fbo) gl.DeleteFramebuffers(1, &shadow_fbo);
         if (fbo) gl.DeleteFramebuffers(1, &fbo);
         if (vao) gl.DeleteVertexArrays(1, &vao);
@@ -278,6 +286,8 @@ bool gl_renderer::upload_textures(const cloud_textures& t, std::string& why) {
     upload(GL_TEXTURE_2D, s_->textures[2], GL_RGB8, GL_RGB, t.weather_size, t.weather, t.weather_mips);
     upload(GL_TEXTURE_2D, s_->textures[3], GL_RGB8, GL_RGB, t.weather_wide_size, t.weather_wide, t.weather_wide_mips);
     upload(GL_TEXTURE_2D, s_->textures[4], GL_RGB8, GL_RGB, t.curl_size, t.curl, no_mips);
+    s_->cpu_textures = t;
+    s_->far_shadow_uploaded = nullptr;
     why = s_->gl_errors("texture upload");
     return why.empty();
 }
@@ -418,6 +428,32 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
         u.v3("u_haze_table_size", glm::vec3(float(t.n_d), float(t.n_az), float(t.n_el)));
         u.f1("u_haze_table_distance", t.max_distance);
         for (int i = 0; i < sun_heights; ++i) u.v3(("u_sun_by_height[" + std::to_string(i) + "]").c_str(), k.sun_by_height[i]);
+        // The far shadow on unit 7 (R32F, no filtering: cr_far_shadow interpolates it as
+        // far_shadow_lookup does), uploaded when it changes.
+        const far_shadow_table& f = far_shadow(sc, k.sun_dir, st.cpu_textures, light_reach(v, k));
+        gl.ActiveTexture(GL_TEXTURE7);
+        if (st.far_shadow == 0) gl.GenTextures(1, &st.far_shadow);
+        gl.BindTexture(GL_TEXTURE_2D, st.far_shadow);
+        if (st.far_shadow_uploaded != &f) {
+            gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, f.n_alt, f.n_mu, 0, GL_RED, GL_FLOAT, f.texels.data());
+            gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            st.far_shadow_uploaded = &f;
+        }
+        u.i1("u_far_shadow", 7);
+        // The sky-view table on unit 8 (RGB32F, no filtering: cr_sky_view interpolates it).
+        gl.ActiveTexture(GL_TEXTURE8);
+        if (st.sky_view == 0) gl.GenTextures(1, &st.sky_view);
+        gl.BindTexture(GL_TEXTURE_2D, st.sky_view);
+        if (st.sky_view_uploaded != k.sky_view) {
+            gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, k.sky_view->n_az, k.sky_view->n_el, 0, GL_RGB, GL_FLOAT, k.sky_view->texels.data());
+            gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            st.sky_view_uploaded = k.sky_view;
+        }
+        u.i1("u_sky_view", 8);
+        u.v2("u_far_shadow_size", glm::vec2(float(f.n_alt), float(f.n_mu)));
+        gl.Uniform4f(u.loc("u_far_shadow_range"), f.alt_lo, f.alt_hi, f.mu_lo, f.mu_hi);
     }
     return program;
 }

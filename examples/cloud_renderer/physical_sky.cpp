@@ -11,31 +11,36 @@ namespace {
 
 constexpr float pi = 3.14159265358979f;
 
-// The table coordinates of a direction and distance (physical_sky.hpp), as clouds.frag's
-// cr_haze_coordinates computes them.
+// The haze table's coordinates of a direction and distance (physical_sky.hpp), as clouds.frag's
+// cr_haze computes them.
 glm::vec3 coordinates(const haze_table& t, const glm::vec3& dir, const glm::vec3& sun_dir, float distance) {
-    const float mu = std::clamp(dir.y, -1.0f, 1.0f);
-    const float el = (0.5f + 0.5f * std::copysign(std::sqrt(std::fabs(mu)), mu)) * float(t.n_el - 1);
-    const float h = std::sqrt(dir.x * dir.x + dir.z * dir.z), hs = std::sqrt(sun_dir.x * sun_dir.x + sun_dir.z * sun_dir.z);
-    const float cos_phi = h > 1e-6f && hs > 1e-6f ? std::clamp((dir.x * sun_dir.x + dir.z * sun_dir.z) / (h * hs), -1.0f, 1.0f) : 1.0f;
-    const float az = std::acos(cos_phi) / pi * float(t.n_az - 1);
+    const glm::vec2 c = sky_coordinates(dir, sun_dir);
     const float d = std::sqrt(std::clamp(distance / t.max_distance, 0.0f, 1.0f)) * float(t.n_d - 1);
-    return {d, az, el};
+    return {d, c.x * float(t.n_az - 1), c.y * float(t.n_el - 1)};
+}
+
+// The direction of node (az, el) of a table of n_az x n_el directions (sky_coordinates's
+// inverse), the sun at azimuth 0: only its elevation matters.
+glm::vec3 node_direction(int az, int el, int n_az, int n_el) {
+    const float s = 2.0f * float(el) / float(n_el - 1) - 1.0f;  // sign(mu) sqrt|mu|
+    const float mu = std::copysign(s * s, s);
+    const float sin_zenith = std::sqrt(std::max(1.0f - mu * mu, 0.0f));
+    const float phi = pi * float(az) / float(n_az - 1);
+    return {sin_zenith * std::cos(phi), mu, sin_zenith * std::sin(phi)};
+}
+
+glm::vec3 sun_at_azimuth_zero(const glm::vec3& sun_dir) {
+    return {std::sqrt(std::max(1.0f - sun_dir.y * sun_dir.y, 0.0f)), sun_dir.y, 0.0f};
 }
 
 haze_table make_table(float camera_altitude, const glm::vec3& sun_dir) {
     const physical_air& a = earth_air();
     haze_table t;
     t.texels.resize(static_cast<std::size_t>(t.n_d * t.n_az * t.n_el));
-    // The sun at azimuth 0 in the table's frame: only its elevation matters.
-    const glm::vec3 sun(std::sqrt(std::max(1.0f - sun_dir.y * sun_dir.y, 0.0f)), sun_dir.y, 0.0f);
+    const glm::vec3 sun = sun_at_azimuth_zero(sun_dir);
     for (int j = 0; j < t.n_el; ++j) {
-        const float s = 2.0f * float(j) / float(t.n_el - 1) - 1.0f;  // sign(mu) sqrt|mu|
-        const float mu = std::copysign(s * s, s);
-        const float sin_zenith = std::sqrt(std::max(1.0f - mu * mu, 0.0f));
         for (int i = 0; i < t.n_az; ++i) {
-            const float phi = pi * float(i) / float(t.n_az - 1);
-            const glm::vec3 dir(sin_zenith * std::cos(phi), mu, sin_zenith * std::sin(phi));
+            const glm::vec3 dir = node_direction(i, j, t.n_az, t.n_el);
             for (int k = 0; k < t.n_d; ++k) {
                 const float x = float(k) / float(t.n_d - 1);
                 const float d = t.max_distance * x * x;
@@ -49,7 +54,40 @@ haze_table make_table(float camera_altitude, const glm::vec3& sun_dir) {
     return t;
 }
 
+sky_view_table make_sky_view(float altitude, const glm::vec3& sun_dir) {
+    const physical_air& a = earth_air();
+    sky_view_table t;
+    t.texels.resize(static_cast<std::size_t>(t.n_az * t.n_el));
+    const glm::vec3 sun = sun_at_azimuth_zero(sun_dir);
+    for (int j = 0; j < t.n_el; ++j)
+        for (int i = 0; i < t.n_az; ++i)
+            t.texels[static_cast<std::size_t>(j * t.n_az + i)] =
+                sun_lux * cloudmath::atmosphere_sky_radiance(a.air, a.ms, altitude, node_direction(i, j, t.n_az, t.n_el), sun);
+    return t;
+}
+
 }  // namespace
+
+glm::vec2 sky_coordinates(const glm::vec3& dir, const glm::vec3& sun_dir) {
+    const float mu = std::clamp(dir.y, -1.0f, 1.0f);
+    const float el = 0.5f + 0.5f * std::copysign(std::sqrt(std::fabs(mu)), mu);
+    const float h = std::sqrt(dir.x * dir.x + dir.z * dir.z), hs = std::sqrt(sun_dir.x * sun_dir.x + sun_dir.z * sun_dir.z);
+    const float cos_phi = h > 1e-6f && hs > 1e-6f ? std::clamp((dir.x * sun_dir.x + dir.z * sun_dir.z) / (h * hs), -1.0f, 1.0f) : 1.0f;
+    return {std::acos(cos_phi) / pi, el};
+}
+
+const sky_view_table& physical_sky_view(float altitude, const glm::vec3& sun_dir) {
+    return made_once<sky_view_table>({altitude, sun_dir.x, sun_dir.y, sun_dir.z}, [&] { return make_sky_view(altitude, sun_dir); });
+}
+
+glm::vec3 sky_view_lookup(const sky_view_table& t, const glm::vec3& dir, const glm::vec3& sun_dir) {
+    const glm::vec2 c = sky_coordinates(dir, sun_dir) * glm::vec2(float(t.n_az - 1), float(t.n_el - 1));
+    // floor_to_int: a NaN direction reads node 0, never an undefined int conversion.
+    const int a0 = cloudmath::detail::floor_to_int(c.x, 0, t.n_az - 2), e0 = cloudmath::detail::floor_to_int(c.y, 0, t.n_el - 2);
+    const float fa = std::clamp(c.x - float(a0), 0.0f, 1.0f), fe = std::clamp(c.y - float(e0), 0.0f, 1.0f);
+    const auto at = [&](int az, int el) { return t.texels[static_cast<std::size_t>(el * t.n_az + az)]; };
+    return glm::mix(glm::mix(at(a0, e0), at(a0 + 1, e0), fa), glm::mix(at(a0, e0 + 1), at(a0 + 1, e0 + 1), fa), fe);
+}
 
 const physical_air& earth_air() {
     static const physical_air a;

@@ -16,6 +16,7 @@
 
 #include <cloudmath/atmosphere.hpp>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <map>
@@ -61,6 +62,28 @@ const Value& made_once(const std::vector<float>& key, Make&& make) {
 // The in-scattered radiance (cd/m^2) between the camera and `distance` metres along the unit
 // direction dir, interpolated from the table's 8 nearest nodes.
 glm::vec3 haze_lookup(const haze_table& t, const glm::vec3& dir, const glm::vec3& sun_dir, float distance);
+
+// The sky's radiance (cd/m^2) seen from one altitude, by direction (Hillaire 2020's sky-view
+// LUT, here over the whole sphere): nodes over the zenith cosine and the azimuth from the sun's
+// as the haze table's (sky_coordinates), each sun_lux x atmosphere_sky_radiance (the air to
+// its end; the lit ground below the horizon). Stored as a width n_az by height n_el image that
+// clouds.frag's cr_sky_view reads with texelFetch and interpolates as sky_view_lookup does.
+// The physical sky's background (the table at the camera) and the light the whole-cloud truth's
+// paths meet when they leave the layer through its top (the table at the top).
+struct sky_view_table {
+    int n_az = 64, n_el = 64;
+    std::vector<glm::vec3> texels;  // n_az x n_el, row-major
+};
+// The table at `altitude` for a sun in direction sun_dir (camera frame, +y up); made once per
+// pair and kept (made_once; about 0.1 s each).
+const sky_view_table& physical_sky_view(float altitude, const glm::vec3& sun_dir);
+// The sky's radiance (cd/m^2) in the unit direction dir, bilinear between the 4 nearest nodes.
+glm::vec3 sky_view_lookup(const sky_view_table& t, const glm::vec3& dir, const glm::vec3& sun_dir);
+
+// Where a direction lies in both tables, as fractions in [0, 1]: x the azimuth from the sun's,
+// phi / pi; y the zenith cosine, 0.5 + 0.5 sign(mu) sqrt|mu| (crowded at the horizon, where the
+// sky changes fastest). clouds.frag's cr_sky_coordinates.
+glm::vec2 sky_coordinates(const glm::vec3& dir, const glm::vec3& sun_dir);
 
 }  // namespace cloud_renderer
 

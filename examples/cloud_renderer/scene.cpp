@@ -129,8 +129,31 @@ void artistic_sky(const scene& s, frame_constants& f) {
     f.aureole = 0.05f;
 }
 
-// The physical sky (scene.hpp's sky_model::physical), from cloudmath's atmosphere: about 110
-// sky marches, so physical_sky keeps it per sun and geometry.
+// The upper hemisphere of a sky-view table: its mean radiance (isotropic sky light) and the
+// irradiance it gives a horizontal plane, by a 64 x 64 midpoint quadrature in the zenith
+// cosine and the azimuth from the sun (the table is symmetric about the sun's vertical plane).
+struct hemisphere_light {
+    glm::vec3 mean_radiance{0.0f}, irradiance{0.0f};
+};
+hemisphere_light upper_hemisphere(const sky_view_table& t, const glm::vec3& sun_dir) {
+    constexpr int n = 64;
+    const glm::vec3 sun(std::sqrt(std::fmax(1.0f - sun_dir.y * sun_dir.y, 0.0f)), sun_dir.y, 0.0f);  // at azimuth 0
+    hemisphere_light h;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const float c = (float(j) + 0.5f) / float(n), sn = std::sqrt(1.0f - c * c);
+            const float phi = (float(i) + 0.5f) / float(n) * 3.14159265f;
+            const glm::vec3 L = sky_view_lookup(t, glm::vec3(sn * std::cos(phi), c, sn * std::sin(phi)), sun);
+            h.mean_radiance += L;
+            h.irradiance += L * c;
+        }
+    h.mean_radiance /= float(n * n);                      // (1 / 2 pi) integral of L over the hemisphere
+    h.irradiance *= 2.0f * 3.14159265f / float(n * n);  // integral of L cos over it
+    return h;
+}
+
+// The physical sky (scene.hpp's sky_model::physical), from cloudmath's atmosphere: two sky-view
+// tables (physical_sky_view, kept) and 9 sky marches, so physical_sky keeps it per sun and geometry.
 void compute_physical_sky(const scene& s, frame_constants& f) {
     const physical_air& a = earth_air();
     const float band_middle = 0.5f * (f.band.x + f.band.y);
@@ -138,7 +161,7 @@ void compute_physical_sky(const scene& s, frame_constants& f) {
     const auto sky = [&](float altitude, glm::vec3 dir) {
         return sun_lux * cloudmath::atmosphere_sky_radiance(a.air, a.ms, altitude, dir, f.sun_dir);
     };
-    // The sun: its illuminance at the band's middle (the sky's glow and disc), and on the
+    // The sun: its illuminance at the band's middle (the drawn disc), and on the
     // clouds by height in the layer.
     f.sun_radiance = cloudmath::atmosphere_sun_illuminance(a.air, band_middle, f.sun_dir.y, glm::vec3(sun_lux));
     for (int i = 0; i < sun_heights; ++i) {
@@ -154,32 +177,19 @@ void compute_physical_sky(const scene& s, frame_constants& f) {
                                          std::sin(az) * std::cos(2.0f * degrees)));
     }
     f.sky_horizon = horizon / 8.0f;
-    // The glow around the sun: the HG(0.75) aureole's strength that gives the sky's own
-    // luminance 10 degrees above the sun (on top of the gradient there).
-    const float up = std::fmin(s.sun_elevation + 10.0f, 89.0f) * degrees;
-    const glm::vec3 sun_flat = glm::length(glm::vec3(f.sun_dir.x, 0.0f, f.sun_dir.z)) > 1e-4f
-                                   ? glm::normalize(glm::vec3(f.sun_dir.x, 0.0f, f.sun_dir.z))
-                                   : glm::vec3(1.0f, 0.0f, 0.0f);
-    const glm::vec3 near_sun = sun_flat * std::cos(up) + glm::vec3(0.0f, std::sin(up), 0.0f);
-    const float gradient = luminance(glm::mix(f.sky_horizon, f.sky_zenith, std::sqrt(cloudmath::saturate(near_sun.y))));
-    const float glow = luminance(f.sun_radiance) * cloudmath::phase_hg(glm::dot(near_sun, f.sun_dir), 0.75f);
-    f.aureole = glow > 0.0f ? std::fmax(luminance(sky(camera, near_sun)) - gradient, 0.0f) / glow : 0.0f;
-    // The sky's light at the band's middle: the hemisphere's mean radiance (isotropic sky
-    // light), and its irradiance on the ground (6 cosines x 8 azimuths, midpoint in cosine).
-    glm::vec3 mean_up(0.0f), irradiance(0.0f);
-    for (int j = 0; j < 6; ++j)
-        for (int i = 0; i < 8; ++i) {
-            const float c = (float(j) + 0.5f) / 6.0f, sn = std::sqrt(1.0f - c * c), az = (float(i) + 0.5f) * 45.0f * degrees;
-            const glm::vec3 dir(sn * std::cos(az), c, sn * std::sin(az));
-            mean_up += sky(band_middle, dir);
-            irradiance += sky(camera, dir) * c;
-        }
-    mean_up /= 48.0f;
-    irradiance *= 2.0f * 3.14159265f / 48.0f;
+    // The background: the sky-view table at the camera (no gradient, no glow: the table has the
+    // sky's own brightening toward the sun).
+    f.sky_view = &physical_sky_view(camera, f.sun_dir);
+    f.aureole = 0.0f;
+    // The sky's light on the clouds from above: the mean radiance of the upper hemisphere seen
+    // from the layer's top (the table there: what the whole-cloud truth's paths meet when they
+    // leave through the top); and the sky's irradiance on the ground at the camera.
+    const hemisphere_light top = upper_hemisphere(physical_sky_view(s.layer_top, f.sun_dir), f.sun_dir);
+    const hemisphere_light below = upper_hemisphere(*f.sky_view, f.sun_dir);
     // The ground: Lambertian with the air's albedo, lit by the sun at the camera and the sky.
     const glm::vec3 sun_ground = cloudmath::atmosphere_sun_illuminance(a.air, camera, f.sun_dir.y, glm::vec3(sun_lux));
-    f.ground = a.air.ground_albedo / 3.14159265f * (sun_ground * std::fmax(f.sun_dir.y, 0.0f) + irradiance);
-    f.ambient_top = mean_up;
+    f.ground = a.air.ground_albedo / 3.14159265f * (sun_ground * std::fmax(f.sun_dir.y, 0.0f) + below.irradiance);
+    f.ambient_top = top.mean_radiance;
     f.ambient_bottom = f.ground;
 }
 
@@ -197,6 +207,7 @@ void physical_sky(const scene& s, frame_constants& f) {
     f.sky_zenith = sky.sky_zenith;
     f.sky_horizon = sky.sky_horizon;
     f.aureole = sky.aureole;
+    f.sky_view = sky.sky_view;
     f.ambient_top = sky.ambient_top;
     f.ambient_bottom = sky.ambient_bottom;
     f.ground = sky.ground;
@@ -216,6 +227,12 @@ glm::vec3 sun_at_height(const frame_constants& k, bool physical, float h) {
 }
 
 float display_exposure(const scene& s) { return make_frame_constants(s).exposure; }
+
+float light_reach(const variant& v, const frame_constants& k) {
+    if (v.light == light_mode::cone) return k.cone_far_distance + 0.5f * k.cone_far_length;
+    if (v.light == light_mode::map || v.long_reach || v.far_steps || v.far_map) return light_long_reach;
+    return k.light_march_max;
+}
 
 frame_constants make_frame_constants(const scene& s) {
     frame_constants f{};

@@ -19,6 +19,8 @@
 
 namespace cloud_renderer {
 
+struct sky_view_table;  // physical_sky.hpp
+
 enum class phase_model { hg, dual_hg, cornette_shanks, mie };
 // How a light estimate gets its optical depth: the cone, a march over the cloud type's band,
 // or the Beer shadow map (toward the sun: its optical depth at the sample's depth; away from
@@ -262,6 +264,10 @@ struct frame_constants {
     // (at sunset the layer's bottom lies in the Earth's shadow while its top is lit); unused
     // with the artistic sky, whose clouds see sun_radiance everywhere.
     glm::vec3 sun_by_height[8];
+    // The physical sky's background: its sky-view table at the camera (physical_sky.hpp; kept for
+    // the process's life), which sky_radiance and clouds.frag's cr_background read in place of
+    // the gradient and glow; null with the artistic sky.
+    const sky_view_table* sky_view = nullptr;
     float exposure;                  // the tonemap's (display_exposure)
     float ev100;                     // the physical sky's EV100 (0 with the artistic sky)
     float phase_g, phase_g_back, phase_w;   // HG / Cornette-Shanks g; dual lobe second g, weight
@@ -280,6 +286,11 @@ struct frame_constants {
 };
 
 frame_constants make_frame_constants(const scene& s);
+// Where variant v's light estimate toward the sun ends, metres along the sun's path (unless
+// the band ends first): the march's light_long_reach (reach=far, band or map) or
+// light_march_max (reach=capped), the cone's far sample's end, the shadow map's
+// light_long_reach. The physical sky's far shadow (far_shadow.hpp) begins there.
+float light_reach(const variant& v, const frame_constants& k);
 // Entries of frame_constants::sun_by_height.
 inline constexpr int sun_heights = 8;
 // The sun on a cloud at height fraction h of the layer: sun_by_height interpolated with the

@@ -40,6 +40,7 @@ namespace cloudmath_egl {
     X(PFNGLUNIFORM1FPROC, Uniform1f)                            \
     X(PFNGLUNIFORM2FPROC, Uniform2f)                            \
     X(PFNGLUNIFORM3FPROC, Uniform3f)                            \
+    X(PFNGLUNIFORM4FPROC, Uniform4f)                            \
     X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)              \
     X(PFNGLGENTEXTURESPROC, GenTextures)                        \
     X(PFNGLDELETETEXTURESPROC, DeleteTextures)                  \

@@ -2,6 +2,8 @@
 // cloud_medium.hpp for the scene definition and the majorant grid.
 #include "cloud_medium.hpp"
 
+#include "physical_sky.hpp"
+
 #include <cloudmath/cloudmath.hpp>
 
 #include <glm/geometric.hpp>
@@ -261,11 +263,11 @@ lighting make_cloud_lighting(const cr::scene& s) {
             const glm::vec3 c = cr::sun_at_height(k, true, cm::height_fraction(altitude, s.layer_bottom, s.layer_top));
             return rgb{c.r, c.g, c.b};
         };
-    l.escaped = [k](const vec3&, const vec3& d, bool ground) {
-        const glm::vec3 c = ground ? k.ground
-                                   : cr::sky_radiance(k, glm::vec3(static_cast<float>(d.x), static_cast<float>(d.y),
-                                                                   static_cast<float>(d.z)),
-                                                      false);
+    // The physical sky seen from where the paths leave (the layer's top): its sky-view table there.
+    const cr::sky_view_table* top_sky = s.sky == cr::sky_model::physical ? &cr::physical_sky_view(s.layer_top, k.sun_dir) : nullptr;
+    l.escaped = [k, top_sky](const vec3&, const vec3& d, bool ground) {
+        const glm::vec3 dir(static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z));
+        const glm::vec3 c = ground ? k.ground : top_sky != nullptr ? cr::sky_view_lookup(*top_sky, dir, k.sun_dir) : cr::sky_radiance(k, dir, false);
         return rgb{c.r, c.g, c.b};
     };
     return l;

@@ -16,8 +16,10 @@
 //   - the sky: a path leaving the layer upward picks up sky_radiance(dir) WITHOUT the drawn
 //     sun disc (the sun is the directional source above; the disc would count it twice) but
 //     WITH the 0.05 HG(mu, 0.75) aureole, which is part of the sky's radiance for every ray
-//     that escapes, primary or scattered; a path that reaches the ground picks up the
-//     ground colour (an emitter, not a reflector);
+//     that escapes, primary or scattered; with the physical sky, the sky-view table at the
+//     layer's top, where every such path leaves (physical_sky.hpp: the atmosphere's sky seen
+//     from there, its glow toward the sun included); a path that reaches the ground picks up
+//     the ground colour (an emitter, not a reflector);
 //   - camera rays: the renderer's pixel-centre directions (one per pixel, no
 //     anti-aliasing, as the renderer); a camera ray's first flight meets the clouds only on
 //     the renderer's view stretch, the layer segment cut at max_distance (35 km) from its

@@ -85,6 +85,13 @@ uniform sampler2D u_haze_table;
 uniform vec3 u_haze_table_size;  // n_d, n_az, n_el
 uniform float u_haze_table_distance;
 uniform vec3 u_sun_by_height[8];  // the sun on the clouds by height in the layer (frame_constants::sun_by_height)
+// The background: the sky-view table at the camera (physical_sky.hpp), an n_az x n_el RGB32F image.
+uniform sampler2D u_sky_view;
+// The clouds' shadow beyond the light march (far_shadow.hpp): mean transmittance by altitude (x)
+// and the sun's zenith cosine (y), an n_alt x n_mu R32F image.
+uniform sampler2D u_far_shadow;
+uniform vec2 u_far_shadow_size;   // n_alt, n_mu
+uniform vec4 u_far_shadow_range;  // alt_lo, alt_hi, mu_lo, mu_hi
 #endif
 
 // The passes (u_pass): 0 a full frame. 1 the shading pass of the temporal scheme
@@ -116,8 +123,23 @@ vec3 cr_sun_at(float h) {
     int i = min(int(x), 6);
     return mix(u_sun_by_height[i], u_sun_by_height[i + 1], x - float(i));
 }
+// The far shadow at p (altitude `altitude`): far_shadow.cpp's far_shadow_lookup by the sun's
+// zenith cosine at p, bilinear between texelFetch'd nodes.
+float cr_far_shadow(vec3 p, float altitude) {
+    vec3 up = normalize(vec3(p.x, p.y + (u_planet_radius + u_cam_altitude), p.z));
+    ivec2 size = ivec2(u_far_shadow_size + 0.5);
+    vec2 c = vec2(cm_saturate((altitude - u_far_shadow_range.x) / (u_far_shadow_range.y - u_far_shadow_range.x)),
+                  cm_saturate((dot(u_sun_dir, up) - u_far_shadow_range.z) / (u_far_shadow_range.w - u_far_shadow_range.z))) *
+             vec2(size - 1);
+    ivec2 i = clamp(ivec2(c), ivec2(0), size - 2);
+    vec2 f = clamp(c - vec2(i), 0.0, 1.0);
+    float lower = mix(texelFetch(u_far_shadow, i, 0).r, texelFetch(u_far_shadow, i + ivec2(1, 0), 0).r, f.x);
+    float upper = mix(texelFetch(u_far_shadow, i + ivec2(0, 1), 0).r, texelFetch(u_far_shadow, i + ivec2(1, 1), 0).r, f.x);
+    return mix(lower, upper, f.y);
+}
 #else
 vec3 cr_sun_at(float h) { return u_sun_radiance; }
+float cr_far_shadow(vec3 p, float altitude) { return 1.0; }
 #endif
 
 const int CR_SKIP_BLOCK = 4;  // steps per empty-space probe (scene.hpp's skip_block)
@@ -276,8 +298,9 @@ float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode, floa
 
 // Radiance scattered toward the camera per unit scattering coefficient: sunlight through
 // the octaves or the diffusion model (phase and transmittance), the powder term, and
-// isotropic sky light. tau_behind and tau_view are used by the diffusion model only.
-vec3 cr_in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h) {
+// isotropic sky light. tau_behind and tau_view are used by the diffusion model only; far: the
+// far shadow's transmittance (cr_far_shadow), on the sun's light only.
+vec3 cr_in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h, float far) {
     float sun = u_lighting == 1
         ? cm_diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, u_phase_mean_cosine, u_albedo,
                                        CM_DIFFUSION_MODEL_CLOUDS)
@@ -290,10 +313,10 @@ vec3 cr_in_scattering(float tau_light, float tau_behind, float tau_view, float m
         // from the sun and gone looking into it (where the dark edges are not seen).
         sun *= mix(2.0 * cm_powder(tau_light, 2.0), 1.0, 0.5 + 0.5 * mu);
     }
-    if (u_occluded_ambient == 0) return cr_sun_at(h) * sun + mix(u_ambient_bottom, u_ambient_top, h);
+    if (u_occluded_ambient == 0) return cr_sun_at(h) * (sun * far) + mix(u_ambient_bottom, u_ambient_top, h);
     // Vertical optical depths above and below from the slanted light estimates.
     float up = max(u_sun_dir.y, 0.0);
-    return cr_sun_at(h) * sun + mix(u_ambient_bottom * cm_diffuse_transmittance(tau_behind * up, u_phase_mean_cosine),
+    return cr_sun_at(h) * (sun * far) + mix(u_ambient_bottom * cm_diffuse_transmittance(tau_behind * up, u_phase_mean_cosine),
                                       u_ambient_top * cm_diffuse_transmittance(tau_light * up, u_phase_mean_cosine), h);
 }
 
@@ -325,23 +348,39 @@ float cr_ground_shadow(vec3 g) {
 }
 
 #ifdef CR_PHYSICAL_SKY
+// Where a direction lies in the haze and sky-view tables, fractions in [0, 1]: x the azimuth
+// from the sun's over pi, y 0.5 + 0.5 sign(mu) sqrt|mu| (physical_sky.cpp's sky_coordinates).
+vec2 cr_sky_coordinates(vec3 dir) {
+    float mu = clamp(dir.y, -1.0, 1.0);
+    float h = length(dir.xz), hs = length(u_sun_dir.xz);
+    float cos_phi = h > 1e-6 && hs > 1e-6 ? clamp(dot(dir.xz, u_sun_dir.xz) / (h * hs), -1.0, 1.0) : 1.0;
+    return vec2(acos(cos_phi) / CM_PI, 0.5 + 0.5 * sign(mu) * sqrt(abs(mu)));
+}
+
 // The air's light between the camera and `distance` along dir: physical_sky.cpp's haze_lookup.
 vec3 cr_haze_node(int d, int az, int el, ivec3 size) { return texelFetch(u_haze_table, ivec2(d + size.x * az, el), 0).rgb; }
 vec3 cr_haze(vec3 dir, float distance) {
     ivec3 size = ivec3(u_haze_table_size + 0.5);
-    float mu = clamp(dir.y, -1.0, 1.0);
-    float el = (0.5 + 0.5 * sign(mu) * sqrt(abs(mu))) * float(size.z - 1);
-    float h = length(dir.xz), hs = length(u_sun_dir.xz);
-    float cos_phi = h > 1e-6 && hs > 1e-6 ? clamp(dot(dir.xz, u_sun_dir.xz) / (h * hs), -1.0, 1.0) : 1.0;
-    float az = acos(cos_phi) / CM_PI * float(size.y - 1);
+    vec2 c = cr_sky_coordinates(dir) * vec2(size.yz - 1);
     float d = sqrt(clamp(distance / u_haze_table_distance, 0.0, 1.0)) * float(size.x - 1);
-    ivec3 i0 = clamp(ivec3(vec3(d, az, el)), ivec3(0), size - 2);
-    vec3 f = clamp(vec3(d, az, el) - vec3(i0), 0.0, 1.0);
+    ivec3 i0 = clamp(ivec3(vec3(d, c)), ivec3(0), size - 2);
+    vec3 f = clamp(vec3(d, c) - vec3(i0), 0.0, 1.0);
     vec3 r00 = mix(cr_haze_node(i0.x, i0.y, i0.z, size), cr_haze_node(i0.x + 1, i0.y, i0.z, size), f.x);
     vec3 r10 = mix(cr_haze_node(i0.x, i0.y + 1, i0.z, size), cr_haze_node(i0.x + 1, i0.y + 1, i0.z, size), f.x);
     vec3 r01 = mix(cr_haze_node(i0.x, i0.y, i0.z + 1, size), cr_haze_node(i0.x + 1, i0.y, i0.z + 1, size), f.x);
     vec3 r11 = mix(cr_haze_node(i0.x, i0.y + 1, i0.z + 1, size), cr_haze_node(i0.x + 1, i0.y + 1, i0.z + 1, size), f.x);
     return mix(mix(r00, r10, f.y), mix(r01, r11, f.y), f.z);
+}
+
+// The sky's radiance in direction dir: physical_sky.cpp's sky_view_lookup.
+vec3 cr_sky_view(vec3 dir) {
+    ivec2 size = textureSize(u_sky_view, 0);
+    vec2 c = cr_sky_coordinates(dir) * vec2(size - 1);
+    ivec2 i0 = clamp(ivec2(c), ivec2(0), size - 2);
+    vec2 f = clamp(c - vec2(i0), 0.0, 1.0);
+    vec3 lower = mix(texelFetch(u_sky_view, i0, 0).rgb, texelFetch(u_sky_view, i0 + ivec2(1, 0), 0).rgb, f.x);
+    vec3 upper = mix(texelFetch(u_sky_view, i0 + ivec2(0, 1), 0).rgb, texelFetch(u_sky_view, i0 + ivec2(1, 1), 0).rgb, f.x);
+    return mix(lower, upper, f.y);
 }
 #endif
 
@@ -349,8 +388,12 @@ vec3 cr_background(vec3 dir) {
     vec2 ground = cm_ray_sphere_intersect_altitude(u_cam_altitude, dir.y, u_planet_radius, 0.0);
     if (ground.x >= 0.0 && ground.y > ground.x) return u_shadows != 0 ? u_ground * cr_ground_shadow(dir * ground.x) : u_ground;
     float mu = dot(dir, u_sun_dir);
+#ifdef CR_PHYSICAL_SKY
+    vec3 sky = cr_sky_view(dir);  // the atmosphere's sky, its glow toward the sun included
+#else
     vec3 sky = mix(u_sky_horizon, u_sky_zenith, sqrt(cm_saturate(dir.y)));
     sky += u_sun_radiance * (u_aureole * cm_phase_hg(mu, 0.75));  // glow around the sun
+#endif
     if (u_sun_disc != 0) sky += u_sun_radiance * cm_sun_disc_radiance(1.0, mu, u_sun_angular_radius, 0.6);  // physical disc
     return sky;
 }
@@ -380,7 +423,7 @@ void cr_light_samples(inout vec3 luminance, int count, vec3 dir, float mu, uint 
         float tau_light = cr_light_optical_depth(dir * q.t, alts, u_sun_dir, u_light_mode, lo);
         float tau_behind = u_lighting != 0 ? cr_light_optical_depth(dir * q.t, alts, -u_sun_dir, u_behind_mode, lo) : 0.0;
         float h = cm_height_fraction(alts, u_layer_bottom, u_layer_top);
-        vec3 S = (u_albedo * q.sigma_t) * cr_in_scattering(tau_light, tau_behind, q.tau_view, mu, h);
+        vec3 S = (u_albedo * q.sigma_t) * cr_in_scattering(tau_light, tau_behind, q.tau_view, mu, h, cr_far_shadow(dir * q.t, alts));
         // Energy-conserving (cm_march_add_segment's source term), or the textbook Riemann sum,
         // kept as a variant to show its error: the source at full strength over the whole
         // step, ignoring the decay within it.
