@@ -125,8 +125,7 @@ struct pixel_program {
     vec3 shadow_texel(int i, int j, long* counter = nullptr) const {
         const vec2 ab = (vec2(float(i) + 0.5f, float(j) + 0.5f) / float(shadow_map_size) * 2.0f - 1.0f) * k.shadow_half_extent;
         const vec3 p0 = k.shadow_origin + k.shadow_right * ab.x + k.shadow_up * ab.y;
-        const vec3 up0 = glm::normalize(vec3(p0.x, p0.y + (s.planet_radius + s.camera_altitude), p0.z));
-        const vec2 seg = cm::cloud_layer_segment(altitude(p0), -glm::dot(k.sun_dir, up0), s.planet_radius, band.x, band.y);
+        const vec2 seg = cm::cloud_layer_segment(altitude(p0), -glm::dot(k.sun_dir, up_at(p0)), s.planet_radius, band.x, band.y);
         cm::beer_shadow_accumulator<float> acc;
         if (seg.y > seg.x) {
             const float ds = (seg.y - seg.x) / float(shadow_map_steps);
@@ -169,6 +168,8 @@ struct pixel_program {
     };
 
     float altitude(vec3 p) const { return field.altitude(p); }
+    // The unit vertical at the camera-relative point p (clouds.frag's cr_up).
+    vec3 up_at(vec3 p) const { return glm::normalize(vec3(p.x, p.y + (s.planet_radius + s.camera_altitude), p.z)); }
     // footprint: the pixel's width at the sample (variant::lod; 0: level 0 everywhere).
     float density(vec3 p, float alt, long* counter = nullptr, float footprint = 0.0f) const {
         return field.density(p, alt, counter, footprint);
@@ -224,8 +225,7 @@ struct pixel_program {
                 return light_extinction(q, i >= v.cone_samples - 1, counter, footprint);
             });
         }
-        const vec3 up = glm::normalize(vec3(p.x, p.y + (s.planet_radius + s.camera_altitude), p.z));
-        const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up), s.planet_radius, band.x, band.y);
+        const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up_at(p)), s.planet_radius, band.x, band.y);
         const float reach = v.long_reach ? light_long_reach : k.light_march_max;
         const float length_to_exit = seg.y > seg.x ? std::min(seg.y, reach) : 0.0f;
         float tau = 0.0f;
@@ -277,8 +277,7 @@ struct pixel_program {
     // at p (clouds.frag's cr_far_shadow); 1 with the artistic sky.
     float far_shadow_at(vec3 p, float alt) const {
         if (far_field == nullptr) return 1.0f;
-        const vec3 up = glm::normalize(vec3(p.x, p.y + (s.planet_radius + s.camera_altitude), p.z));
-        return far_shadow_lookup(*far_field, alt, glm::dot(k.sun_dir, up));
+        return far_shadow_lookup(*far_field, alt, glm::dot(k.sun_dir, up_at(p)));
     }
 
     // variant::occluded_ambient: what reaches the sample of the sky light from above (x) and

@@ -34,10 +34,10 @@ float node_mean(const scene& s, const vec3& sun_dir, const cloud_density& field,
     const vec2 seg = cm::cloud_layer_segment(alt, mu, R, t.alt_lo, t.alt_hi);
     const float start = seg.y > seg.x ? std::min(seg.y, t.reach) : 0.0f;
     const float end = cm::ray_sphere_intersect_altitude(alt, mu, R, t.alt_hi).y;
+    if (!(end > start)) return 1.0f;
     const vec2 dip = cm::ray_sphere_intersect_altitude(alt, mu, R, t.alt_lo);
     const bool dips = dip.x > 0.0f && dip.y > dip.x;
-    vec2 stretches[2] = {{start, dips ? std::min(dip.x, end) : end}, {dips ? std::max(dip.y, start) : end, end}};
-    if (!(end > start)) return 1.0f;
+    const vec2 stretches[2] = {{start, dips ? std::min(dip.x, end) : end}, {dips ? std::max(dip.y, start) : end, end}};
 
     const float sin_mu = std::sqrt(std::max(1.0f - mu * mu, 0.0f));
     double sum = 0.0;

@@ -108,11 +108,11 @@ struct gl_renderer::state {
     GLuint textures[5] = {0, 0, 0, 0, 0};  // base, detail, weather, weather_wide, curl
     GLuint fbo = 0, target = 0;      // offscreen float target for render()
     GLuint haze = 0;                 // the physical sky's aerial-perspective table (physical_sky.hpp)
-    const haze_table* haze_uploaded = nullptr;  // the table `haze` holds
+    const void* haze_uploaded = nullptr;  // the table `haze` holds
     GLuint sky_view = 0;             // ... its sky-view table at the camera
-    const sky_view_table* sky_view_uploaded = nullptr;  // the table `sky_view` holds
+    const void* sky_view_uploaded = nullptr;  // the table `sky_view` holds
     GLuint far_shadow = 0;           // ... and its clouds' shadow beyond the light march (far_shadow.hpp)
-    const far_shadow_table* far_shadow_uploaded = nullptr;  // the table `far_shadow` holds
+    const void* far_shadow_uploaded = nullptr;  // the table `far_shadow` holds
     cloud_textures cpu_textures;     // the uploaded textures' bytes: the far shadow marches the field on the CPU
     GLuint shadow_fbo = 0, shadow_map = 0;  // the Beer shadow map (clouds.frag's pass 2)
     int target_w = 0, target_h = 0;
@@ -317,6 +317,21 @@ struct uniform_setter {
     void u2(const char* n, glm::uvec2 x) const { gl.Uniform2ui(loc(n), x.x, x.y); }
 };
 
+// Binds a float table of the physical sky (haze, far shadow, sky view) as texture `tex` on unit
+// `unit`, uploading it when `table` is not the one `uploaded` holds: nearest filtering, as
+// clouds.frag reads these with texelFetch and interpolates them as the CPU lookups do.
+void bind_float_table(const gl_api& gl, int unit, GLuint& tex, const void*& uploaded, const void* table, GLenum internal,
+                      GLenum format, int width, int height, const void* texels) {
+    gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+    if (tex == 0) gl.GenTextures(1, &tex);
+    gl.BindTexture(GL_TEXTURE_2D, tex);
+    if (uploaded == table) return;
+    gl.TexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal), width, height, 0, format, GL_FLOAT, texels);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    uploaded = table;
+}
+
 // Makes the clouds program of the variant's pass current with every uniform of the scene set
 // and the cloud textures bound; 0 on failure. clouds_pass::temporal_shading shades pixel
 // 4 (i, j) + offset. The run-time uber-shader is one program for every pass: use_pass sets its
@@ -415,45 +430,20 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
         // The aerial-perspective table on unit 6, uploaded when it changes (RGB32F, no filtering:
         // clouds.frag interpolates it as haze_lookup does).
         const haze_table& t = physical_haze(sc.camera_altitude, k.sun_dir);
-        gl.ActiveTexture(GL_TEXTURE6);
-        if (st.haze == 0) gl.GenTextures(1, &st.haze);
-        gl.BindTexture(GL_TEXTURE_2D, st.haze);
-        if (st.haze_uploaded != &t) {
-            gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, t.n_d * t.n_az, t.n_el, 0, GL_RGB, GL_FLOAT, t.texels.data());
-            gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-            st.haze_uploaded = &t;
-        }
+        bind_float_table(gl, 6, st.haze, st.haze_uploaded, &t, GL_RGB32F, GL_RGB, t.n_d * t.n_az, t.n_el, t.texels.data());
         u.i1("u_haze_table", 6);
         u.v3("u_haze_table_size", glm::vec3(float(t.n_d), float(t.n_az), float(t.n_el)));
         u.f1("u_haze_table_distance", t.max_distance);
         for (int i = 0; i < sun_heights; ++i) u.v3(("u_sun_by_height[" + std::to_string(i) + "]").c_str(), k.sun_by_height[i]);
-        // The far shadow on unit 7 (R32F, no filtering: cr_far_shadow interpolates it as
-        // far_shadow_lookup does), uploaded when it changes.
+        // The far shadow on unit 7 and the sky-view table on unit 8, read as the haze table is.
         const far_shadow_table& f = far_shadow(sc, k.sun_dir, st.cpu_textures, light_reach(v, k));
-        gl.ActiveTexture(GL_TEXTURE7);
-        if (st.far_shadow == 0) gl.GenTextures(1, &st.far_shadow);
-        gl.BindTexture(GL_TEXTURE_2D, st.far_shadow);
-        if (st.far_shadow_uploaded != &f) {
-            gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, f.n_alt, f.n_mu, 0, GL_RED, GL_FLOAT, f.texels.data());
-            gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-            st.far_shadow_uploaded = &f;
-        }
+        bind_float_table(gl, 7, st.far_shadow, st.far_shadow_uploaded, &f, GL_R32F, GL_RED, f.n_alt, f.n_mu, f.texels.data());
         u.i1("u_far_shadow", 7);
-        // The sky-view table on unit 8 (RGB32F, no filtering: cr_sky_view interpolates it).
-        gl.ActiveTexture(GL_TEXTURE8);
-        if (st.sky_view == 0) gl.GenTextures(1, &st.sky_view);
-        gl.BindTexture(GL_TEXTURE_2D, st.sky_view);
-        if (st.sky_view_uploaded != k.sky_view) {
-            gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, k.sky_view->n_az, k.sky_view->n_el, 0, GL_RGB, GL_FLOAT, k.sky_view->texels.data());
-            gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-            st.sky_view_uploaded = k.sky_view;
-        }
-        u.i1("u_sky_view", 8);
         u.v2("u_far_shadow_size", glm::vec2(float(f.n_alt), float(f.n_mu)));
         gl.Uniform4f(u.loc("u_far_shadow_range"), f.alt_lo, f.alt_hi, f.mu_lo, f.mu_hi);
+        const sky_view_table& sv = *k.sky_view;
+        bind_float_table(gl, 8, st.sky_view, st.sky_view_uploaded, &sv, GL_RGB32F, GL_RGB, sv.n_az, sv.n_el, sv.texels.data());
+        u.i1("u_sky_view", 8);
     }
     return program;
 }

@@ -89,6 +89,23 @@ glm::vec3 sky_view_lookup(const sky_view_table& t, const glm::vec3& dir, const g
     return glm::mix(glm::mix(at(a0, e0), at(a0 + 1, e0), fa), glm::mix(at(a0, e0 + 1), at(a0 + 1, e0 + 1), fa), fe);
 }
 
+sky_hemisphere upper_hemisphere(const sky_view_table& t, const glm::vec3& sun_dir) {
+    constexpr int n = 64;
+    const glm::vec3 sun = sun_at_azimuth_zero(sun_dir);
+    sky_hemisphere h;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const float c = (float(j) + 0.5f) / float(n), sn = std::sqrt(1.0f - c * c);
+            const float phi = (float(i) + 0.5f) / float(n) * pi;
+            const glm::vec3 L = sky_view_lookup(t, glm::vec3(sn * std::cos(phi), c, sn * std::sin(phi)), sun);
+            h.mean_radiance += L;
+            h.irradiance += L * c;
+        }
+    h.mean_radiance /= float(n * n);                      // (1 / 2 pi) integral of L over the hemisphere
+    h.irradiance *= 2.0f * pi / float(n * n);  // integral of L cos over it
+    return h;
+}
+
 const physical_air& earth_air() {
     static const physical_air a;
     return a;

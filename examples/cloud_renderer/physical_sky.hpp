@@ -80,6 +80,14 @@ const sky_view_table& physical_sky_view(float altitude, const glm::vec3& sun_dir
 // The sky's radiance (cd/m^2) in the unit direction dir, bilinear between the 4 nearest nodes.
 glm::vec3 sky_view_lookup(const sky_view_table& t, const glm::vec3& dir, const glm::vec3& sun_dir);
 
+// The upper hemisphere of a sky-view table: its mean radiance (isotropic sky light) and the
+// irradiance it gives a horizontal plane, by a 64 x 64 midpoint quadrature in the zenith
+// cosine and the azimuth from the sun (the table is symmetric about the sun's vertical plane).
+struct sky_hemisphere {
+    glm::vec3 mean_radiance{0.0f}, irradiance{0.0f};
+};
+sky_hemisphere upper_hemisphere(const sky_view_table& t, const glm::vec3& sun_dir);
+
 // Where a direction lies in both tables, as fractions in [0, 1]: x the azimuth from the sun's,
 // phi / pi; y the zenith cosine, 0.5 + 0.5 sign(mu) sqrt|mu| (crowded at the horizon, where the
 // sky changes fastest). clouds.frag's cr_sky_coordinates.

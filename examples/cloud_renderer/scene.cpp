@@ -129,29 +129,6 @@ void artistic_sky(const scene& s, frame_constants& f) {
     f.aureole = 0.05f;
 }
 
-// The upper hemisphere of a sky-view table: its mean radiance (isotropic sky light) and the
-// irradiance it gives a horizontal plane, by a 64 x 64 midpoint quadrature in the zenith
-// cosine and the azimuth from the sun (the table is symmetric about the sun's vertical plane).
-struct hemisphere_light {
-    glm::vec3 mean_radiance{0.0f}, irradiance{0.0f};
-};
-hemisphere_light upper_hemisphere(const sky_view_table& t, const glm::vec3& sun_dir) {
-    constexpr int n = 64;
-    const glm::vec3 sun(std::sqrt(std::fmax(1.0f - sun_dir.y * sun_dir.y, 0.0f)), sun_dir.y, 0.0f);  // at azimuth 0
-    hemisphere_light h;
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            const float c = (float(j) + 0.5f) / float(n), sn = std::sqrt(1.0f - c * c);
-            const float phi = (float(i) + 0.5f) / float(n) * 3.14159265f;
-            const glm::vec3 L = sky_view_lookup(t, glm::vec3(sn * std::cos(phi), c, sn * std::sin(phi)), sun);
-            h.mean_radiance += L;
-            h.irradiance += L * c;
-        }
-    h.mean_radiance /= float(n * n);                      // (1 / 2 pi) integral of L over the hemisphere
-    h.irradiance *= 2.0f * 3.14159265f / float(n * n);  // integral of L cos over it
-    return h;
-}
-
 // The physical sky (scene.hpp's sky_model::physical), from cloudmath's atmosphere: two sky-view
 // tables (physical_sky_view, kept) and 9 sky marches, so physical_sky keeps it per sun and geometry.
 void compute_physical_sky(const scene& s, frame_constants& f) {
@@ -184,8 +161,8 @@ void compute_physical_sky(const scene& s, frame_constants& f) {
     // The sky's light on the clouds from above: the mean radiance of the upper hemisphere seen
     // from the layer's top (the table there: what the whole-cloud truth's paths meet when they
     // leave through the top); and the sky's irradiance on the ground at the camera.
-    const hemisphere_light top = upper_hemisphere(physical_sky_view(s.layer_top, f.sun_dir), f.sun_dir);
-    const hemisphere_light below = upper_hemisphere(*f.sky_view, f.sun_dir);
+    const sky_hemisphere top = upper_hemisphere(physical_sky_view(s.layer_top, f.sun_dir), f.sun_dir);
+    const sky_hemisphere below = upper_hemisphere(*f.sky_view, f.sun_dir);
     // The ground: Lambertian with the air's albedo, lit by the sun at the camera and the sky.
     const glm::vec3 sun_ground = cloudmath::atmosphere_sun_illuminance(a.air, camera, f.sun_dir.y, glm::vec3(sun_lux));
     f.ground = a.air.ground_albedo / 3.14159265f * (sun_ground * std::fmax(f.sun_dir.y, 0.0f) + below.irradiance);

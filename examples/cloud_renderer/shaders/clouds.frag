@@ -115,6 +115,9 @@ float cr_phase(float mu, float scale);
 #define CM_DIFFUSION_PHASE cr_phase
 #include "cloudmath.glsl"
 
+// The unit vertical at the camera-relative point p (away from the planet's centre).
+vec3 cr_up(vec3 p) { return normalize(vec3(p.x, p.y + (u_planet_radius + u_cam_altitude), p.z)); }
+
 // The sun on a cloud at height fraction h of the layer: with the physical sky, its
 // illuminance by height (scene.cpp's sun_at_height); else the one sun_radiance.
 #ifdef CR_PHYSICAL_SKY
@@ -126,10 +129,9 @@ vec3 cr_sun_at(float h) {
 // The far shadow at p (altitude `altitude`): far_shadow.cpp's far_shadow_lookup by the sun's
 // zenith cosine at p, bilinear between texelFetch'd nodes.
 float cr_far_shadow(vec3 p, float altitude) {
-    vec3 up = normalize(vec3(p.x, p.y + (u_planet_radius + u_cam_altitude), p.z));
     ivec2 size = ivec2(u_far_shadow_size + 0.5);
     vec2 c = vec2(cm_saturate((altitude - u_far_shadow_range.x) / (u_far_shadow_range.y - u_far_shadow_range.x)),
-                  cm_saturate((dot(u_sun_dir, up) - u_far_shadow_range.z) / (u_far_shadow_range.w - u_far_shadow_range.z))) *
+                  cm_saturate((dot(u_sun_dir, cr_up(p)) - u_far_shadow_range.z) / (u_far_shadow_range.w - u_far_shadow_range.z))) *
              vec2(size - 1);
     ivec2 i = clamp(ivec2(c), ivec2(0), size - 2);
     vec2 f = clamp(c - vec2(i), 0.0, 1.0);
@@ -266,8 +268,7 @@ float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode, floa
     }
     // March: midpoint steps up to where the ray leaves the cloud type's band.
     cr_far_index = CR_LIGHT_FAR_STEP;
-    vec3 up = normalize(vec3(p.x, p.y + (u_planet_radius + u_cam_altitude), p.z));
-    vec2 seg = cm_cloud_layer_segment(altitude, dot(toward, up), u_planet_radius, cr_band.x, cr_band.y);
+    vec2 seg = cm_cloud_layer_segment(altitude, dot(toward, cr_up(p)), u_planet_radius, cr_band.x, cr_band.y);
     float reach = u_long_reach == 1 ? CR_LIGHT_LONG_REACH : u_light_march_max;
     float length_to_exit = seg.y > seg.x ? min(seg.y, reach) : 0.0;
     float n = float(u_light_steps);
@@ -325,8 +326,7 @@ vec3 cr_in_scattering(float tau_light, float tau_behind, float tau_view, float m
 vec3 cr_shadow_texel(vec2 ij) {
     vec2 ab = ((ij + 0.5) / float(CR_SHADOW_MAP_SIZE) * 2.0 - 1.0) * u_shadow_half_extent;
     vec3 p0 = u_shadow_origin + u_shadow_right * ab.x + u_shadow_up * ab.y;
-    vec3 up0 = normalize(vec3(p0.x, p0.y + (u_planet_radius + u_cam_altitude), p0.z));
-    vec2 seg = cm_cloud_layer_segment(cr_altitude(p0), -dot(u_sun_dir, up0), u_planet_radius, cr_band.x, cr_band.y);
+    vec2 seg = cm_cloud_layer_segment(cr_altitude(p0), -dot(u_sun_dir, cr_up(p0)), u_planet_radius, cr_band.x, cr_band.y);
     CmBeerShadowAccumulator acc = cm_beer_shadow_accumulator();
     if (seg.y > seg.x) {
         float ds = (seg.y - seg.x) / float(CR_SHADOW_MAP_STEPS);
