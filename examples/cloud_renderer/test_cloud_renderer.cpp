@@ -794,6 +794,7 @@ TEST_CASE("the physical sky: cloudmath's atmosphere in lux and cd/m^2, exposure 
         const frame_constants f = make_frame_constants(s);
         CHECK(f.sky_view == &physical_sky_view(s.camera_altitude, f.sun_dir));
         CHECK(f.aureole == 0.0f);  // no glow on top of the table
+        CHECK(std::isnan(sky_view_lookup(*f.sky_view, glm::vec3(std::numeric_limits<float>::quiet_NaN()), f.sun_dir).x));
         for (float altitude : {s.camera_altitude, s.layer_top}) {
             const sky_view_table& t = physical_sky_view(altitude, f.sun_dir);
             double sum = 0.0, worst = 0.0;
