@@ -591,7 +591,17 @@ TEST_CASE_TEMPLATE("fuzz the sky: scattering, multiple scattering, in-scattering
         const glm::vec<3, T> sky = cm::atmosphere_sky_radiance(air, ms, h, view, sun, 1 + k % 8, 1 + k % 5);
         CHECK(ok(sky.y));
         CHECK(sky.y >= T(0));
+        const glm::vec<3, T> ground = cm::atmosphere_ground_irradiance(air, ms, r.in(T(-1), T(1)), 1 + k % 6, 1 + k % 4, 1 + k % 3);
+        CHECK(ok(ground.z));
+        CHECK(ground.z >= T(0));
     }
+    // The refined LUT: finite and non-negative for odd sizes, counts and passes (0 and 1 too).
+    for (int k = 0; k < 6; ++k)
+        for (const glm::vec<3, T>& t : cm::atmosphere_multiple_scattering_refined_lut(air, 2 + k % 3, 2 + k % 2, k % 3, 1 + k, 1 + k % 4, 1 + k % 2))
+            for (int c = 0; c < 3; ++c) {
+                CHECK(ok(t[c]));
+                CHECK(t[c] >= T(0));
+            }
 }
 
 TEST_CASE_TEMPLATE("fuzz the atmosphere: extinction, optical depth and transmittance in range, the LUT mapping inside it", T, float, double) {

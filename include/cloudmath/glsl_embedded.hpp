@@ -142,7 +142,9 @@ vec3 cm_atmosphere_scattering(CmAtmosphere air, float altitude, float cos_theta)
 
 // Hillaire 2020's Psi_ms (see atmosphere_multiple_scattering in atmosphere.hpp): every order of
 // scattering from the second on, per unit sun illuminance and scattering coefficient, from
-// `directions` rays (spherical Fibonacci) of `steps` steps, sun transmittance in sun_steps steps.
+// `directions` rays (spherical Fibonacci) of `steps` steps, sun transmittance in sun_steps steps;
+// the second order turned towards the point by Rayleigh's phase (molecules), isotropically
+// (aerosols).
 vec3 cm_atmosphere_multiple_scattering(CmAtmosphere air, float altitude, float cos_sun_zenith, int directions, int steps,
                                        int sun_steps) {
     int n_dir = max(directions, 1);
@@ -176,7 +178,11 @@ vec3 cm_atmosphere_multiple_scattering(CmAtmosphere air, float altitude, float c
             vec3 step_t = cm_beer_lambert(sigma_t * ds);
             vec3 integral = cm_one_minus_exp_neg_over_x(sigma_t * ds) * ds;
             vec3 sun_t = cm_atmosphere_transmittance(air, hy, mu_sy, sun_steps);
-            L += throughput * sigma_s * sun_t * integral * CM_INV_FOUR_PI;
+            // The second order's last turn: Rayleigh's phase for the molecules, isotropic aerosols.
+            float h0 = max(hy, 0.0);
+            vec3 turn = air.rayleigh_scattering * (exp(-h0 / air.rayleigh_scale_height) * cm_phase_rayleigh(nu)) +
+                        vec3(air.mie_scattering * exp(-h0 / air.mie_scale_height) * CM_INV_FOUR_PI);
+            L += throughput * turn * sun_t * integral;
             F += throughput * sigma_s * integral;
             throughput *= step_t;
         }
@@ -190,19 +196,23 @@ vec3 cm_atmosphere_multiple_scattering(CmAtmosphere air, float altitude, float c
     L2 /= float(n_dir);
     f /= float(n_dir);
     return L2 / (vec3(1.0) - min(f, vec3(0.999)));
-}
-
-// The multiple-scattering LUT's (u, v) of (altitude, cos_sun_zenith), and the inverse.
-vec2 cm_atmosphere_multiple_scattering_lut_uv(CmAtmosphere air, float altitude, float cos_sun_zenith, vec2 size) {
-    float x_mu = cm_saturate(0.5 + 0.5 * cos_sun_zenith);
-    float x_h = cm_saturate(altitude / (air.top_radius - air.bottom_radius));
 )cm_glsl"
-     R"cm_glsl(    return vec2(0.5 / size.x + x_mu * (1.0 - 1.0 / size.x), 0.5 / size.y + x_h * (1.0 - 1.0 / size.y));
+     R"cm_glsl(}
+
+// The multiple-scattering LUT's (u, v) of (altitude, cos_sun_zenith), and the inverse: u by
+// sign(mu_s) sqrt(|mu_s|), which crowds the columns around Earth's shadow (atmosphere.hpp).
+vec2 cm_atmosphere_multiple_scattering_lut_uv(CmAtmosphere air, float altitude, float cos_sun_zenith, vec2 size) {
+    float c = clamp(cos_sun_zenith, -1.0, 1.0);
+    float root = sqrt(abs(c));
+    float x_mu = cm_saturate(0.5 + 0.5 * (c < 0.0 ? -root : root));
+    float x_h = cm_saturate(altitude / (air.top_radius - air.bottom_radius));
+    return vec2(0.5 / size.x + x_mu * (1.0 - 1.0 / size.x), 0.5 / size.y + x_h * (1.0 - 1.0 / size.y));
 }
 vec2 cm_atmosphere_multiple_scattering_lut_altitude_mu(CmAtmosphere air, vec2 uv, vec2 size) {
     float x_mu = cm_saturate((uv.x - 0.5 / size.x) / (1.0 - 1.0 / size.x));
     float x_h = cm_saturate((uv.y - 0.5 / size.y) / (1.0 - 1.0 / size.y));
-    return vec2(x_h * (air.top_radius - air.bottom_radius), 2.0 * x_mu - 1.0);
+    float m = 2.0 * x_mu - 1.0;
+    return vec2(x_h * (air.top_radius - air.bottom_radius), m * abs(m));
 }
 
 // EV100 of a camera (f-number, shutter seconds, ISO), of an average luminance, and the exposure.

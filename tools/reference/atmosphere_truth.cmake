@@ -2,14 +2,16 @@
 # CMakeLists.txt).
 #   cloudmath_atmosphere_lib     atmosphere_tracer.cpp: path tracer of a planet's air;
 #                                atmosphere_truth.cpp: the truth set, its file, the model's
-#                                errors against it
-#   cloudmath_atmosphere_truth   the CLI: `render` traces docs/data/atmosphere_truth.csv,
-#                                `report` writes docs/atmosphere_truth.md and its images
+#                                errors against it; atmosphere_variants.cpp: the
+#                                multiple-scattering variants measured while choosing it
+#   cloudmath_atmosphere_truth   the CLI: `render` traces docs/data/atmosphere_truth.csv (or
+#                                the held-out set), `report` writes docs/atmosphere_truth.md
+#                                and its images, `variants` the variants' errors
 #   reference.atmosphere_tracer  the tracer against closed forms and the library's quadrature;
 #                                the model against the stored truth (issue 26's targets)
 #   reference.atmosphere_truth_cli  command-line errors, a tiny render, and the committed
 #                                report reproduced from the stored truth
-add_library(cloudmath_atmosphere_lib STATIC atmosphere_tracer.cpp atmosphere_truth.cpp)
+add_library(cloudmath_atmosphere_lib STATIC atmosphere_tracer.cpp atmosphere_truth.cpp atmosphere_variants.cpp)
 cloudmath_reference_target(cloudmath_atmosphere_lib)
 target_include_directories(cloudmath_atmosphere_lib PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}")
 target_link_libraries(cloudmath_atmosphere_lib PUBLIC cloudmath_montecarlo_lib)
@@ -59,6 +61,16 @@ if(CLOUDMATH_BUILD_TESTS)
       "$tool" report --data "$src/docs/data/atmosphere_truth.csv" --docs "$out/committed" >/dev/null || { echo "report of the stored truth failed"; exit 1; }
       sed "s|$src/||" "$out/committed/atmosphere_truth.md" | cmp -s - "$src/docs/atmosphere_truth.md" ||
         { echo "docs/atmosphere_truth.md differs from the report of the stored truth"; exit 1; }
+      "$tool" report --set holdout --data "$src/docs/data/atmosphere_holdout.csv" --docs "$out/committed" >/dev/null ||
+        { echo "report of the stored held-out truth failed"; exit 1; }
+      sed "s|$src/||" "$out/committed/atmosphere_holdout.md" | cmp -s - "$src/docs/atmosphere_holdout.md" ||
+        { echo "docs/atmosphere_holdout.md differs from the report of the stored held-out truth"; exit 1; }
+      for f in "$out"/committed/images/*.png; do
+        cmp -s "$f" "$src/docs/images/$(basename "$f")" || { echo "docs/images/$(basename "$f") differs"; exit 1; }
+      done
+      "$tool" report --set elsewhere 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "bad set: exit $s, want 2"; exit 1; }
+      "$tool" variants --set holdout --data "$out/t.csv" 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "t.csv: row 1 is not the set's" "$out.err" || { echo "variants of the wrong set: exit $s"; cat "$out.err"; exit 1; }
       exit 0
       ]=] sh $<TARGET_FILE:cloudmath_atmosphere_truth> "${CMAKE_CURRENT_BINARY_DIR}/atmosphere_truth_cli_test"
         "${PROJECT_SOURCE_DIR}")

@@ -14,9 +14,15 @@
 
 namespace cloudmath::reference::atmo {
 
-std::vector<truth_row> truth_set() {
+std::vector<double> set_sun_elevations(const std::string& set_name) {
+    if (set_name == "truth") return {truth_sun_elevations.begin(), truth_sun_elevations.end()};
+    if (set_name == "holdout") return {holdout_sun_elevations.begin(), holdout_sun_elevations.end()};
+    throw std::invalid_argument("no set named '" + set_name + "' (truth or holdout)");
+}
+
+std::vector<truth_row> truth_set(const std::vector<double>& sun_elevations) {
     std::vector<truth_row> rows;
-    for (double e : truth_sun_elevations) {
+    for (double e : sun_elevations) {
         const auto add = [&](const char* name, double el, double az) {
             truth_row r;
             r.set = "table";
@@ -34,7 +40,7 @@ std::vector<truth_row> truth_set() {
         add("sun_15", e + 15.0 <= 90.0 ? e + 15.0 : e - 15.0, 0.0);
         add("sun_side", std::clamp(e, 1.0, 80.0), 20.0);
     }
-    for (double e : truth_sun_elevations)
+    for (double e : sun_elevations)
         for (int j = 0; j < panorama_elevations; ++j)
             for (int i = 0; i < panorama_azimuths; ++i) {
                 truth_row r;
@@ -48,7 +54,7 @@ std::vector<truth_row> truth_set() {
     return rows;
 }
 
-std::vector<truth_row> read_truth(const std::string& path) {
+std::vector<truth_row> read_truth(const std::string& path, const std::vector<double>& sun_elevations) {
     std::ifstream in(path);
     if (!in) throw std::runtime_error(path + ": cannot read the truth file");
     std::vector<truth_row> rows;
@@ -89,7 +95,7 @@ std::vector<truth_row> read_truth(const std::string& path) {
         }
         rows.push_back(r);
     }
-    const std::vector<truth_row> want = truth_set();
+    const std::vector<truth_row> want = truth_set(sun_elevations);
     if (rows.size() != want.size())
         throw std::runtime_error(path + ": " + std::to_string(rows.size()) + " rows, the set has " + std::to_string(want.size()));
     for (std::size_t i = 0; i < rows.size(); ++i)
@@ -103,7 +109,7 @@ std::vector<truth_row> read_truth(const std::string& path) {
 
 std::vector<std::array<double, 3>> model_radiance(const std::vector<truth_row>& rows) {
     const auto air = earth_atmosphere<float>();
-    const std::vector<glm::vec3> lut = atmosphere_multiple_scattering_lut(air, 32, 32, 64, 20, 32);
+    const std::vector<glm::vec3> lut = atmosphere_multiple_scattering_refined_lut(air, 32, 32, 3, 64, 20, 32);
     const atmosphere_multiple_scattering_table<float> ms{&lut, 32, 32};
     std::vector<std::array<double, 3>> out;
     out.reserve(rows.size());

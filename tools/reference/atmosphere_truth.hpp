@@ -4,9 +4,10 @@
 // horizon at 1 degree elevation towards the sun, across and away from it; 5 and 15 degrees
 // above the sun, or below it for the sun at zenith; 20 degrees beside it) and a panorama of
 // the half sky on the sun's side of symmetry (36 azimuths 0-180 x 24 elevations 0-90, cell
-// centres). The model: atmosphere_sky_radiance in float with a 32 x 32 multiple-scattering
-// LUT (64 directions, 20 steps), 32 view and 32 sun steps: the defaults docs/atmosphere.md
-// documents.
+// centres). The held-out set: the same directions for the sun at 60, 20, 5, 0 and -1 degrees.
+// The model: atmosphere_sky_radiance in float with the 32 x 32 multiple-scattering LUT of
+// atmosphere_multiple_scattering_refined_lut (64 directions, 20 steps, 3 passes), 32 view and
+// 32 sun steps: the defaults docs/atmosphere.md documents.
 #ifndef CLOUDMATH_TOOLS_ATMOSPHERE_TRUTH_HPP
 #define CLOUDMATH_TOOLS_ATMOSPHERE_TRUTH_HPP
 
@@ -19,6 +20,9 @@
 namespace cloudmath::reference::atmo {
 
 inline constexpr std::array<double, 5> truth_sun_elevations{90.0, 30.0, 10.0, 2.0, -2.0};
+// The held-out set: the same directions for sun elevations between and beside the truth's,
+// traced once the model's design was chosen on the set above and never used to choose it.
+inline constexpr std::array<double, 5> holdout_sun_elevations{60.0, 20.0, 5.0, 0.0, -1.0};
 inline constexpr int panorama_azimuths = 36, panorama_elevations = 24;
 
 // One row of the truth file.
@@ -29,13 +33,19 @@ struct truth_row {
     double radiance[3] = {0, 0, 0}, std_error[3] = {0, 0, 0};
 };
 
-// The rows of the set with their directions (radiance not filled in).
-std::vector<truth_row> truth_set();
+// The sun elevations of a set by its name ("truth" or "holdout"); throws std::invalid_argument
+// for any other name.
+std::vector<double> set_sun_elevations(const std::string& set_name);
+
+// The rows of the set with their directions (radiance not filled in), for the sun elevations
+// given (the truth's by default).
+std::vector<truth_row> truth_set(const std::vector<double>& sun_elevations = set_sun_elevations("truth"));
 
 // Reads a truth CSV (as `cloudmath_atmosphere_truth render` writes it); throws
 // std::runtime_error naming the path (and the line) if it is missing, malformed, or not the
-// set truth_set() gives.
-std::vector<truth_row> read_truth(const std::string& path);
+// set truth_set(sun_elevations) gives.
+std::vector<truth_row> read_truth(const std::string& path,
+                                  const std::vector<double>& sun_elevations = set_sun_elevations("truth"));
 
 // The model's radiance (per unit sun illuminance, 1/sr) for each row, float, as documented.
 std::vector<std::array<double, 3>> model_radiance(const std::vector<truth_row>& rows);

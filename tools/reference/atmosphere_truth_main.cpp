@@ -16,10 +16,12 @@
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "atmosphere_truth.hpp"
+#include "atmosphere_variants.hpp"
 #include "atomic_file.hpp"
 #include "cli_main.hpp"
 #include "png_encode.hpp"
@@ -37,15 +39,30 @@ const char* const usage_text =
     "\n"
     "Ground truth for the sky: a double-precision path tracer of Earth's air (Bruneton 2017's\n"
     "constants: Rayleigh, Mie, ozone, a Lambertian ground; every order of scattering) seen\n"
-    "from sea level, for the sun at 90, 30, 10, 2 and -2 degrees.\n"
+    "from sea level, for the sun at 90, 30, 10, 2 and -2 degrees (set truth), or at 60, 20, 5, 0\n"
+    "and -1 (set holdout: traced after the model's design was chosen on the truth, never used\n"
+    "to choose it).\n"
     "\n"
     "commands:\n"
     "  render   path-trace the set; CSV of radiance and standard error per channel\n"
-    "           flags: --out F.csv [--table-paths 1000000] [--panorama-paths 50000]\n"
-    "                  [--seed 1] [--threads 0] [--quiet]\n"
-    "  report   the library's model against the truth: docs/atmosphere_truth.md and\n"
+    "           flags: --out F.csv [--set truth|holdout] [--table-paths 1000000]\n"
+    "                  [--panorama-paths 50000] [--seed 1] [--threads 0] [--quiet]\n"
+    "  report   the library's model against the truth: docs/atmosphere_<set>.md and\n"
     "           docs/images/atmosphere_sun_<E>.png (path-traced | model | difference)\n"
-    "           flags: [--data docs/data/atmosphere_truth.csv] [--docs docs]\n";
+    "           flags: [--set truth|holdout] [--data docs/data/atmosphere_<set>.csv] [--docs docs]\n"
+    "  variants the multiple-scattering variants measured while the model was chosen: a\n"
+    "           markdown table of table / panorama rms per sun elevation on stdout\n"
+    "           flags: [--set truth|holdout] [--data docs/data/atmosphere_<set>.csv]\n";
+
+// The --set flag's sun elevations (truth by default).
+std::vector<double> set_flag(const flags& f, std::string& name) {
+    name = f.get("--set", "truth");
+    try {
+        return atmo::set_sun_elevations(name);
+    } catch (const std::invalid_argument& e) {
+        throw usage_error(std::string("--set: ") + e.what());
+    }
+}
 
 std::uint64_t count_flag(const flags& f, const std::string& name, const std::string& fallback) {
     const auto n = cloudmath::tools::parse_count(f.get(name, fallback));
@@ -59,7 +76,9 @@ void write_or_throw(const std::string& path, const std::string& bytes) {
 }
 
 int render(int argc, char** argv) {
-    const flags f(argc, argv, {"--out", "--table-paths", "--panorama-paths", "--seed", "--threads"}, {"--quiet"});
+    const flags f(argc, argv, {"--out", "--set", "--table-paths", "--panorama-paths", "--seed", "--threads"}, {"--quiet"});
+    std::string set_name;
+    const std::vector<double> elevations = set_flag(f, set_name);
     const std::string out = f.get("--out", "");
     if (out.empty()) throw usage_error("render needs --out");
     const std::uint64_t table_paths = count_flag(f, "--table-paths", "1000000");
@@ -71,7 +90,7 @@ int render(int argc, char** argv) {
     const bool quiet = f.has("--quiet");
 
     const auto air = cloudmath::earth_atmosphere<double>();
-    std::vector<atmo::truth_row> rows = atmo::truth_set();
+    std::vector<atmo::truth_row> rows = atmo::truth_set(elevations);
     mc::run_options options;
     options.seed = *seed;
     options.threads = *threads;
@@ -100,7 +119,7 @@ int render(int argc, char** argv) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::ostringstream csv;
     csv.precision(9);
-    csv << "# atmosphere truth: Earth's air (earth_atmosphere, Bruneton 2017), camera at sea level, sun at azimuth 0\n"
+    csv << "# atmosphere " << set_name << ": Earth's air (earth_atmosphere, Bruneton 2017), camera at sea level, sun at azimuth 0\n"
         << "# radiance per unit sun illuminance above the air (1/sr); channels 680, 550, 440 nm\n"
         << "# table paths per channel: " << table_paths << "; panorama paths per channel: " << panorama_paths
         << "; seed: " << *seed << "; seconds: " << static_cast<long>(seconds) << "\n"
@@ -200,23 +219,30 @@ std::string panorama_png(const std::vector<atmo::truth_row>& rows, const std::ve
 }
 
 int report(int argc, char** argv) {
-    const flags f(argc, argv, {"--data", "--docs"}, {});
-    const std::string data = f.get("--data", "docs/data/atmosphere_truth.csv");
+    const flags f(argc, argv, {"--set", "--data", "--docs"}, {});
+    std::string set_name;
+    const std::vector<double> elevations = set_flag(f, set_name);
+    const bool holdout = set_name == "holdout";
+    const std::string data = f.get("--data", "docs/data/atmosphere_" + set_name + ".csv");
     const std::string docs = f.get("--docs", "docs");
-    const std::vector<atmo::truth_row> rows = atmo::read_truth(data);
+    const std::vector<atmo::truth_row> rows = atmo::read_truth(data, elevations);
     const std::vector<std::array<double, 3>> model = atmo::model_radiance(rows);
 
     std::ostringstream md;
-    md << "# The sky against its path-traced truth\n\n"
+    md << (holdout ? "# The sky against its held-out path-traced truth\n\n" : "# The sky against its path-traced truth\n\n")
        << "Generated by `cloudmath_atmosphere_truth report` from `" << data
        << "` (the truth: `cloudmath_atmosphere_truth render`, see [atmosphere.md](atmosphere.md)). The model is "
-          "`atmosphere_sky_radiance` in float with a 32 x 32 multiple-scattering LUT (64 directions, 20 steps), 32 "
-          "view steps and 32 sun steps; the camera is at sea level, the sun at azimuth 0. Errors are model / truth - 1 "
+          "`atmosphere_sky_radiance` in float with the 32 x 32 multiple-scattering LUT of "
+          "`atmosphere_multiple_scattering_refined_lut` (64 directions, 20 steps, 3 passes), 32 view steps and 32 sun "
+          "steps; the camera is at sea level, the sun at azimuth 0. Errors are model / truth - 1 "
           "per channel (680, 550, 440 nm); `noise` is the rms of the truth's own relative standard errors.\n\n"
+       << (holdout ? "This set (`--set holdout`) was traced after the model's design was chosen on the truth's sun "
+                     "elevations and was never used to choose it: its errors are out of sample.\n\n"
+                   : "")
        << "## Summary\n\n"
        << "| sun elevation | table rms | table worst | panorama rms (solid-angle weighted) | panorama worst | truth noise "
           "(table / panorama) |\n|---:|---:|---:|---:|---:|---:|\n";
-    for (double e : atmo::truth_sun_elevations) {
+    for (double e : elevations) {
         const atmo::error_summary t = atmo::summarise(rows, model, "table", e);
         const atmo::error_summary p = atmo::summarise(rows, model, "panorama", e);
         md << "| " << e << " | " << percent(t.rms).substr(1) << " | " << percent(t.worst) << " | " << percent(p.rms).substr(1)
@@ -238,15 +264,39 @@ int report(int argc, char** argv) {
     }
     md << "\n## Images\n\nEach: path-traced | model | luminance difference (red: model brighter, blue: darker, full "
           "colour at 20%); the whole sky from azimuth -180 to 180 with the sun in the middle, elevation 0 to 90.\n\n";
-    for (double e : atmo::truth_sun_elevations) {
+    for (double e : elevations) {
         const std::string name = "images/atmosphere_sun_" + elevation_name(e) + ".png";
         const std::string png = panorama_png(rows, model, e);
         if (png.empty()) throw std::runtime_error(docs + "/" + name + ": cannot encode the image");
         write_or_throw(docs + "/" + name, png);
         md << "Sun at " << e << " degrees:\n\n![sky, sun at " << e << " degrees](" << name << ")\n\n";
     }
-    write_or_throw(docs + "/atmosphere_truth.md", md.str());
-    std::cout << "wrote " << docs << "/atmosphere_truth.md\n";
+    write_or_throw(docs + "/atmosphere_" + set_name + ".md", md.str());
+    std::cout << "wrote " << docs << "/atmosphere_" << set_name << ".md\n";
+    return 0;
+}
+
+int variants(int argc, char** argv) {
+    const flags f(argc, argv, {"--set", "--data"}, {});
+    std::string set_name;
+    const std::vector<double> elevations = set_flag(f, set_name);
+    const std::string data = f.get("--data", "docs/data/atmosphere_" + set_name + ".csv");
+    const std::vector<atmo::truth_row> rows = atmo::read_truth(data, elevations);
+    std::ostringstream md;
+    md << "| variant (" << set_name << ": table / panorama rms)";
+    for (double e : elevations) md << " | sun " << e;
+    md << " |\n|---";
+    for (std::size_t i = 0; i < elevations.size(); ++i) md << "|---:";
+    md << "|\n";
+    for (const atmo::ms_variant& v : atmo::ms_variants()) {
+        const std::vector<std::array<double, 3>> model = atmo::variant_radiance(v, rows);
+        md << "| " << v.name;
+        for (double e : elevations)
+            md << " | " << percent(atmo::summarise(rows, model, "table", e).rms).substr(1) << " / "
+               << percent(atmo::summarise(rows, model, "panorama", e).rms).substr(1);
+        md << " |\n";
+    }
+    std::cout << md.str();
     return 0;
 }
 
@@ -257,6 +307,7 @@ int main(int argc, char** argv) {
                                                      [&](const std::string& command) {
                                                          if (command == "render") return render(argc, argv);
                                                          if (command == "report") return report(argc, argv);
+                                                         if (command == "variants") return variants(argc, argv);
                                                          throw usage_error("unknown command " + command);
                                                      });
 }

@@ -1454,7 +1454,9 @@ fn cm_atmosphere_sun_illuminance(air: CmAtmosphere, altitude: f32, cos_sun_zenit
 
 // Hillaire 2020's Psi_ms (see atmosphere_multiple_scattering in atmosphere.hpp): every order of
 // scattering from the second on, per unit sun illuminance and scattering coefficient, from
-// `directions` rays (spherical Fibonacci) of `steps` steps, sun transmittance in sun_steps steps.
+// `directions` rays (spherical Fibonacci) of `steps` steps, sun transmittance in sun_steps steps;
+// the second order turned towards the point by Rayleigh's phase (molecules), isotropically
+// (aerosols).
 fn cm_atmosphere_multiple_scattering(air: CmAtmosphere, altitude: f32, cos_sun_zenith: f32, directions: i32, steps: i32, sun_steps: i32) -> vec3f {
     let n_dir: i32 = max(directions, 1);
     let n: i32 = max(steps, 1);
@@ -1491,7 +1493,10 @@ fn cm_atmosphere_multiple_scattering(air: CmAtmosphere, altitude: f32, cos_sun_z
             let step_t: vec3f = cm_beer_lambert_v3(sigma_t * ds);
             let integral: vec3f = cm_one_minus_exp_neg_over_x_v3(sigma_t * ds) * ds;
             let sun_t: vec3f = cm_atmosphere_transmittance(air, hy, mu_sy, sun_steps);
-            L += throughput * sigma_s * sun_t * integral * CM_INV_FOUR_PI;
+            // The second order's last turn: Rayleigh's phase for the molecules, isotropic aerosols.
+            let h0: f32 = max(hy, 0.0);
+            let turn: vec3f = air.rayleigh_scattering * (exp(-h0 / air.rayleigh_scale_height) * cm_phase_rayleigh(nu)) + vec3f(air.mie_scattering * exp(-h0 / air.mie_scale_height) * CM_INV_FOUR_PI);
+            L += throughput * turn * sun_t * integral;
             F += throughput * sigma_s * integral;
             throughput *= step_t;
         }
@@ -1507,16 +1512,20 @@ fn cm_atmosphere_multiple_scattering(air: CmAtmosphere, altitude: f32, cos_sun_z
     return L2 / (vec3f(1.0) - min(f, vec3f(0.999)));
 }
 
-// The multiple-scattering LUT's (u, v) of (altitude, cos_sun_zenith), and the inverse.
+// The multiple-scattering LUT's (u, v) of (altitude, cos_sun_zenith), and the inverse: u by
+// sign(mu_s) sqrt(|mu_s|), which crowds the columns around Earth's shadow (atmosphere.hpp).
 fn cm_atmosphere_multiple_scattering_lut_uv(air: CmAtmosphere, altitude: f32, cos_sun_zenith: f32, size: vec2f) -> vec2f {
-    let x_mu: f32 = cm_saturate(0.5 + 0.5 * cos_sun_zenith);
+    let c: f32 = clamp(cos_sun_zenith, -1.0, 1.0);
+    let root: f32 = sqrt(abs(c));
+    let x_mu: f32 = cm_saturate(0.5 + 0.5 * (select(root, -root, c < 0.0)));
     let x_h: f32 = cm_saturate(altitude / (air.top_radius - air.bottom_radius));
     return vec2f(0.5 / size.x + x_mu * (1.0 - 1.0 / size.x), 0.5 / size.y + x_h * (1.0 - 1.0 / size.y));
 }
 fn cm_atmosphere_multiple_scattering_lut_altitude_mu(air: CmAtmosphere, uv: vec2f, size: vec2f) -> vec2f {
     let x_mu: f32 = cm_saturate((uv.x - 0.5 / size.x) / (1.0 - 1.0 / size.x));
     let x_h: f32 = cm_saturate((uv.y - 0.5 / size.y) / (1.0 - 1.0 / size.y));
-    return vec2f(x_h * (air.top_radius - air.bottom_radius), 2.0 * x_mu - 1.0);
+    let m: f32 = 2.0 * x_mu - 1.0;
+    return vec2f(x_h * (air.top_radius - air.bottom_radius), m * abs(m));
 }
 
 // EV100 of a camera (f-number, shutter seconds, ISO), of an average luminance, and the exposure.
