@@ -358,13 +358,45 @@ TEST_CASE("atmosphere_ground_irradiance: the sky's cosine-weighted radiance over
     if (cm_test::ieee_build) CHECK(std::isnan(atmosphere_ground_irradiance(a, ms, std::numeric_limits<float>::quiet_NaN()).x));
 }
 
+TEST_CASE_TEMPLATE("atmosphere_multiple_scattering_source: Rayleigh's phase over a field symmetric about the vertical", T, float, double) {
+    const atmosphere_parameters<T> a = earth_atmosphere<T>();
+    const glm::vec<3, T> psi(T(0.02), T(0.03), T(0.05));
+    for (const T h : {T(0), T(1500), T(20000)}) {
+        const glm::vec<3, T> sigma_s = atmosphere_scattering_coefficient(a, h);
+        const glm::vec<3, T> rayleigh = a.rayleigh_scattering * std::exp(-h / a.rayleigh_scale_height);
+        for (const T mu : {T(-1), T(-0.3), T(0), T(0.5), T(1)}) {
+            // An isotropic field (moment psi / 3): sigma_s psi, whatever the direction.
+            const glm::vec<3, T> iso = atmosphere_multiple_scattering_source(a, h, psi, psi / T(3), mu);
+            for (int c = 0; c < 3; ++c) CHECK(cm_test::rel_err(double(iso[c]), double(sigma_s[c] * psi[c])) < 1e-5);
+        }
+        // A field all along the horizon (moment 0): Rayleigh's phase averaged over the horizon's
+        // directions is 3/(16 pi) (1 + cos^2): a horizontal view sees 4 pi 3/(16 pi) (1 + 1/2) = 9/8
+        // of isotropic, a vertical one 4 pi 3/(16 pi) = 3/4. The aerosols stay isotropic.
+        const glm::vec<3, T> flat_h = atmosphere_multiple_scattering_source(a, h, psi, glm::vec<3, T>(T(0)), T(0));
+        const glm::vec<3, T> flat_v = atmosphere_multiple_scattering_source(a, h, psi, glm::vec<3, T>(T(0)), T(1));
+        // A field all from straight up and down (moment psi): a vertical view sees 4 pi 3/(16 pi) 2 = 3/2.
+        const glm::vec<3, T> column = atmosphere_multiple_scattering_source(a, h, psi, psi, T(-1));
+        for (int c = 0; c < 3; ++c) {
+            const double mie = double(sigma_s[c] - rayleigh[c]) * double(psi[c]);
+            CHECK(cm_test::rel_err(double(flat_h[c]), 1.125 * double(rayleigh[c] * psi[c]) + mie) < 1e-5);
+            CHECK(cm_test::rel_err(double(flat_v[c]), 0.75 * double(rayleigh[c] * psi[c]) + mie) < 1e-5);
+            CHECK(cm_test::rel_err(double(column[c]), 1.5 * double(rayleigh[c] * psi[c]) + mie) < 1e-5);
+        }
+    }
+}
+
 TEST_CASE("atmosphere_multiple_scattering_refined_lut: Hillaire's with no pass, converged in three, brighter where his series falls short") {
     const auto a = earth_atmosphere<float>();
-    // No pass: Hillaire's LUT, texel for texel.
+    // No pass: Hillaire's LUT, texel for texel, and an isotropic field's moment.
     const std::vector<glm::vec3> hillaire = atmosphere_multiple_scattering_lut(a, 8, 8, 16, 8, 8);
-    const std::vector<glm::vec3> none = atmosphere_multiple_scattering_refined_lut(a, 8, 8, 0, 16, 8, 8);
+    std::vector<glm::vec3> none_moments;
+    const std::vector<glm::vec3> none = atmosphere_multiple_scattering_refined_lut(a, 8, 8, 0, 16, 8, 8, &none_moments);
     REQUIRE(none.size() == hillaire.size());
-    for (std::size_t k = 0; k < none.size(); ++k) CHECK(none[k] == hillaire[k]);
+    REQUIRE(none_moments.size() == hillaire.size());
+    for (std::size_t k = 0; k < none.size(); ++k) {
+        CHECK(none[k] == hillaire[k]);
+        CHECK(none_moments[k] == hillaire[k] / 3.0f);
+    }
     // No scattering and a black ground, no multiple scattering.
     atmosphere_parameters<float> dark = a;
     dark.rayleigh_scattering = glm::vec3(0.0f);
@@ -372,7 +404,8 @@ TEST_CASE("atmosphere_multiple_scattering_refined_lut: Hillaire's with no pass, 
     dark.ground_albedo = 0.0f;
     for (const glm::vec3& t : atmosphere_multiple_scattering_refined_lut(dark, 4, 4, 2, 8, 4, 4)) CHECK(t.z == 0.0f);
     // The passes converge: the third and the fifth agree within 0.5% wherever the sun is up.
-    const std::vector<glm::vec3> three = atmosphere_multiple_scattering_refined_lut(a, 16, 8, 3, 32, 12, 16);
+    std::vector<glm::vec3> moments;
+    const std::vector<glm::vec3> three = atmosphere_multiple_scattering_refined_lut(a, 16, 8, 3, 32, 12, 16, &moments);
     const std::vector<glm::vec3> five = atmosphere_multiple_scattering_refined_lut(a, 16, 8, 5, 32, 12, 16);
     const std::vector<glm::vec3> zero = atmosphere_multiple_scattering_refined_lut(a, 16, 8, 0, 32, 12, 16);
     for (int j = 0; j < 8; ++j)
@@ -388,6 +421,13 @@ TEST_CASE("atmosphere_multiple_scattering_refined_lut: Hillaire's with no pass, 
     const glm::vec3 series = atmosphere_multiple_scattering_from_lut(a, zero, 16, 8, 0.0f, mu_s);
     MESSAGE("ground, sun at 10 degrees, blue: Hillaire " << series.z << ", refined " << refined.z);
     CHECK(refined.z > 1.05f * series.z);
+    // Near the ground the field comes mostly from near the horizon (long, bright paths): its
+    // vertical moment is below an isotropic field's third; high up, with the air below
+    // brighter than the black space above, it is not far from it.
+    const glm::vec3 moment_ground = atmosphere_multiple_scattering_from_lut(a, moments, 16, 8, 0.0f, mu_s);
+    MESSAGE("ground, sun at 10 degrees, blue: vertical moment / mean " << moment_ground.z / refined.z);
+    CHECK(moment_ground.z < 0.3f * refined.z);
+    CHECK(moment_ground.z > 0.1f * refined.z);
 }
 
 TEST_CASE("global illuminance at sea level for a zenith sun: 110-130 klux (REFERENCES.md)") {
@@ -395,8 +435,9 @@ TEST_CASE("global illuminance at sea level for a zenith sun: 110-130 klux (REFER
     // (the radiance's cosine-weighted integral over the upper hemisphere: 64 azimuths x 32
     // cosines, midpoint), for 128 klux above the air in every channel; luminance by Rec. 709.
     const auto a = earth_atmosphere<float>();
-    const std::vector<glm::vec3> lut = atmosphere_multiple_scattering_refined_lut(a, 32, 32);
-    const atmosphere_multiple_scattering_table<float> ms{&lut, 32, 32};
+    std::vector<glm::vec3> moments;
+    const std::vector<glm::vec3> lut = atmosphere_multiple_scattering_refined_lut(a, 32, 32, 3, 64, 20, 32, &moments);
+    const atmosphere_multiple_scattering_table<float> ms{&lut, 32, 32, &moments};
     const glm::vec3 sun(0.0f, 1.0f, 0.0f);
     glm::dvec3 sky(0.0);
     const int na = 64, nc = 32;

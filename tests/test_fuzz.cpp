@@ -575,6 +575,13 @@ TEST_CASE_TEMPLATE("fuzz the sky: scattering, multiple scattering, in-scattering
         CHECK(in_range(am.x, T(0), air.top_radius - air.bottom_radius));
         CHECK(in_range(am.y, T(-1), T(1)));
         CHECK(in_range(cm::atmosphere_multiple_scattering_from_lut(air, lut, 4, 4, any_altitude, any_mu).y, T(0), T(1)));
+        // The field's source: a vertical moment from none to all of psi, any altitude and view.
+        const glm::vec<3, T> field(r.in(T(0), T(1)), r.in(T(0), T(1)), r.in(T(0), T(1)));
+        const glm::vec<3, T> src = cm::atmosphere_multiple_scattering_source(air, any_altitude, field, field * r.in(T(0), T(1)), any_mu);
+        if (cm_test::ieee_build || (!std::isnan(any_altitude) && !std::isnan(any_mu))) {
+            CHECK(ok(src.x));
+            CHECK(src.z >= T(0));
+        }
         if (k % 16 != 0) continue;  // the marches below cost thousands of exponentials each
         const glm::vec<3, T> psi = cm::atmosphere_multiple_scattering(air, any_altitude, any_mu, 1 + k % 5, 1 + k % 4, 1 + k % 3);
         if (cm_test::ieee_build || (!std::isnan(any_altitude) && !std::isnan(any_mu))) {
@@ -595,13 +602,21 @@ TEST_CASE_TEMPLATE("fuzz the sky: scattering, multiple scattering, in-scattering
         CHECK(ok(ground.z));
         CHECK(ground.z >= T(0));
     }
-    // The refined LUT: finite and non-negative for odd sizes, counts and passes (0 and 1 too).
-    for (int k = 0; k < 6; ++k)
-        for (const glm::vec<3, T>& t : cm::atmosphere_multiple_scattering_refined_lut(air, 2 + k % 3, 2 + k % 2, k % 3, 1 + k, 1 + k % 4, 1 + k % 2))
+    // The refined LUT and its moments: finite and non-negative for odd sizes, counts and passes
+    // (0 and 1 too); the moment never above the mean (a squared cosine is at most 1).
+    for (int k = 0; k < 6; ++k) {
+        std::vector<glm::vec<3, T>> moments;
+        const std::vector<glm::vec<3, T>> refined =
+            cm::atmosphere_multiple_scattering_refined_lut(air, 2 + k % 3, 2 + k % 2, k % 3, 1 + k, 1 + k % 4, 1 + k % 2, &moments);
+        REQUIRE(moments.size() == refined.size());
+        for (std::size_t i = 0; i < refined.size(); ++i)
             for (int c = 0; c < 3; ++c) {
-                CHECK(ok(t[c]));
-                CHECK(t[c] >= T(0));
+                CHECK(ok(refined[i][c]));
+                CHECK(refined[i][c] >= T(0));
+                CHECK(moments[i][c] >= T(0));
+                CHECK(moments[i][c] <= refined[i][c] * T(1.0001) + T(1e-30));
             }
+    }
 }
 
 TEST_CASE_TEMPLATE("fuzz the atmosphere: extinction, optical depth and transmittance in range, the LUT mapping inside it", T, float, double) {

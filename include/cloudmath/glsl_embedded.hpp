@@ -199,6 +199,20 @@ vec3 cm_atmosphere_multiple_scattering(CmAtmosphere air, float altitude, float c
 )cm_glsl"
      R"cm_glsl(}
 
+// What the multiple-scattering field scatters into a ray per unit length (see
+// atmosphere_multiple_scattering_source): psi and its vertical second moment from the LUTs
+// (vertical_moment = psi / 3 for an isotropic field); Rayleigh's phase over the field for the
+// molecules, isotropic for the aerosols.
+vec3 cm_atmosphere_multiple_scattering_source(CmAtmosphere air, float altitude, vec3 psi, vec3 vertical_moment,
+                                              float cos_view_zenith) {
+    float h = max(altitude, 0.0);
+    float mu2 = clamp(cos_view_zenith * cos_view_zenith, 0.0, 1.0);
+    vec3 horizontal = (psi - vertical_moment) * 0.5;
+    return air.rayleigh_scattering * exp(-h / air.rayleigh_scale_height) *
+               (0.75 * (psi + horizontal * (1.0 - mu2) + vertical_moment * mu2)) +
+           psi * (air.mie_scattering * exp(-h / air.mie_scale_height));
+}
+
 // The multiple-scattering LUT's (u, v) of (altitude, cos_sun_zenith), and the inverse: u by
 // sign(mu_s) sqrt(|mu_s|), which crowds the columns around Earth's shadow (atmosphere.hpp).
 vec2 cm_atmosphere_multiple_scattering_lut_uv(CmAtmosphere air, float altitude, float cos_sun_zenith, vec2 size) {

@@ -832,6 +832,17 @@ std::vector<parity_case> make_cases() {
                  const std::size_t i = std::size_t(std::clamp(a.x, 0.0f, 31.0f)), j = std::size_t(std::clamp(a.y, 0.0f, 31.0f));
                  return vec4(ms_lut[j * 32u + i] * 100.0f, 0.0f); },
              ms_texels, 3, 1.0f, 1e-4});
+        // The field's source: altitudes and view cosines with psi = b.xyz and the vertical
+        // moment a.z psi (0: all from the horizon; 1/3: isotropic; 1: all from the vertical).
+        std::vector<std::pair<vec4, vec4>> sources;
+        for (float h : {0.0f, 1500.0f, 60000.0f})
+            for (float mu : {-1.0f, -0.2f, 0.0f, 0.6f, 1.0f})
+                for (float share : {0.0f, 1.0f / 3.0f, 1.0f}) sources.push_back({vec4(h, mu, share, 0.0f), vec4(0.02f, 0.03f, 0.05f, 0.0f)});
+        add({"cm_atmosphere_multiple_scattering_source",
+             "vec4(cm_atmosphere_multiple_scattering_source(cm_earth_atmosphere(), a.x, b.xyz, b.xyz * a.z, a.y) * 1e6, 0.0)",
+             [earth](vec4 a, vec4 b) {
+                 return vec4(cm::atmosphere_multiple_scattering_source(earth, a.x, vec3(b), vec3(b) * a.z, a.y) * 1e6f, 0.0f); },
+             sources, 3, 1.0f, 1e-5});
         std::vector<std::pair<vec4, vec4>> ms_uv;
         for (float h : {-10.0f, 0.0f, 1000.0f, 30000.0f, 60000.0f, 70000.0f})
             for (float mu_s : {-1.0f, -0.5f, 0.0f, 0.3f, 1.0f}) ms_uv.push_back({vec4(h, mu_s, 0.0f, 0.0f), vec4(32.0f, 32.0f, 0.0f, 0.0f)});

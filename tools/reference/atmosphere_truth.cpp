@@ -109,8 +109,9 @@ std::vector<truth_row> read_truth(const std::string& path, const std::vector<dou
 
 std::vector<std::array<double, 3>> model_radiance(const std::vector<truth_row>& rows) {
     const auto air = earth_atmosphere<float>();
-    const std::vector<glm::vec3> lut = atmosphere_multiple_scattering_refined_lut(air, 32, 32, 3, 64, 20, 32);
-    const atmosphere_multiple_scattering_table<float> ms{&lut, 32, 32};
+    std::vector<glm::vec3> moments;
+    const std::vector<glm::vec3> lut = atmosphere_multiple_scattering_refined_lut(air, 32, 32, 3, 64, 20, 32, &moments);
+    const atmosphere_multiple_scattering_table<float> ms{&lut, 32, 32, &moments};
     std::vector<std::array<double, 3>> out;
     out.reserve(rows.size());
     for (const truth_row& r : rows) {

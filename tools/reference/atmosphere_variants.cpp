@@ -226,9 +226,9 @@ std::vector<ms_variant> ms_variants() {
         {"the orders gathered, second order by Rayleigh and Cornette-Shanks", true, true, 3, false, false, false, 32},
         {"the orders gathered, second order by Rayleigh", true, false, 3, false, false, false, 32},
         {"the same with the sky-lit ground", true, false, 3, true, false, false, 32},
-        {"the same with columns by sqrt(mu_s) (the library's)", true, false, 3, true, true, false, 32},
+        {"the same with columns by sqrt(mu_s)", true, false, 3, true, true, false, 32},
         {"the same with linear columns, 128 wide", true, false, 3, true, false, false, 128},
-        {"the library's with Rayleigh over the field's vertical moment", true, false, 3, true, true, true, 32},
+        {"the same with Rayleigh over the field's vertical moment (the library's)", true, false, 3, true, true, true, 32},
     };
 }
 

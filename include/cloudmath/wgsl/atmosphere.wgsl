@@ -184,6 +184,17 @@ fn cm_atmosphere_multiple_scattering(air: CmAtmosphere, altitude: f32, cos_sun_z
     return L2 / (vec3f(1.0) - min(f, vec3f(0.999)));
 }
 
+// What the multiple-scattering field scatters into a ray per unit length (see
+// atmosphere_multiple_scattering_source): psi and its vertical second moment from the LUTs
+// (vertical_moment = psi / 3 for an isotropic field); Rayleigh's phase over the field for the
+// molecules, isotropic for the aerosols.
+fn cm_atmosphere_multiple_scattering_source(air: CmAtmosphere, altitude: f32, psi: vec3f, vertical_moment: vec3f, cos_view_zenith: f32) -> vec3f {
+    let h: f32 = max(altitude, 0.0);
+    let mu2: f32 = clamp(cos_view_zenith * cos_view_zenith, 0.0, 1.0);
+    let horizontal: vec3f = (psi - vertical_moment) * 0.5;
+    return air.rayleigh_scattering * exp(-h / air.rayleigh_scale_height) * (0.75 * (psi + horizontal * (1.0 - mu2) + vertical_moment * mu2)) + psi * (air.mie_scattering * exp(-h / air.mie_scale_height));
+}
+
 // The multiple-scattering LUT's (u, v) of (altitude, cos_sun_zenith), and the inverse: u by
 // sign(mu_s) sqrt(|mu_s|), which crowds the columns around Earth's shadow (atmosphere.hpp).
 fn cm_atmosphere_multiple_scattering_lut_uv(air: CmAtmosphere, altitude: f32, cos_sun_zenith: f32, size: vec2f) -> vec2f {
