@@ -308,6 +308,22 @@ template <class T>
 }
 
 namespace detail {
+// The sun with zenith cosine mu_s at azimuth 0 in a point's frame (+y up).
+template <class T>
+inline glm::vec<3, T> atmosphere_sun_direction(T mu_s) noexcept {
+    return {std::sqrt(max(T(1) - mu_s * mu_s, T(0))), mu_s, T(0)};
+}
+
+// Ray k of a golden-angle set: zenith cosine mu, azimuth k times the golden angle. With the
+// cosines evenly spaced, the rays spread evenly over the sphere (spherical Fibonacci) or the
+// hemisphere.
+template <class T>
+inline glm::vec<3, T> atmosphere_golden_ray(T mu, int k) noexcept {
+    const T phi = pi_v<T> * (T(3) - std::sqrt(T(5))) * T(k);
+    const T sin_zenith = std::sqrt(max(T(1) - mu * mu, T(0)));
+    return {sin_zenith * std::cos(phi), mu, sin_zenith * std::sin(phi)};
+}
+
 // The second order's turn towards the point (1/(m sr)): the sun's light scattered once at
 // altitude h by the angle whose cosine is nu. Molecules with Rayleigh's phase: from a high sun
 // the light that reaches a point along the horizon is turned by 90 degrees, 0.75 of the
@@ -353,15 +369,12 @@ inline atmosphere_second_order_parts<T> atmosphere_second_order(const atmosphere
     const T h = clamp(altitude, T(0), air.top_radius - air.bottom_radius);
     const T r = air.bottom_radius + h;
     const T mu_s = clamp(cos_sun_zenith, T(-1), T(1));
-    const glm::vec<3, T> sun(std::sqrt(max(T(1) - mu_s * mu_s, T(0))), mu_s, T(0));
-    const T golden_angle = pi_v<T> * (T(3) - std::sqrt(T(5)));
+    const glm::vec<3, T> sun = atmosphere_sun_direction(mu_s);
     glm::vec<3, T> L2(T(0)), f(T(0)), b2(T(0));
     for (int k = 0; k < n_dir; ++k) {
         // Spherical Fibonacci: cosines evenly spaced in (-1, 1), azimuths by the golden angle.
         const T mu = T(1) - (T(2) * T(k) + T(1)) / T(n_dir);
-        const T phi = golden_angle * T(k);
-        const T sin_zenith = std::sqrt(max(T(1) - mu * mu, T(0)));
-        const glm::vec<3, T> dir(sin_zenith * std::cos(phi), mu, sin_zenith * std::sin(phi));
+        const glm::vec<3, T> dir = atmosphere_golden_ray(mu, k);
         const bool ground = atmosphere_ray_hits_ground(air, h, mu);
         const T length = atmosphere_ray_length(air, h, mu);
         const T ds = length / T(n);
@@ -604,16 +617,11 @@ template <class T>
                                                                  T cos_sun_zenith, int directions = 128, int steps = 32,
                                                                  int sun_steps = 32) noexcept {
     const int n = directions > 1 ? directions : 1;
-    const T mu_s = detail::clamp(cos_sun_zenith, T(-1), T(1));
-    const glm::vec<3, T> sun(std::sqrt(detail::max(T(1) - mu_s * mu_s, T(0))), mu_s, T(0));
-    const T golden_angle = pi_v<T> * (T(3) - std::sqrt(T(5)));
+    const glm::vec<3, T> sun = detail::atmosphere_sun_direction(detail::clamp(cos_sun_zenith, T(-1), T(1)));
     glm::vec<3, T> E(T(0));
     for (int k = 0; k < n; ++k) {
         const T mu = (T(k) + T(0.5)) / T(n);
-        const T phi = golden_angle * T(k);
-        const T sin_zenith = std::sqrt(detail::max(T(1) - mu * mu, T(0)));
-        const glm::vec<3, T> dir(sin_zenith * std::cos(phi), mu, sin_zenith * std::sin(phi));
-        E += atmosphere_sky_radiance(air, ms, T(0), dir, sun, steps, sun_steps) * mu;
+        E += atmosphere_sky_radiance(air, ms, T(0), detail::atmosphere_golden_ray(mu, k), sun, steps, sun_steps) * mu;
     }
     return E * (T(2) * pi_v<T> / T(n));
 }
@@ -633,15 +641,12 @@ inline atmosphere_second_order_parts<T> atmosphere_orders_gathered(const atmosph
     const T h = clamp(altitude, T(0), air.top_radius - air.bottom_radius);
     const T r = air.bottom_radius + h;
     const T mu_s = clamp(cos_sun_zenith, T(-1), T(1));
-    const glm::vec<3, T> sun(std::sqrt(max(T(1) - mu_s * mu_s, T(0))), mu_s, T(0));
-    const T golden_angle = pi_v<T> * (T(3) - std::sqrt(T(5)));
+    const glm::vec<3, T> sun = atmosphere_sun_direction(mu_s);
     const int w = field.width;
     glm::vec<3, T> E(T(0)), b(T(0));
     for (int k = 0; k < n_dir; ++k) {
-        const T mu = T(1) - (T(2) * T(k) + T(1)) / T(n_dir);
-        const T phi = golden_angle * T(k);
-        const T sin_zenith = std::sqrt(max(T(1) - mu * mu, T(0)));
-        const glm::vec<3, T> dir(sin_zenith * std::cos(phi), mu, sin_zenith * std::sin(phi));
+        const T mu = T(1) - (T(2) * T(k) + T(1)) / T(n_dir);  // atmosphere_second_order's rays
+        const glm::vec<3, T> dir = atmosphere_golden_ray(mu, k);
         const T length = atmosphere_ray_length(air, h, mu);
         const T ds = length / T(n);
         const T nu = glm::dot(dir, sun);
