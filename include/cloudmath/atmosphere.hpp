@@ -338,20 +338,6 @@ inline glm::vec<3, T> atmosphere_second_order_turn(const atmosphere_parameters<T
 }
 }  // namespace detail
 
-// atmosphere_multiple_scattering(air, altitude, cos_sun_zenith, directions, steps,
-// sun_steps): Hillaire 2020's Psi_ms (5.5), the radiance that every order of scattering from
-// the second on sends into a point, per unit sun illuminance and per unit scattering
-// coefficient; the point's multiple scattering is sigma_s Psi_ms, isotropic. From the point it
-// marches `directions` rays spread evenly over the sphere (a spherical Fibonacci set), each
-// over `steps` equal steps to the top or the ground, and gathers
-//   L2  = mean over rays of the singly scattered light arriving along the ray (Rayleigh's
-//         phase for the molecules where Hillaire takes isotropic, isotropic for the aerosols;
-//         sun transmittance by atmosphere_transmittance with sun_steps steps) plus the
-//         Lambertian ground's reflection where the ray meets it,
-//   f   = mean over rays of the fraction of isotropic light scattered back towards the point,
-// and sums the orders as a geometric series: Psi_ms = L2 / (1 - f). Each step is integrated
-// exactly for its constant medium, (1 - e^-sigma_t ds)/sigma_t (Hillaire 2015), so thin and
-// thick steps both conserve energy. Hillaire's LUT uses 64 directions and 20 steps.
 namespace detail {
 // Psi_ms's parts at a point: L2 (the second order's light arriving, per unit sun illuminance),
 // f (the fraction of isotropic light that the air scatters back to the point) and b2 (L2's
@@ -413,6 +399,20 @@ inline glm::vec<3, T> atmosphere_geometric_orders(const atmosphere_second_order_
 }
 }  // namespace detail
 
+// atmosphere_multiple_scattering(air, altitude, cos_sun_zenith, directions, steps,
+// sun_steps): Hillaire 2020's Psi_ms (5.5), the radiance that every order of scattering from
+// the second on sends into a point, per unit sun illuminance and per unit scattering
+// coefficient; the point's multiple scattering is sigma_s Psi_ms, isotropic. From the point it
+// marches `directions` rays spread evenly over the sphere (a spherical Fibonacci set), each
+// over `steps` equal steps to the top or the ground, and gathers
+//   L2  = mean over rays of the singly scattered light arriving along the ray (Rayleigh's
+//         phase for the molecules where Hillaire takes isotropic, isotropic for the aerosols;
+//         sun transmittance by atmosphere_transmittance with sun_steps steps) plus the
+//         Lambertian ground's reflection where the ray meets it,
+//   f   = mean over rays of the fraction of isotropic light scattered back towards the point,
+// and sums the orders as a geometric series: Psi_ms = L2 / (1 - f). Each step is integrated
+// exactly for its constant medium, (1 - e^-sigma_t ds)/sigma_t (Hillaire 2015), so thin and
+// thick steps both conserve energy. Hillaire's LUT uses 64 directions and 20 steps.
 template <class T>
 [[nodiscard]] inline glm::vec<3, T> atmosphere_multiple_scattering(const atmosphere_parameters<T>& air, T altitude,
                                                                    T cos_sun_zenith, int directions, int steps,
@@ -631,9 +631,15 @@ namespace detail {
 // atmosphere_second_order, the light that the multiple-scattering field of the previous pass
 // (`field`) sends to the point from the air, plus the ground's reflection of the sky's
 // irradiance (`sky_on_ground`, one value per LUT column, by the sun's cosine at the ground);
-// the gathered light's mean (E) and vertical second moment (b), as atmosphere_second_order's.
+// the gathered light's mean (E) and vertical second moment (b), as atmosphere_second_order's
+// L2 and b2.
 template <class T>
-inline atmosphere_second_order_parts<T> atmosphere_orders_gathered(const atmosphere_parameters<T>& air,
+struct atmosphere_gathered {
+    glm::vec<3, T> E, b;
+};
+
+template <class T>
+inline atmosphere_gathered<T> atmosphere_orders_gathered(const atmosphere_parameters<T>& air,
                                                                    const atmosphere_multiple_scattering_table<T>& field,
                                                                    const std::vector<glm::vec<3, T>>& sky_on_ground, T altitude,
                                                                    T cos_sun_zenith, int directions, int steps) noexcept {
@@ -673,7 +679,7 @@ inline atmosphere_second_order_parts<T> atmosphere_orders_gathered(const atmosph
         E += G;
         b += G * (mu * mu);
     }
-    return {E / T(n_dir), glm::vec<3, T>(T(0)), b / T(n_dir)};
+    return {E / T(n_dir), b / T(n_dir)};
 }
 }  // namespace detail
 
@@ -729,10 +735,10 @@ template <class T>
             sky_on_ground[static_cast<std::size_t>(i)] =
                 atmosphere_ground_irradiance(air, field, where[static_cast<std::size_t>(i)].y, 128, 32, sun_steps);
         for (std::size_t k = 0; k < texels; ++k) {
-            const detail::atmosphere_second_order_parts<T> g =
+            const detail::atmosphere_gathered<T> g =
                 detail::atmosphere_orders_gathered(air, field, sky_on_ground, where[k].x, where[k].y, directions, steps);
-            next[k] = second[k] + g.L2;
-            next_moment[k] = second_moment[k] + g.b2;
+            next[k] = second[k] + g.E;
+            next_moment[k] = second_moment[k] + g.b;
         }
         psi.swap(next);
         moment.swap(next_moment);
