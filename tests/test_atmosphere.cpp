@@ -358,6 +358,65 @@ TEST_CASE("atmosphere_ground_irradiance: the sky's cosine-weighted radiance over
     if (cm_test::ieee_build) CHECK(std::isnan(atmosphere_ground_irradiance(a, ms, std::numeric_limits<float>::quiet_NaN()).x));
 }
 
+TEST_CASE("atmosphere_ground_irradiance_lut: the sky-lit ground below the horizon") {
+    const auto a = earth_atmosphere<float>();
+    const std::vector<glm::vec3> lut = atmosphere_multiple_scattering_lut(a, 16, 16, 16, 10, 16);
+    const atmosphere_multiple_scattering_table<float> sun_only{&lut, 16, 16};
+    const std::vector<glm::vec3> E = atmosphere_ground_irradiance_lut(a, sun_only, 9, 32);
+    REQUIRE(E.size() == 9);
+    const atmosphere_multiple_scattering_table<float> sky_lit{&lut, 16, 16, nullptr, &E};
+    // The values sit at the sun cosines of the LUT's column spacing: u = 0.5 + 0.5 sign sqrt|mu_s|
+    // at i / 8, so mu_s = -1, -0.5625, -0.25, -0.0625, 0, 0.0625, 0.25, 0.5625, 1.
+    const float nodes[9] = {-1.0f, -0.5625f, -0.25f, -0.0625f, 0.0f, 0.0625f, 0.25f, 0.5625f, 1.0f};
+    for (int i = 0; i < 9; ++i) {
+        const glm::vec3 want = atmosphere_ground_irradiance(a, sun_only, nodes[i], 32);
+        for (int c = 0; c < 3; ++c) CHECK(E[static_cast<std::size_t>(i)][c] == doctest::Approx(want[c]).epsilon(2e-4));  // the node's mu_s, rounded in float
+    }
+    CHECK(E[0].z == 0.0f);  // the sun at the nadir lights no sky
+    CHECK(E[8].z > E[6].z);
+    // Looking straight down from the ground: no air between, so the radiance is the Lambertian
+    // ground's, albedo / pi (T_sun mu_s + E_sky(mu_s)) at a node, and without the values the
+    // sun's term alone.
+    const glm::vec3 down(0.0f, -1.0f, 0.0f);
+    for (const int i : {5, 6, 7}) {
+        const float mu_s = nodes[i];
+        const glm::vec3 sun(std::sqrt(1.0f - mu_s * mu_s), mu_s, 0.0f);
+        const glm::vec3 direct = atmosphere_transmittance(a, 0.0f, mu_s) * mu_s;
+        const glm::vec3 with_sky = atmosphere_sky_radiance(a, sky_lit, 0.0f, down, sun);
+        const glm::vec3 without = atmosphere_sky_radiance(a, sun_only, 0.0f, down, sun);
+        for (int c = 0; c < 3; ++c) {
+            CHECK(with_sky[c] == doctest::Approx(a.ground_albedo / 3.14159265f * (direct[c] + E[static_cast<std::size_t>(i)][c])).epsilon(1e-4));
+            CHECK(without[c] == doctest::Approx(a.ground_albedo / 3.14159265f * direct[c]).epsilon(1e-4));
+        }
+    }
+    // Between two values the lookup is linear in u: halfway between the nodes 0.0625 and 0.25
+    // (u = 0.5 + 0.5 * 0.375) it reads their mean.
+    {
+        const float mu_s = 0.375f * 0.375f;
+        const glm::vec3 sun(std::sqrt(1.0f - mu_s * mu_s), mu_s, 0.0f);
+        const glm::vec3 ground = (atmosphere_sky_radiance(a, sky_lit, 0.0f, down, sun) -
+                                  atmosphere_sky_radiance(a, sun_only, 0.0f, down, sun)) * (3.14159265f / a.ground_albedo);
+        for (int c = 0; c < 3; ++c) CHECK(ground[c] == doctest::Approx(0.5f * (E[5][c] + E[6][c])).epsilon(1e-4));
+    }
+    // Views that reach the sky, not the ground, are unchanged.
+    const glm::vec3 up = glm::normalize(glm::vec3(0.3f, 0.2f, 0.1f)), sun(0.8f, 0.6f, 0.0f);
+    CHECK(atmosphere_sky_radiance(a, sky_lit, 0.0f, up, sun) == atmosphere_sky_radiance(a, sun_only, 0.0f, up, sun));
+    // The sun below the horizon: the sky alone lights the ground.
+    {
+        const glm::vec3 set(0.999f, -0.0447f, 0.0f);
+        CHECK(atmosphere_sky_radiance(a, sun_only, 0.0f, down, glm::normalize(set)).z == 0.0f);
+        CHECK(atmosphere_sky_radiance(a, sky_lit, 0.0f, down, glm::normalize(set)).z > 0.0f);
+    }
+    // An empty table has no sky: no values; sizes below 2 give 2.
+    CHECK(atmosphere_ground_irradiance_lut(a, atmosphere_multiple_scattering_table<float>{}).empty());
+    CHECK(atmosphere_ground_irradiance_lut(a, sun_only, 0, 4).size() == 2);
+    // NaN in, NaN out (and no undefined conversion in the lookup).
+    if (cm_test::ieee_build) {
+        const float nan = std::numeric_limits<float>::quiet_NaN();
+        CHECK(std::isnan(atmosphere_sky_radiance(a, sky_lit, 0.0f, down, glm::vec3(nan, nan, nan)).x));
+    }
+}
+
 TEST_CASE_TEMPLATE("atmosphere_multiple_scattering_source: Rayleigh's phase over a field symmetric about the vertical", T, float, double) {
     const atmosphere_parameters<T> a = earth_atmosphere<T>();
     const glm::vec<3, T> psi(T(0.02), T(0.03), T(0.05));

@@ -13,6 +13,7 @@
 #include <cloudmath/lighting_choice.hpp>
 #include <cloudmath/noise_bake.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -601,6 +602,14 @@ TEST_CASE_TEMPLATE("fuzz the sky: scattering, multiple scattering, in-scattering
         const glm::vec<3, T> ground = cm::atmosphere_ground_irradiance(air, ms, r.in(T(-1), T(1)), 1 + k % 6, 1 + k % 4, 1 + k % 3);
         CHECK(ok(ground.z));
         CHECK(ground.z >= T(0));
+        // The sky-lit ground: any size of values, any view and sun.
+        const std::vector<glm::vec<3, T>> on_ground = cm::atmosphere_ground_irradiance_lut(air, ms, k % 5, 1 + k % 4, 1 + k % 3, 1 + k % 2);
+        REQUIRE(on_ground.size() == static_cast<std::size_t>(std::max(k % 5, 2)));
+        for (const glm::vec<3, T>& irradiance : on_ground) CHECK((ok(irradiance.y) && irradiance.y >= T(0)));
+        const cm::atmosphere_multiple_scattering_table<T> lit{&lut, 4, 4, nullptr, &on_ground};
+        const glm::vec<3, T> seen = cm::atmosphere_sky_radiance(air, lit, h, view, sun, 1 + k % 8, 1 + k % 5);
+        CHECK(ok(seen.x));
+        CHECK(seen.x >= sky.x * T(0.9999));  // the sky's light on the ground only adds
     }
     // The refined LUT and its moments: finite and non-negative for odd sizes, counts and passes
     // (0 and 1 too); the moment never above the mean (a squared cosine is at most 1).

@@ -6,7 +6,8 @@
 #                                multiple-scattering variants measured while choosing it
 #   cloudmath_atmosphere_truth   the CLI: `render` traces docs/data/atmosphere_truth.csv (or
 #                                the held-out set), `report` writes docs/atmosphere_truth.md
-#                                and its images, `variants` the variants' errors
+#                                and its images, `variants` the variants' errors, `ground`
+#                                the ground below the horizon against the tracer
 #   reference.atmosphere_tracer  the tracer against closed forms and the library's quadrature;
 #                                the model against the stored truth (issue 26's targets)
 #   reference.atmosphere_truth_cli  command-line errors, a tiny render, and the committed
@@ -71,6 +72,11 @@ if(CLOUDMATH_BUILD_TESTS)
       "$tool" report --set elsewhere 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "bad set: exit $s, want 2"; exit 1; }
       "$tool" variants --set holdout --data "$out/t.csv" 2>"$out.err" >/dev/null; s=$?
       [ $s -eq 1 ] && grep -q "t.csv: row 1 is not the set's" "$out.err" || { echo "variants of the wrong set: exit $s"; cat "$out.err"; exit 1; }
+      # ground: a bad count -> 2; a tiny run prints the 20 rows (5 suns x 4 views) and its paths.
+      "$tool" ground --paths 0 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "ground --paths 0: exit $s, want 2"; exit 1; }
+      "$tool" ground --paths 50 --threads 2 >"$out/ground.md" || { echo "ground failed"; exit 1; }
+      [ "$(grep -c '^| -\{0,1\}[0-9]* | [0-9]* m |' "$out/ground.md")" -eq 20 ] || { echo "ground: want 20 rows"; cat "$out/ground.md"; exit 1; }
+      grep -q '^50 paths per channel and view' "$out/ground.md" || { echo "ground: no paths line"; exit 1; }
       exit 0
       ]=] sh $<TARGET_FILE:cloudmath_atmosphere_truth> "${CMAKE_CURRENT_BINARY_DIR}/atmosphere_truth_cli_test"
         "${PROJECT_SOURCE_DIR}")

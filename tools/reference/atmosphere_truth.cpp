@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include <cloudmath/atmosphere.hpp>
 
@@ -122,6 +123,46 @@ std::vector<std::array<double, 3>> model_radiance(const std::vector<truth_row>& 
         out.push_back({double(L.x), double(L.y), double(L.z)});
     }
     return out;
+}
+
+std::vector<ground_row> ground_check(const std::vector<double>& sun_elevations, std::uint64_t paths,
+                                     const mc::run_options& options) {
+    std::vector<ground_row> rows;
+    std::vector<sky_query> queries;
+    for (double e : sun_elevations)
+        for (const auto& [altitude, view] : {std::pair{0.0, -90.0}, {1000.0, -90.0}, {1000.0, -30.0}, {1000.0, -5.0}}) {
+            ground_row r;
+            r.sun_elevation = e;
+            r.altitude = altitude;
+            r.view_elevation = view;
+            rows.push_back(r);
+            sky_query q;
+            q.altitude = altitude;
+            q.view = direction_from_degrees(view, 180.0);
+            q.sun = direction_from_degrees(e, 0.0);
+            queries.push_back(q);
+        }
+    const std::vector<sky_estimate> est = trace_sky(earth_atmosphere<double>(), queries, paths, options);
+    const auto air = earth_atmosphere<float>();
+    std::vector<glm::vec3> moments;
+    const std::vector<glm::vec3> lut = atmosphere_multiple_scattering_refined_lut(air, 32, 32, 3, 64, 20, 32, &moments);
+    const atmosphere_multiple_scattering_table<float> sun_only{&lut, 32, 32, &moments};
+    const std::vector<glm::vec3> sky_on_ground = atmosphere_ground_irradiance_lut(air, sun_only);
+    const atmosphere_multiple_scattering_table<float> sky_lit{&lut, 32, 32, &moments, &sky_on_ground};
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const glm::vec3 v(glm::dvec3(queries[i].view.x, queries[i].view.y, queries[i].view.z));
+        const glm::vec3 s(glm::dvec3(queries[i].sun.x, queries[i].sun.y, queries[i].sun.z));
+        const float h = float(rows[i].altitude);
+        const glm::vec3 a = atmosphere_sky_radiance(air, sun_only, h, v, s, 32, 32);
+        const glm::vec3 b = atmosphere_sky_radiance(air, sky_lit, h, v, s, 32, 32);
+        for (int c = 0; c < 3; ++c) {
+            rows[i].truth[c] = est[i].channel[c].mean;
+            rows[i].std_error[c] = est[i].channel[c].std_error;
+            rows[i].sun_only[c] = double(a[c]);
+            rows[i].sky_lit[c] = double(b[c]);
+        }
+    }
+    return rows;
 }
 
 error_summary summarise(const std::vector<truth_row>& rows, const std::vector<std::array<double, 3>>& model,

@@ -12,6 +12,7 @@
 #define CLOUDMATH_TOOLS_ATMOSPHERE_TRUTH_HPP
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,19 @@ std::vector<truth_row> read_truth(const std::string& path,
 
 // The model's radiance (per unit sun illuminance, 1/sr) for each row, float, as documented.
 std::vector<std::array<double, 3>> model_radiance(const std::vector<truth_row>& rows);
+
+// The ground below the horizon: views down from sea level (straight down) and from 1 km
+// (90, 30 and 5 degrees down, away from the sun's azimuth), for each sun elevation, traced
+// with `paths` paths per channel, against atmosphere_sky_radiance (float, as model_radiance)
+// with a ground lit by the sun only and by the sun and the sky
+// (atmosphere_multiple_scattering_table::ground_irradiance, atmosphere_ground_irradiance_lut).
+struct ground_row {
+    double sun_elevation = 0, altitude = 0, view_elevation = 0;
+    double truth[3] = {0, 0, 0}, std_error[3] = {0, 0, 0};
+    double sun_only[3] = {0, 0, 0}, sky_lit[3] = {0, 0, 0};  // the model's radiance
+};
+std::vector<ground_row> ground_check(const std::vector<double>& sun_elevations, std::uint64_t paths,
+                                     const mc::run_options& options);
 
 // Relative errors (model / truth - 1) over the channels of the rows selected: rms and worst
 // (the largest magnitude, with its sign), and the rms of the truth's relative standard errors.

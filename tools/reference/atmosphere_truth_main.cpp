@@ -50,6 +50,10 @@ const char* const usage_text =
     "  report   the library's model against the truth: docs/atmosphere_<set>.md and\n"
     "           docs/images/atmosphere_sun_<E>.png (path-traced | model | difference)\n"
     "           flags: [--set truth|holdout] [--data docs/data/atmosphere_<set>.csv] [--docs docs]\n"
+    "  ground   the ground below the horizon: views down from sea level and 1 km traced for\n"
+    "           the sun at 90, 30, 10, 2 and -2 degrees, against the model with a ground lit\n"
+    "           by the sun only and by the sun and the sky (a markdown table on stdout)\n"
+    "           flags: [--paths 200000] [--seed 1] [--threads 0]\n"
     "  variants the multiple-scattering variants measured while the model was chosen: a\n"
     "           markdown table of table / panorama rms per sun elevation on stdout\n"
     "           flags: [--set truth|holdout] [--data docs/data/atmosphere_<set>.csv]\n";
@@ -276,6 +280,40 @@ int report(int argc, char** argv) {
     return 0;
 }
 
+int ground(int argc, char** argv) {
+    const flags f(argc, argv, {"--paths", "--seed", "--threads"}, {});
+    const std::uint64_t paths = count_flag(f, "--paths", "200000");
+    const auto seed = cloudmath::tools::parse_integer<std::uint64_t>(f.get("--seed", "1"));
+    const auto threads = cloudmath::tools::parse_integer<unsigned>(f.get("--threads", "0"));
+    if (!seed || !threads) throw usage_error("--seed and --threads must be non-negative integers");
+    mc::run_options options;
+    options.seed = *seed;
+    options.threads = *threads;
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<atmo::ground_row> rows =
+        atmo::ground_check({atmo::truth_sun_elevations.begin(), atmo::truth_sun_elevations.end()}, paths, options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const auto errors = [](const double* model, const atmo::ground_row& r) {
+        std::string out;
+        for (int c = 0; c < 3; ++c) out += (c ? " " : "") + percent(model[c] / r.truth[c] - 1.0);
+        return out;
+    };
+    std::ostringstream md;
+    char line[256];
+    md << "| sun | camera | view | truth r, g, b (1/sr) | truth's noise (blue) | ground lit by the sun only | by the sun and the sky |\n"
+          "|---:|---:|---:|---|---:|---|---|\n";
+    for (const atmo::ground_row& r : rows) {
+        std::snprintf(line, sizeof line, "| %g | %g m | %g | %.4g, %.4g, %.4g | %.1f%% | ", r.sun_elevation, r.altitude,
+                      r.view_elevation, r.truth[0], r.truth[1], r.truth[2], 100.0 * r.std_error[2] / r.truth[2]);
+        md << line << errors(r.sun_only, r) << " | " << errors(r.sky_lit, r) << " |\n";
+    }
+    std::snprintf(line, sizeof line, "%llu paths per channel and view, seed %llu, %.1f s\n",
+                  static_cast<unsigned long long>(paths), static_cast<unsigned long long>(*seed), seconds);
+    md << '\n' << line;
+    std::cout << md.str();
+    return 0;
+}
+
 int variants(int argc, char** argv) {
     const flags f(argc, argv, {"--set", "--data"}, {});
     std::string set_name;
@@ -308,6 +346,7 @@ int main(int argc, char** argv) {
                                                          if (command == "render") return render(argc, argv);
                                                          if (command == "report") return report(argc, argv);
                                                          if (command == "variants") return variants(argc, argv);
+                                                         if (command == "ground") return ground(argc, argv);
                                                          throw usage_error("unknown command " + command);
                                                      });
 }
