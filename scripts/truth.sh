@@ -19,6 +19,12 @@
 #   --only P1,P2                   renders only these presets, keeps the other stored ones,
 #                                  then reruns the report
 #   --noise F                      the noise target (default 0.03)
+#   --sky physical                 the presets under the renderer's physical sky (--sky physical,
+#                                  the atmosphere module's sun and sky; docs/atmosphere.md), the
+#                                  classic field: data in docs/data/physical/, report
+#                                  docs/physical_sky/lighting_truth.md with the tool's four default
+#                                  variants, the physical presets sunrise and sunset added to the
+#                                  evaluation split; presets not traced yet are left out with a note
 #   --fit                          first refits diffusion_models::clouds, the renderer's
 #                                  default table, on the selection presets of both fields
 #                                  into docs/data/diffusion_clouds.txt (cloudmath_volume_truth
@@ -27,8 +33,8 @@
 #                                  twins, the embedded GLSL and the web bundles, and rebuilds
 #                                  the tool before the report
 # Usage: bash scripts/truth.sh [--reports-only] [--fit] [--only PRESETS] [--noise F] [--build DIR]
-#                              [--shape S] [--variant NAME=SPEC ...]
-#        bash scripts/truth.sh --check TOOL [--shape S] [--cache DIR]
+#                              [--shape S] [--sky S] [--variant NAME=SPEC ...]
+#        bash scripts/truth.sh --check TOOL [--shape S] [--sky S] [--cache DIR]
 #   --reports-only  keeps docs/data/truth_*.csv, reruns the report
 #   --check TOOL    reruns the report for the default and fitted_table variants with the built
 #                   cloudmath_volume_truth TOOL from the stored truth into a temporary
@@ -36,7 +42,9 @@
 #                   docs/lighting_truth.md's to 0.15 points: the documented errors come from
 #                   the stored data (ctest reference.volume_truth_report); for the classic
 #                   field also that
-#                   docs/data/diffusion_clouds.txt is what fit-clouds gives from the stored truths
+#                   docs/data/diffusion_clouds.txt is what fit-clouds gives from the stored truths;
+#                   with --sky physical the whole report, images included, must be the stored one
+#                   to the byte
 #   --build DIR     an existing build tree (configured with the examples) to build the tool
 #                   in; without it build/reference is configured as scripts/reference.sh does
 #   --variant       one more lighting variant for the report (the renderer's --variant
@@ -67,7 +75,7 @@ variants=(default= previous_estimators=refine=1,light-spacing=uniform,light-jitt
           diffusion_cone=light=cone,behind=cone cone_behind=behind=cone flat_ambient=ambient=flat
           capped=reach=capped reach_map=reach=map reach_band=reach=band fitted_table=table=fitted)
 width=160 height=90 noise=0.03
-reports_only=0 build="" check="" cache=() shape=classic only="" fit=0
+reports_only=0 build="" check="" cache=() shape=classic sky=artistic only="" fit=0 added_variants=0
 while [[ $# -gt 0 ]]; do
     case "$1" in
         --reports-only) reports_only=1 ;;
@@ -77,8 +85,9 @@ while [[ $# -gt 0 ]]; do
         --check) check="${2:?--check needs the tool}"; shift ;;
         --cache) cache=(--cache "${2:?--cache needs a directory}"); shift ;;
         --build) build="${2:?--build needs a directory}"; shift ;;
-        --variant) variants+=("${2:?--variant needs NAME=SPEC}"); shift ;;
+        --variant) variants+=("${2:?--variant needs NAME=SPEC}"); added_variants=1; shift ;;
         --shape) shape="${2:?--shape needs classic or detailed}"; shift ;;
+        --sky) sky="${2:?--sky needs artistic or physical}"; shift ;;
         *) echo "usage: bash scripts/truth.sh [--reports-only] [--build DIR] [--variant NAME=SPEC ...]" >&2; exit 2 ;;
     esac
     shift
@@ -91,30 +100,58 @@ esac
 # Presets added to the selection split after a field's truth was traced: left out of that
 # field's report, with a note, until traced (--only NAME).
 late=(low_sun_ahead low_sun_behind)
-if [[ $reports_only == 1 || -n $check ]]; then
-    kept=()
-    for p in "${selection[@]}"; do
+case "$sky" in
+    artistic) ;;
+    physical)
+        if [[ $shape != classic || $fit == 1 || $added_variants == 1 ]]; then
+            echo "truth.sh: --sky physical traces the classic field and reports the tool's default variants (no --shape detailed, --fit or --variant)" >&2
+            exit 2
+        fi
+        data=docs/data/physical docs=docs/physical_sky
+        presets+=(sunrise sunset)
+        variants=()
+        # Traced preset by preset (hours for all): any not traced yet is left out.
+        late=("${selection[@]}" "${presets[@]}") ;;
+    *) echo "truth.sh: --sky must be artistic or physical, not '$sky'" >&2; exit 2 ;;
+esac
+# The presets with a stored truth (the late ones may not have one yet), then the report's flags.
+keep_traced() {
+    local p
+    for p in "$@"; do
         if [[ ! -f $data/truth_$p.csv && " ${late[*]} " == *" $p "* ]]; then
-            echo "truth.sh: no $shape truth for $p yet (bash scripts/truth.sh --shape $shape --only $p); left out of the report" >&2
+            echo "truth.sh: no $shape $sky-sky truth for $p yet (bash scripts/truth.sh --shape $shape --sky $sky --only $p); left out of the report" >&2
             continue
         fi
-        kept+=("$p")
+        echo "$p"
     done
-    selection=("${kept[@]}")
-fi
-variant_args=()
-for v in "${variants[@]}"; do variant_args+=(--variant "$v"); done
-report_args=(--presets "$(IFS=,; echo "${presets[*]}")" --selection "$(IFS=,; echo "${selection[*]}")"
-             "${variant_args[@]}" "${cache[@]}" --shape "$shape" --quiet)
+}
+traced_report_args() {
+    mapfile -t selection < <(keep_traced "${selection[@]}")
+    mapfile -t presets < <(keep_traced "${presets[@]}")
+    local v
+    variant_args=()
+    for v in "${variants[@]}"; do variant_args+=(--variant "$v"); done
+    report_args=(--presets "$(IFS=,; echo "${presets[*]}")" --selection "$(IFS=,; echo "${selection[*]}")"
+                 "${variant_args[@]}" "${cache[@]}" --shape "$shape" --quiet)
+}
 
 # The summary table's rows of a report: "variant rms rms ..." with the % signs dropped.
 summary_rows() { awk '/^## Summary/ { on = 1; next } on && /^## / { exit } on && /^\| [^v-]/ {
     gsub(/%/, ""); n = split($0, c, "|"); row = c[2]; for (i = 3; i < n; ++i) row = row " " c[i]; gsub(/  +/, " ", row); print row }' "$1"; }
 
 if [[ -n $check ]]; then
+    traced_report_args
     tmp=$(mktemp -d)
     trap 'rm -rf "$tmp"' EXIT
     mkdir -p "$tmp/images"
+    if [[ $sky == physical ]]; then
+        # The whole report, images included, to the byte (seconds a preset on 2 cores).
+        "$check" report "${report_args[@]}" --data "$data" --docs "$tmp" >/dev/null
+        diff "$tmp/lighting_truth.md" "$docs/lighting_truth.md"
+        for f in "$tmp"/images/*.png; do cmp "$f" "$docs/images/$(basename "$f")"; done
+        echo "truth.sh --check: the physical sky's report reproduced (${#selection[@]} + ${#presets[@]} presets)"
+        exit
+    fi
     if [[ $shape == classic ]]; then
         "$check" fit-clouds --data docs/data "${cache[@]}" --quiet --check docs/data/diffusion_clouds.txt >/dev/null
     fi
@@ -164,8 +201,9 @@ fi
 if [[ $reports_only == 0 ]]; then
     for p in "${selection[@]}" "${presets[@]}"; do
         [[ -z $only || ",$only," == *",$p,"* ]] || continue
-        "$tool" render --preset "$p" --shape "$shape" --width "$width" --height "$height" --noise-target "$noise" \
+        "$tool" render --preset "$p" --shape "$shape" --sky "$sky" --width "$width" --height "$height" --noise-target "$noise" \
             --out "$data/truth_$p.csv"
     done
 fi
+traced_report_args
 "$tool" report "${report_args[@]}" --data "$data" --docs "$docs"

@@ -297,6 +297,7 @@ glm::vec2 cloud_band(const scene& s) {
 }
 
 const char* name(cloud_shape c) { return c == cloud_shape::classic ? "classic" : "detailed"; }
+const char* name(sky_model m) { return m == sky_model::artistic ? "artistic" : "physical"; }
 
 std::string permutation_key(const variant& v, cloud_shape shape) { return variant_spec(v) + "/" + name(shape); }
 

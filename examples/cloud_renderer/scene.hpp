@@ -303,6 +303,8 @@ glm::vec3 sun_at_height(const frame_constants& k, bool physical, float h);
 glm::vec2 cloud_band(const scene& s);
 // "classic" or "detailed".
 const char* name(cloud_shape c);
+// "artistic" or "physical".
+const char* name(sky_model m);
 
 // The unit view direction through the centre of pixel (x, y) of a width x height image (y = 0
 // the bottom row): the shader's ray (clouds.frag main), shared by the CPU renderer, the

@@ -53,6 +53,25 @@ if(CLOUDMATH_BUILD_TESTS)
       [ "$(grep -c '^[0-9]' "$out/truth_ground.csv")" -eq 32 ] || { echo "want 32 pixel rows"; exit 1; }
       grep -q '^x,y,r,g,b,se_r,se_g,se_b$' "$out/truth_ground.csv" || { echo "no header"; exit 1; }
       grep -q '^# allocation: uniform$' "$out/truth_ground.csv" || { echo "no uniform allocation line"; exit 1; }
+      grep -q '^# sky: artistic$' "$out/truth_ground.csv" || { echo "no artistic sky line"; exit 1; }
+      # --sky: the file says which sky it was traced under; the report renders the model under
+      # it and refuses truths traced under two skies.
+      "$tool" render --preset ground --sky blue --out x.csv 2>/dev/null; s=$?
+      [ $s -eq 2 ] || { echo "bad sky: exit $s, want 2"; exit 1; }
+      mkdir -p "$out/physical/images" "$out/mixed/images"
+      "$tool" render --preset ground --sky physical --width 8 --height 4 --spp 2 --threads 2 --cache "$cache" --quiet \
+        --out "$out/physical/truth_ground.csv" >/dev/null || { echo "physical render failed"; exit 1; }
+      grep -q '^# sky: physical$' "$out/physical/truth_ground.csv" || { echo "no physical sky line"; exit 1; }
+      cmp -s "$out/truth_ground.csv" "$out/physical/truth_ground.csv" && { echo "the physical sky changed nothing"; exit 1; }
+      "$tool" report --presets ground --variant "default=" --data "$out/physical" --docs "$out/physical" --cache "$cache" \
+        --quiet >/dev/null || { echo "physical report failed"; exit 1; }
+      grep -qF '`--sky physical`' "$out/physical/lighting_truth.md" || { echo "physical report does not name its sky"; exit 1; }
+      cp "$out/physical/truth_ground.csv" "$out/mixed/"
+      sed 's/^# preset: ground$/# preset: inside/; s/^# sky: physical$/# sky: artistic/' "$out/physical/truth_ground.csv" \
+        >"$out/mixed/truth_inside.csv"
+      "$tool" report --presets ground,inside --data "$out/mixed" --docs "$out/mixed" --cache "$cache" --quiet \
+        2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 2 ] && grep -q "one report, one sky" "$out.err" || { echo "two skies in one report: exit $s"; cat "$out.err"; exit 1; }
       # Adaptive sampling: a pilot, then the paths for a noise floor; the file says so.
       "$tool" render --preset ground --width 8 --height 4 --noise-target 0.5 --pilot-spp 4 --min-spp 4 --threads 2 \
         --cache "$cache" --quiet --out "$out/adaptive.csv" >/dev/null || { echo "adaptive render failed"; exit 1; }
@@ -122,6 +141,10 @@ x,y,r,g,b,se_r,se_g,se_b'
       printf '%s\n%s\n%s\n' "$head" "1,0,0.1,0.2,0.3,0,0,0" "1,0,0.1,0.2,0.3,0,0,0" >"$out/truth_ground.csv"
       "$tool" report --presets ground --data "$out" --docs "$out" --quiet 2>"$out.err" >/dev/null; s=$?
       [ $s -eq 1 ] && grep -q "truth_ground.csv:7: pixel 1,0 appears twice" "$out.err" || { echo "duplicate: exit $s"; cat "$out.err"; exit 1; }
+      printf '%s\n%s\n%s\n' "$head" "0,0,0.1,0.2,0.3,0,0,0" "1,0,0.1,0.2,0.3,0,0,0" | sed 's/# shape: classic/# shape: classic\n# sky: blue/' \
+        >"$out/truth_ground.csv"
+      "$tool" report --presets ground --data "$out" --docs "$out" --quiet 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "truth_ground.csv: unknown sky 'blue'" "$out.err" || { echo "sky blue: exit $s"; cat "$out.err"; exit 1; }
       printf '%s\n' "$head" | sed 's/# width: 2/# width: 2xyz/' >"$out/truth_ground.csv"
       "$tool" report --presets ground --data "$out" --docs "$out" --quiet 2>"$out.err" >/dev/null; s=$?
       [ $s -eq 1 ] && grep -q "width and height metadata" "$out.err" || { echo "width 2xyz: exit $s"; cat "$out.err"; exit 1; }
@@ -146,12 +169,11 @@ if(CLOUDMATH_BUILD_TESTS)
   add_test(NAME reference.volume_truth_report_detailed
     COMMAND bash "${PROJECT_SOURCE_DIR}/scripts/truth.sh" --check $<TARGET_FILE:cloudmath_volume_truth>
             --shape detailed --cache "${CMAKE_CURRENT_BINARY_DIR}/truth_texture_cache")
-  # The physical-sky presets (docs/data/physical, docs/physical_sky, commands in
-  # docs/atmosphere.md): the whole report regenerated from the stored truths must be the
-  # documented one to the byte (about 15 s on 2 cores), so a change to the renderer's physical
-  # sun, sky or far shadow, or to the truth's sky, cannot leave it stale.
+  # The presets under the physical sky (docs/data/physical, docs/physical_sky; scripts/truth.sh
+  # --sky physical): the whole report regenerated from the stored truths must be the documented
+  # one to the byte (seconds a preset on 2 cores), so a change to the renderer's physical sun,
+  # sky or far shadow, or to the truth's sky, cannot leave it stale.
   add_test(NAME reference.volume_truth_report_physical
-    COMMAND bash -c "set -e; t=$(mktemp -d); trap 'rm -rf \"$t\"' EXIT; mkdir -p \"$t/images\"; \"$0\" report --presets sunrise,sunset --data docs/data/physical --docs \"$t\" --cache \"$1\" --quiet > /dev/null; diff \"$t/lighting_truth.md\" docs/physical_sky/lighting_truth.md; for f in \"$t\"/images/*.png; do cmp \"$f\" \"docs/physical_sky/images/$(basename \"$f\")\"; done; echo 'physical report reproduced'"
-            $<TARGET_FILE:cloudmath_volume_truth> "${CMAKE_CURRENT_BINARY_DIR}/truth_texture_cache"
-    WORKING_DIRECTORY "${PROJECT_SOURCE_DIR}")
+    COMMAND bash "${PROJECT_SOURCE_DIR}/scripts/truth.sh" --check $<TARGET_FILE:cloudmath_volume_truth>
+            --sky physical --cache "${CMAKE_CURRENT_BINARY_DIR}/truth_texture_cache")
 endif()

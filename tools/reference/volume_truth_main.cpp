@@ -64,6 +64,8 @@ const char* const usage_text =
     "  render   path-trace one preset; CSV of linear rgb radiance and standard error per pixel\n"
     "           flags: --preset NAME --out F.csv [--width 160] [--height 90] [--spp 64]\n"
     "                  [--seed 1] [--phase SPEC] [--threads 0] [--cache DIR] [--shape classic]\n"
+    "                  [--sky artistic|physical] (default: the preset's; stored in the file,\n"
+    "                  report and fit-clouds render the model under it)\n"
     "                  [--quiet] [--noise-target F [--pilot-spp 64] [--min-spp 32] [--max-spp N]]\n"
     "           --noise-target: adaptive sampling instead of --spp: a pilot run measures each\n"
     "           pixel's variance and cost, then a second run (independent streams, unbiased per\n"
@@ -129,6 +131,15 @@ cr::scene preset(const std::string& name, cr::cloud_shape shape = cr::cloud_shap
     cr::scene out = *s;
     out.shape = shape;
     return out;
+}
+
+// --sky: the preset's own sky unless asked.
+cr::scene with_sky(cr::scene s, const std::string& value) {
+    if (value.empty()) return s;
+    if (value == "artistic") s.sky = cr::sky_model::artistic;
+    else if (value == "physical") s.sky = cr::sky_model::physical;
+    else throw usage_error("--sky must be artistic or physical, not '" + value + "'");
+    return s;
 }
 
 cr::cloud_shape shape_flag(const std::string& value) {
@@ -321,14 +332,14 @@ adaptive_run render_adaptive(const vt::path_tracer& tracer, const std::vector<vt
 int run_render(int argc, char** argv) {
     const flags f(argc, argv,
                   {"--preset", "--out", "--width", "--height", "--spp", "--seed", "--phase", "--threads", "--cache", "--shape",
-                   "--noise-target", "--pilot-spp", "--min-spp", "--max-spp"},
+                   "--sky", "--noise-target", "--pilot-spp", "--min-spp", "--max-spp"},
                   {"--quiet"});
     if (!f.has("--preset")) throw usage_error("render needs --preset NAME");
     if (!f.has("--out")) throw usage_error("render needs --out FILE.csv");
     // Checked before hours of tracing; written atomically at the end.
     if (const std::string error = cloudmath::tools::check_output_path(f.get("--out", "")); !error.empty())
         throw std::runtime_error(error);
-    const cr::scene s = preset(f.get("--preset", ""), shape_flag(f.get("--shape", "classic")));
+    const cr::scene s = with_sky(preset(f.get("--preset", ""), shape_flag(f.get("--shape", "classic"))), f.get("--sky", ""));
     const int width = static_cast<int>(f.integer("--width", 160, 1, 4096));
     const int height = static_cast<int>(f.integer("--height", 90, 1, 4096));
     const auto spp = static_cast<std::uint64_t>(f.integer("--spp", 64, 1, 1 << 24));
@@ -395,6 +406,7 @@ int run_render(int argc, char** argv) {
     t.meta = {{"preset", s.name},
               {"description", s.description},
               {"shape", cr::name(s.shape)},
+              {"sky", cr::name(s.sky)},
               {"width", std::to_string(width)},
               {"height", std::to_string(height)},
               {"spp", std::to_string((total_paths + rays.size() / 2) / rays.size())},
@@ -405,11 +417,20 @@ int run_render(int argc, char** argv) {
               {"threads", std::to_string(threads)},
               {"seconds", secs}};
     cloudmath::reference::write_text_file_atomically(
-        f.get("--out", ""), format_csv(t, {"preset", "description", "shape", "width", "height", "spp", "allocation", "seed",
+        f.get("--out", ""), format_csv(t, {"preset", "description", "shape", "sky", "width", "height", "spp", "allocation", "seed",
                                            "phase", "albedo", "threads", "seconds"}));
     std::cout << "render " << s.name << ": " << width << "x" << height << ", " << t.meta.at("spp") << " spp ("
               << allocation << "), " << secs << " s on " << threads << " threads -> " << f.get("--out", "") << '\n';
     return 0;
+}
+
+// The sky a stored truth was traced under: its "sky" line, artistic for files from before the
+// line (traced before the physical sky existed; the physical presets' files carry the line).
+cr::sky_model traced_sky(const truth_image& t, const std::string& path) {
+    const auto it = t.meta.find("sky");
+    if (it == t.meta.end() || it->second == "artistic") return cr::sky_model::artistic;
+    if (it->second == "physical") return cr::sky_model::physical;
+    throw std::runtime_error(path + ": unknown sky '" + it->second + "' (artistic or physical)");
 }
 
 // ---------------------------------------------------------------------------------------
@@ -562,8 +583,16 @@ int run_report(int argc, char** argv) {
     const bool quiet = f.has("--quiet");
 
     std::vector<truth_image> truths;
+    // One sky for a report: the model is rendered under the sky its truths were traced under.
+    std::optional<cr::sky_model> sky;
     for (const std::string& n : names) {
-        truths.push_back(read_truth(data + "/truth_" + n + ".csv"));
+        const std::string path = data + "/truth_" + n + ".csv";
+        truths.push_back(read_truth(path));
+        const cr::sky_model traced_under = traced_sky(truths.back(), path);
+        if (sky && *sky != traced_under)
+            throw usage_error(path + " was traced under the " + cr::name(traced_under) + " sky, the presets before it under the " +
+                              cr::name(*sky) + " one: one report, one sky");
+        sky = traced_under;
         // Files from before the shape existed were traced over the classic field.
         const auto it = truths.back().meta.find("shape");
         const std::string traced = it == truths.back().meta.end() ? "classic" : it->second;
@@ -585,7 +614,10 @@ int run_report(int argc, char** argv) {
           "double-precision volumetric path tracer over the renderer's own density field\n"
           "(`cloud_density`, tools/reference/cloud_medium.hpp): delta tracking, every order of\n"
           "scattering, the sun by next-event estimation with ratio-tracked transmittance, the\n"
-          "renderer's sky (gradient and aureole, no sun disc) and ground for paths that leave the\n"
+       << (*sky == cr::sky_model::artistic ? "renderer's sky (gradient and aureole, no sun disc)"
+                                           : "renderer's physical sky (`--sky physical`: the sky-view table, no sun\n"
+                                             "disc; the sun by height)")
+       << " and ground for paths that leave the\n"
           "layer, albedo 0.99 and the phase given below. Camera rays are the renderer's\n"
           "pixel centres; their first flight meets the clouds only within the renderer's view\n"
           "stretch (35 km) and sees the renderer's background (no sun disc) behind it. What the real-time\n"
@@ -623,7 +655,8 @@ int run_report(int argc, char** argv) {
             const auto it = t.meta.find(key);
             return it == t.meta.end() ? std::string("?") : it->second;
         };
-        const cr::scene s = preset(names[p], shape);
+        cr::scene s = preset(names[p], shape);
+        s.sky = *sky;
         sections << "## " << names[p] << " (" << s.description << ")"
                  << (p < selection.size() ? ", selection split" : "") << "\n\n";
         sections << "Truth: " << t.width << " x " << t.height << " pixels, " << meta("spp") << " paths per pixel, phase `"
@@ -664,7 +697,14 @@ int run_report(int argc, char** argv) {
     }
     // The rms of every variant on every preset, the selection split first.
     md << "## Summary: rms over the image mean\n\n";
-    if (!selection.empty() && shape == cr::cloud_shape::classic)
+    if (!selection.empty() && *sky == cr::sky_model::physical)
+        md << "The renderer's default lighting model was chosen, and its table (`diffusion_models::clouds`)\n"
+              "fitted, on the selection presets under the artistic sky ([../lighting_truth.md](../lighting_truth.md),\n"
+              "[../detailed/lighting_truth.md](../detailed/lighting_truth.md)). Here the same scenes differ\n"
+              "only by their sun and sky, so they are still marked as the selection split; nothing was chosen\n"
+              "or fitted under this sky, and the evaluation presets (the physical presets among them) were\n"
+              "never read by a choice or a fit.\n\n";
+    else if (!selection.empty() && shape == cr::cloud_shape::classic)
         md << "The renderer's default lighting model (the diffusion model, occluded sky light) was chosen on the\n"
               "selection presets of the time (sun_behind, cumulus, stratus), then measured on the evaluation\n"
               "presets (what had been measured on them before the choice is in\n"
@@ -824,6 +864,7 @@ int run_fit_clouds(int argc, char** argv) {
         const auto it = t.meta.find("shape");
         if ((it == t.meta.end() ? std::string("classic") : it->second) != cr::name(shape))
             throw std::runtime_error(path + " was not traced over the " + std::string(cr::name(shape)) + " field");
+        s.sky = traced_sky(t, path);
     };
     std::vector<std::pair<cr::scene, truth_image>> fit_data(fit_list.size());
     for (std::size_t i = 0; i < fit_list.size(); ++i) load(fit_list[i], fit_data[i].first, fit_data[i].second);
