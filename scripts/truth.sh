@@ -88,7 +88,7 @@ while [[ $# -gt 0 ]]; do
         --variant) variants+=("${2:?--variant needs NAME=SPEC}"); added_variants=1; shift ;;
         --shape) shape="${2:?--shape needs classic or detailed}"; shift ;;
         --sky) sky="${2:?--sky needs artistic or physical}"; shift ;;
-        *) echo "usage: bash scripts/truth.sh [--reports-only] [--build DIR] [--variant NAME=SPEC ...]" >&2; exit 2 ;;
+        *) echo "usage: bash scripts/truth.sh [--reports-only] [--fit] [--only PRESETS] [--noise F] [--build DIR] [--shape S] [--sky S] [--variant NAME=SPEC ...]" >&2; exit 2 ;;
     esac
     shift
 done

@@ -407,12 +407,23 @@ TEST_CASE("atmosphere_ground_irradiance_lut: the sky-lit ground below the horizo
         CHECK(atmosphere_sky_radiance(a, sun_only, 0.0f, down, glm::normalize(set)).z == 0.0f);
         CHECK(atmosphere_sky_radiance(a, sky_lit, 0.0f, down, glm::normalize(set)).z > 0.0f);
     }
-    // An empty table has no sky: no values; sizes below 2 give 2.
-    CHECK(atmosphere_ground_irradiance_lut(a, atmosphere_multiple_scattering_table<float>{}).empty());
+    // Without multiple scattering the sky still has its single scattering: the values are its
+    // irradiance (less than with the LUT). Sizes below 2 give 2.
+    const std::vector<glm::vec3> single = atmosphere_ground_irradiance_lut(a, atmosphere_multiple_scattering_table<float>{}, 9, 32);
+    REQUIRE(single.size() == 9);
+    CHECK(single[6].z > 0.0f);
+    CHECK(single[6].z < E[6].z);
+    CHECK(single[6].z == doctest::Approx(atmosphere_ground_irradiance(a, atmosphere_multiple_scattering_table<float>{}, nodes[6], 32).z).epsilon(2e-4));
     CHECK(atmosphere_ground_irradiance_lut(a, sun_only, 0, 4).size() == 2);
-    // NaN in, NaN out (and no undefined conversion in the lookup).
+    // The lookup: clamped at the ends; a NaN sun cosine reads a defined column (floor_to_int,
+    // never an undefined conversion) with a NaN weight: NaN out.
+    CHECK(detail::atmosphere_ground_irradiance_at(a, E, -2.0f) == E[0]);
+    CHECK(detail::atmosphere_ground_irradiance_at(a, E, 2.0f) == E[8]);
+    CHECK(detail::atmosphere_ground_irradiance_at(a, std::vector<glm::vec3>{glm::vec3(0.5f)}, 0.3f) == glm::vec3(0.5f));
+    CHECK(detail::atmosphere_ground_irradiance_at(a, std::vector<glm::vec3>{}, 0.3f) == glm::vec3(0.0f));
     if (cm_test::ieee_build) {
         const float nan = std::numeric_limits<float>::quiet_NaN();
+        CHECK(std::isnan(detail::atmosphere_ground_irradiance_at(a, E, nan).z));
         CHECK(std::isnan(atmosphere_sky_radiance(a, sky_lit, 0.0f, down, glm::vec3(nan, nan, nan)).x));
     }
 }

@@ -153,7 +153,9 @@ TEST_CASE("the ground below the horizon: the sky-lit ground against the path tra
     // ground reflects the sky as well as the sun (atmosphere_ground_irradiance_lut): within 1%
     // documented for the sun at 90-10 degrees; here 3% plus 4 standard errors, 6% for the
     // grazing views 5 degrees down (their in-scattering is the near-horizon sky's), 12% with
-    // the sun 2 degrees down (the sky there is 3.9% rms off its truth).
+    // the sun 2 degrees down (the sky there is 3.9% rms off its truth). With these paths the
+    // -2 degree rows' standard errors are large (4 of them up to 30%): those rows guard against
+    // gross errors only; the sun-only checks below carry the difference the sky makes.
     mc::run_options options;
     options.seed = 5;
     options.threads = 2;

@@ -424,11 +424,12 @@ int run_render(int argc, char** argv) {
     return 0;
 }
 
-// The sky a stored truth was traced under: its "sky" line, artistic for files from before the
-// line (traced before the physical sky existed; the physical presets' files carry the line).
-cr::sky_model traced_sky(const truth_image& t, const std::string& path) {
+// The sky a stored truth was traced under: its "sky" line, or for files from before the line
+// the preset's own (render used it; no preset has changed its sky since).
+cr::sky_model traced_sky(const truth_image& t, const cr::scene& preset_scene, const std::string& path) {
     const auto it = t.meta.find("sky");
-    if (it == t.meta.end() || it->second == "artistic") return cr::sky_model::artistic;
+    if (it == t.meta.end()) return preset_scene.sky;
+    if (it->second == "artistic") return cr::sky_model::artistic;
     if (it->second == "physical") return cr::sky_model::physical;
     throw std::runtime_error(path + ": unknown sky '" + it->second + "' (artistic or physical)");
 }
@@ -588,7 +589,7 @@ int run_report(int argc, char** argv) {
     for (const std::string& n : names) {
         const std::string path = data + "/truth_" + n + ".csv";
         truths.push_back(read_truth(path));
-        const cr::sky_model traced_under = traced_sky(truths.back(), path);
+        const cr::sky_model traced_under = traced_sky(truths.back(), preset(n), path);
         if (sky && *sky != traced_under)
             throw usage_error(path + " was traced under the " + cr::name(traced_under) + " sky, the presets before it under the " +
                               cr::name(*sky) + " one: one report, one sky");
@@ -864,7 +865,7 @@ int run_fit_clouds(int argc, char** argv) {
         const auto it = t.meta.find("shape");
         if ((it == t.meta.end() ? std::string("classic") : it->second) != cr::name(shape))
             throw std::runtime_error(path + " was not traced over the " + std::string(cr::name(shape)) + " field");
-        s.sky = traced_sky(t, path);
+        s.sky = traced_sky(t, s, path);
     };
     std::vector<std::pair<cr::scene, truth_image>> fit_data(fit_list.size());
     for (std::size_t i = 0; i < fit_list.size(); ++i) load(fit_list[i], fit_data[i].first, fit_data[i].second);
