@@ -161,9 +161,9 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
         else if (a == "--sky") {
             std::string v;
             if (!value(v)) return "--sky needs artistic or physical";
-            if (v == "artistic") o.sc.sky = sky_model::artistic;
-            else if (v == "physical") o.sc.sky = sky_model::physical;
-            else return "--sky must be artistic or physical, not '" + v + "'";
+            const std::optional<sky_model> m = sky_model_named(v);
+            if (!m) return "--sky must be artistic or physical, not '" + v + "'";
+            o.sc.sky = *m;
         } else if (a == "--shape") {
             std::string v;
             if (!value(v)) return "--shape needs classic or detailed";

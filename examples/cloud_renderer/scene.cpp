@@ -298,6 +298,11 @@ glm::vec2 cloud_band(const scene& s) {
 
 const char* name(cloud_shape c) { return c == cloud_shape::classic ? "classic" : "detailed"; }
 const char* name(sky_model m) { return m == sky_model::artistic ? "artistic" : "physical"; }
+std::optional<sky_model> sky_model_named(const std::string& n) {
+    if (n == "artistic") return sky_model::artistic;
+    if (n == "physical") return sky_model::physical;
+    return std::nullopt;
+}
 
 std::string permutation_key(const variant& v, cloud_shape shape) { return variant_spec(v) + "/" + name(shape); }
 

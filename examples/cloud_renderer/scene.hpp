@@ -14,6 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -303,8 +304,9 @@ glm::vec3 sun_at_height(const frame_constants& k, bool physical, float h);
 glm::vec2 cloud_band(const scene& s);
 // "classic" or "detailed".
 const char* name(cloud_shape c);
-// "artistic" or "physical".
+// "artistic" or "physical", and back (none for any other name).
 const char* name(sky_model m);
+std::optional<sky_model> sky_model_named(const std::string& name);
 
 // The unit view direction through the centre of pixel (x, y) of a width x height image (y = 0
 // the bottom row): the shader's ray (clouds.frag main), shared by the CPU renderer, the

@@ -136,9 +136,9 @@ cr::scene preset(const std::string& name, cr::cloud_shape shape = cr::cloud_shap
 // --sky: the preset's own sky unless asked.
 cr::scene with_sky(cr::scene s, const std::string& value) {
     if (value.empty()) return s;
-    if (value == "artistic") s.sky = cr::sky_model::artistic;
-    else if (value == "physical") s.sky = cr::sky_model::physical;
-    else throw usage_error("--sky must be artistic or physical, not '" + value + "'");
+    const std::optional<cr::sky_model> m = cr::sky_model_named(value);
+    if (!m) throw usage_error("--sky must be artistic or physical, not '" + value + "'");
+    s.sky = *m;
     return s;
 }
 
@@ -429,9 +429,9 @@ int run_render(int argc, char** argv) {
 cr::sky_model traced_sky(const truth_image& t, const cr::scene& preset_scene, const std::string& path) {
     const auto it = t.meta.find("sky");
     if (it == t.meta.end()) return preset_scene.sky;
-    if (it->second == "artistic") return cr::sky_model::artistic;
-    if (it->second == "physical") return cr::sky_model::physical;
-    throw std::runtime_error(path + ": unknown sky '" + it->second + "' (artistic or physical)");
+    const std::optional<cr::sky_model> m = cr::sky_model_named(it->second);
+    if (!m) throw std::runtime_error(path + ": unknown sky '" + it->second + "' (artistic or physical)");
+    return *m;
 }
 
 // ---------------------------------------------------------------------------------------
