@@ -20,11 +20,25 @@
 #                                  then reruns the report
 #   --noise F                      the noise target (default 0.03)
 #   --sky physical                 the presets under the renderer's physical sky (--sky physical,
-#                                  the atmosphere module's sun and sky; docs/atmosphere.md), the
-#                                  classic field: data in docs/data/physical/, report
-#                                  docs/physical_sky/lighting_truth.md with the tool's four default
-#                                  variants, the physical presets sunrise and sunset added to the
-#                                  evaluation split; presets not traced yet are left out with a note
+#                                  the atmosphere module's sun and sky; docs/atmosphere.md): data
+#                                  in docs/data/physical/, report docs/physical_sky/lighting_truth.md
+#                                  with the tool's four default variants, the physical presets
+#                                  sunrise and sunset added to the evaluation split; presets not
+#                                  traced yet are left out with a note. With --shape detailed: data
+#                                  in docs/data/physical/detailed/, report
+#                                  docs/physical_sky/detailed/lighting_truth.md, noise target 5%
+#   --budget-minutes N             stop tracing after N minutes in all: the render under way stops
+#                                  cleanly and keeps its checkpoint (docs/data/.../truth_P.csv.checkpoint,
+#                                  about 1.2 MB: commit it), the report is regenerated from the
+#                                  truths there are. A preset with a checkpoint is always resumed
+#                                  (cloudmath_volume_truth render --resume), so the same command in
+#                                  the next session goes on where this one stopped
+#   --pending                      trace only the presets still to do (cloudmath_volume_truth
+#                                  status): no truth, a checkpoint, a noise floor short of the
+#                                  target, or a truth or checkpoint over a scene that changed since
+#                                  (a stale checkpoint is deleted, with a word). For traces longer
+#                                  than a session: bash scripts/truth.sh --sky physical --pending
+#                                  --budget-minutes 120, then commit docs/data, session after session
 #   --fit                          first refits diffusion_models::clouds, the renderer's
 #                                  default table, on the selection presets of both fields
 #                                  into docs/data/diffusion_clouds.txt (cloudmath_volume_truth
@@ -33,7 +47,8 @@
 #                                  twins, the embedded GLSL and the web bundles, and rebuilds
 #                                  the tool before the report
 # Usage: bash scripts/truth.sh [--reports-only] [--fit] [--only PRESETS] [--noise F] [--build DIR]
-#                              [--shape S] [--sky S] [--variant NAME=SPEC ...]
+#                              [--shape S] [--sky S] [--variant NAME=SPEC ...] [--pending]
+#                              [--budget-minutes N]
 #        bash scripts/truth.sh --check TOOL [--shape S] [--sky S] [--cache DIR]
 #   --reports-only  keeps docs/data/truth_*.csv, reruns the report
 #   --check TOOL    reruns the report for the default and fitted_table variants with the built
@@ -74,8 +89,8 @@ variants=(default= previous_estimators=refine=1,light-spacing=uniform,light-jitt
           single=lighting=octaves,octaves=1,light=cone,ambient=flat mie=phase=mie
           diffusion_cone=light=cone,behind=cone cone_behind=behind=cone flat_ambient=ambient=flat
           capped=reach=capped reach_map=reach=map reach_band=reach=band fitted_table=table=fitted)
-width=160 height=90 noise=0.03
-reports_only=0 build="" check="" cache=() shape=classic sky=artistic only="" fit=0 added_variants=0
+width=160 height=90 noise=""
+reports_only=0 build="" check="" cache=() shape=classic sky=artistic only="" fit=0 added_variants=0 pending=0 budget=""
 while [[ $# -gt 0 ]]; do
     case "$1" in
         --reports-only) reports_only=1 ;;
@@ -88,7 +103,10 @@ while [[ $# -gt 0 ]]; do
         --variant) variants+=("${2:?--variant needs NAME=SPEC}"); added_variants=1; shift ;;
         --shape) shape="${2:?--shape needs classic or detailed}"; shift ;;
         --sky) sky="${2:?--sky needs artistic or physical}"; shift ;;
-        *) echo "usage: bash scripts/truth.sh [--reports-only] [--fit] [--only PRESETS] [--noise F] [--build DIR] [--shape S] [--sky S] [--variant NAME=SPEC ...]" >&2; exit 2 ;;
+        --pending) pending=1 ;;
+        --budget-minutes) budget="${2:?--budget-minutes needs a number of minutes}"; shift
+            [[ $budget =~ ^[0-9]+$ && $budget -gt 0 ]] || { echo "truth.sh: --budget-minutes must be a whole number of minutes > 0, not '$budget'" >&2; exit 2; } ;;
+        *) echo "usage: bash scripts/truth.sh [--reports-only] [--fit] [--only PRESETS] [--noise F] [--build DIR] [--shape S] [--sky S] [--variant NAME=SPEC ...] [--pending] [--budget-minutes N]" >&2; exit 2 ;;
     esac
     shift
 done
@@ -103,17 +121,22 @@ late=(low_sun_ahead low_sun_behind)
 case "$sky" in
     artistic) ;;
     physical)
-        if [[ $shape != classic || $fit == 1 || $added_variants == 1 ]]; then
-            echo "truth.sh: --sky physical traces the classic field and reports the tool's default variants (no --shape detailed, --fit or --variant)" >&2
+        if [[ $fit == 1 || $added_variants == 1 ]]; then
+            echo "truth.sh: --sky physical reports the tool's default variants (no --fit or --variant)" >&2
             exit 2
         fi
         data=docs/data/physical docs=docs/physical_sky
+        if [[ $shape == detailed ]]; then
+            data=docs/data/physical/detailed docs=docs/physical_sky/detailed
+            noise=${noise:-0.05}
+        fi
         presets+=(sunrise sunset)
         variants=()
         # Traced preset by preset (hours for all): any not traced yet is left out.
         late=("${selection[@]}" "${presets[@]}") ;;
     *) echo "truth.sh: --sky must be artistic or physical, not '$sky'" >&2; exit 2 ;;
 esac
+noise=${noise:-0.03}
 # The presets with a stored truth (the late ones may not have one yet), then the report's flags.
 keep_traced() {
     local p
@@ -199,10 +222,40 @@ if [[ $fit == 1 ]]; then
 fi
 
 if [[ $reports_only == 0 ]]; then
+    start=$SECONDS
     for p in "${selection[@]}" "${presets[@]}"; do
         [[ -z $only || ",$only," == *",$p,"* ]] || continue
+        checkpoint="$data/truth_$p.csv.checkpoint"
+        if [[ $pending == 1 ]]; then
+            state=$("$tool" status --presets "$p" --data "$data" --shape "$shape" --sky "$sky" --noise-target "$noise" "${cache[@]}")
+            echo "truth.sh: $state" >&2
+            case "$(awk '{ print $2 }' <<<"$state")" in
+                done) continue ;;
+                stale) if [[ -f $checkpoint ]]; then
+                           echo "truth.sh: deleting $checkpoint, traced over a scene that changed since" >&2
+                           rm -f "$checkpoint"
+                       fi ;;
+            esac
+        fi
+        resume=()
+        [[ -f $checkpoint ]] && resume=(--resume)
+        budget_args=()
+        if [[ -n $budget ]]; then
+            left=$((budget * 60 - (SECONDS - start)))
+            if ((left < 60)); then
+                echo "truth.sh: the budget of $budget minutes is spent before $p" >&2
+                break
+            fi
+            budget_args=(--budget-minutes "$((left / 60))")
+        fi
+        status=0
         "$tool" render --preset "$p" --shape "$shape" --sky "$sky" --width "$width" --height "$height" --noise-target "$noise" \
-            --out "$data/truth_$p.csv"
+            "${cache[@]}" "${resume[@]}" "${budget_args[@]}" --out "$data/truth_$p.csv" || status=$?
+        if [[ $status == 3 ]]; then
+            echo "truth.sh: $p stopped by the budget, its checkpoint kept in $checkpoint: commit it, and run the same command again to go on" >&2
+            break
+        fi
+        [[ $status == 0 ]] || exit "$status"
     done
 fi
 traced_report_args

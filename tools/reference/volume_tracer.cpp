@@ -182,44 +182,53 @@ rgb path_tracer::sample(const camera_ray& ray, random_stream& rng) const {
 // ---------------------------------------------------------------------------------------
 namespace {
 
-struct rgb_tally {
-    moments r, g, b;
-    double lookups = 0.0;
-    void merge(const rgb_tally& o) {
-        r.merge(o.r);
-        g.merge(o.g);
-        b.merge(o.b);
-        lookups += o.lookups;
-    }
-};
-
 // One path of ray `item` into the tally, with its extinction lookups.
 auto sample_into(const path_tracer& tracer, const std::vector<camera_ray>& rays) {
-    return [&tracer, &rays](std::size_t item, random_stream& rng, rgb_tally& t) {
+    return [&tracer, &rays](std::size_t item, random_stream& rng, path_tally& t) {
         const std::uint64_t before = extinction_lookups;
         const rgb L = tracer.sample(rays[item], rng);
         t.lookups += static_cast<double>(extinction_lookups - before);
         t.r.add(L.r);
         t.g.add(L.g);
         t.b.add(L.b);
+        ++t.paths;
     };
 }
 
-rgb_estimate make_rgb_estimate(const rgb_tally& t, std::uint64_t paths) {
-    return {make_estimate(t.r, paths), make_estimate(t.g, paths), make_estimate(t.b, paths)};
+}  // namespace
+
+rgb_estimate make_rgb_estimate(const path_tally& t) {
+    rgb_estimate e{make_estimate(t.r, t.paths), make_estimate(t.g, t.paths), make_estimate(t.b, t.paths)};
+    if (t.paths < 2) e.r.std_error = e.g.std_error = e.b.std_error = 0.0;
+    return e;
 }
 
-}  // namespace
+std::vector<path_tally> trace_chunks(const path_tracer& tracer, const std::vector<camera_ray>& rays,
+                                     const std::vector<chunk_job>& jobs, const mc::run_options& options) {
+    for (const chunk_job& j : jobs) {
+        if (j.ray >= rays.size()) throw std::invalid_argument("trace_chunks: a job's ray is out of range");
+        if (j.paths < 1 || j.paths > paths_per_chunk)
+            throw std::invalid_argument("trace_chunks: a job holds 1 to paths_per_chunk paths");
+    }
+    std::vector<path_tally> out(jobs.size());
+    const auto sample = sample_into(tracer, rays);
+    run_chunks(jobs.size(), options, [&](std::size_t k) {
+        const chunk_job& j = jobs[k];
+        random_stream rng(options.seed, estimate_key + j.ray, j.chunk);
+        for (std::uint64_t i = 0; i < j.paths; ++i) sample(j.ray, rng, out[k]);
+    });
+    return out;
+}
 
 std::vector<rgb_estimate> estimate_radiance(const path_tracer& tracer,
                                             const std::vector<camera_ray>& rays,
                                             std::uint64_t paths_per_ray,
                                             const mc::run_options& options) {
-    const std::vector<rgb_tally> totals =
-        tally_per_item<rgb_tally>(rays.size(), paths_per_ray, options, estimate_key, sample_into(tracer, rays));
+    const std::vector<path_tally> totals =
+        tally_per_item<path_tally>(rays.size(), paths_per_ray, options, estimate_key, sample_into(tracer, rays));
     std::vector<rgb_estimate> out;
     out.reserve(rays.size());
-    for (const rgb_tally& t : totals) out.push_back(make_rgb_estimate(t, paths_per_ray));
+    for (const path_tally& t : totals) out.push_back(make_rgb_estimate(t));
     return out;
 }
 
@@ -229,28 +238,24 @@ std::vector<rgb_estimate> estimate_radiance(const path_tracer& tracer,
                                             const mc::run_options& options) {
     if (paths_per_ray.size() != rays.size())
         throw std::invalid_argument("estimate_radiance: one path count per ray");
-    const std::vector<rgb_tally> totals =
-        tally_per_item<rgb_tally>(paths_per_ray, options, estimate_key, sample_into(tracer, rays));
+    const std::vector<path_tally> totals =
+        tally_per_item<path_tally>(paths_per_ray, options, estimate_key, sample_into(tracer, rays));
     std::vector<rgb_estimate> out;
     out.reserve(rays.size());
-    for (std::size_t i = 0; i < totals.size(); ++i) {
-        rgb_estimate e = make_rgb_estimate(totals[i], paths_per_ray[i]);
-        if (paths_per_ray[i] < 2) e.r.std_error = e.g.std_error = e.b.std_error = 0.0;
-        out.push_back(e);
-    }
+    for (const path_tally& t : totals) out.push_back(make_rgb_estimate(t));
     return out;
 }
 
 pilot_estimate estimate_radiance_pilot(const path_tracer& tracer, const std::vector<camera_ray>& rays,
                                        std::uint64_t paths_per_ray, const mc::run_options& options) {
     if (paths_per_ray < 2) throw std::invalid_argument("estimate_radiance_pilot: at least 2 paths per ray");
-    const std::vector<rgb_tally> totals =
-        tally_per_item<rgb_tally>(rays.size(), paths_per_ray, options, pilot_key, sample_into(tracer, rays));
+    const std::vector<path_tally> totals =
+        tally_per_item<path_tally>(rays.size(), paths_per_ray, options, pilot_key, sample_into(tracer, rays));
     pilot_estimate out;
     out.radiance.reserve(rays.size());
     out.cost_per_path.reserve(rays.size());
-    for (const rgb_tally& t : totals) {
-        out.radiance.push_back(make_rgb_estimate(t, paths_per_ray));
+    for (const path_tally& t : totals) {
+        out.radiance.push_back(make_rgb_estimate(t));
         out.cost_per_path.push_back(1.0 + t.lookups / static_cast<double>(paths_per_ray));
     }
     return out;

@@ -200,6 +200,40 @@ private:
                                                           const mc::run_options& options);
 
 // ---------------------------------------------------------------------------------------
+// Paths traced chunk by chunk, for a render that stops and resumes (truth_checkpoint.hpp).
+// A chunk is what estimate_radiance runs under one random stream: chunk k of ray i draws
+// from the stream (seed, estimate key + i, k), the same stream estimate_radiance gives it, so
+// a ray's chunks 0, 1, ... merged in that order are estimate_radiance's numbers to the bit,
+// however the chunks were spread over runs. A chunk holds at most mc::detail::paths_per_chunk
+// paths.
+struct path_tally {
+    mc::detail::moments r, g, b;  // sums and sums of squares per channel
+    std::uint64_t paths = 0;
+    double lookups = 0.0;         // extinction lookups (the pilot's cost measure)
+    void merge(const path_tally& o) {
+        r.merge(o.r);
+        g.merge(o.g);
+        b.merge(o.b);
+        paths += o.paths;
+        lookups += o.lookups;
+    }
+};
+struct chunk_job {
+    std::size_t ray = 0;
+    std::uint64_t chunk = 0;
+    std::uint64_t paths = 0;  // 1 .. paths_per_chunk
+};
+// One tally per job, in the jobs' order (the threads of options take jobs as they free up).
+// Throws std::invalid_argument for a ray index out of range or a path count outside
+// [1, paths_per_chunk].
+[[nodiscard]] std::vector<path_tally> trace_chunks(const path_tracer& tracer, const std::vector<camera_ray>& rays,
+                                                   const std::vector<chunk_job>& jobs, const mc::run_options& options);
+
+// A ray's estimate from its merged tally (the standard error 0 below 2 paths, as
+// estimate_radiance's).
+[[nodiscard]] rgb_estimate make_rgb_estimate(const path_tally& t);
+
+// ---------------------------------------------------------------------------------------
 // Adaptive sampling in two stages (variance reduction that keeps every pixel unbiased).
 // A pilot run measures each ray's variance per path and its cost per path; allocate_paths
 // then gives each ray the path count that reaches a target total variance at the least

@@ -2,14 +2,17 @@
 # CMakeLists.txt; needs the example renderer's core, so it is built with the examples).
 #   cloudmath_volume_tracer_lib  volume_tracer.cpp: delta/ratio-tracking path tracer for
 #                                heterogeneous media; cloud_medium.cpp: the renderer's clouds,
-#                                sky and camera as its medium and light
+#                                sky and camera as its medium and light; truth_checkpoint.cpp:
+#                                a render that stops and resumes across sessions
 #   cloudmath_volume_truth       the CLI: `render` path-traces a preset into docs/data,
 #                                `report` compares the renderer's variants with it
 #                                (docs/lighting_truth.md; volume_truth_main.cpp)
 #   reference.volume_tracer      validation against montecarlo.hpp, determinism, majorants
+#   reference.truth_checkpoint   a render stopped and resumed is the uninterrupted one to the
+#                                bit; malformed and mismatched checkpoints refused
 #   reference.volume_truth_cli   command-line errors and a tiny render + report
 #   reference.volume_truth_report the documented errors reproduced from the stored truth
-add_library(cloudmath_volume_tracer_lib STATIC volume_tracer.cpp cloud_medium.cpp)
+add_library(cloudmath_volume_tracer_lib STATIC volume_tracer.cpp cloud_medium.cpp truth_checkpoint.cpp)
 cloudmath_reference_target(cloudmath_volume_tracer_lib)
 target_include_directories(cloudmath_volume_tracer_lib PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}")
 target_link_libraries(cloudmath_volume_tracer_lib PUBLIC cloudmath_montecarlo_lib cloud_renderer_core)
@@ -19,6 +22,8 @@ cloudmath_reference_target(cloudmath_volume_truth)
 target_link_libraries(cloudmath_volume_truth PRIVATE cloudmath_volume_tracer_lib cloudmath_lighting_lib)  # read_clouds_model
 
 if(CLOUDMATH_BUILD_TESTS)
+  cloudmath_reference_test(truth_checkpoint test_truth_checkpoint.cpp)
+  target_link_libraries(cloudmath_reference_test_truth_checkpoint PRIVATE cloudmath_volume_tracer_lib)
   cloudmath_reference_test(volume_tracer test_volume_tracer.cpp)
   target_link_libraries(cloudmath_reference_test_volume_tracer PRIVATE cloudmath_volume_tracer_lib)
   target_compile_definitions(cloudmath_reference_test_volume_tracer PRIVATE
@@ -78,6 +83,40 @@ if(CLOUDMATH_BUILD_TESTS)
         --cache "$cache" --quiet --out "$out/adaptive.csv" >/dev/null || { echo "adaptive render failed"; exit 1; }
       [ "$(grep -c '^[0-9]' "$out/adaptive.csv")" -eq 32 ] || { echo "adaptive: want 32 pixel rows"; exit 1; }
       grep -q '^# allocation: adaptive for a noise floor of 50.0% (pilot 4 spp' "$out/adaptive.csv" || { echo "adaptive: no allocation line"; exit 1; }
+      grep -q '^# noise floor: [0-9.]*%$' "$out/adaptive.csv" || { echo "adaptive: no noise floor line"; exit 1; }
+      [ ! -e "$out/adaptive.csv.checkpoint" ] || { echo "a finished render left its checkpoint"; exit 1; }
+      # A time budget stops the render cleanly (exit 3, the checkpoint kept, no truth file);
+      # --resume finishes it with the numbers of the uninterrupted render; a checkpoint is never
+      # overwritten without --resume, and one of another run is refused naming what differs.
+      ck="--preset ground --width 8 --height 4 --noise-target 0.5 --pilot-spp 4 --min-spp 4 --threads 2 --cache $cache --quiet"
+      "$tool" render $ck --budget-minutes 0.0001 --out "$out/resumed.csv" >"$out.log"; s=$?
+      [ $s -eq 3 ] && [ -s "$out/resumed.csv.checkpoint" ] && [ ! -e "$out/resumed.csv" ] ||
+        { echo "budget: exit $s, want 3 with a checkpoint and no truth"; exit 1; }
+      grep -q "continue with --resume" "$out.log" || { echo "budget: no word on resuming"; exit 1; }
+      head -c 27 "$out/resumed.csv.checkpoint" | grep -q "cloudmath truth checkpoint" || { echo "not a checkpoint"; exit 1; }
+      "$tool" render $ck --out "$out/resumed.csv" 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "resumed.csv.checkpoint: a checkpoint of an unfinished render is there" "$out.err" ||
+        { echo "an existing checkpoint without --resume: exit $s"; cat "$out.err"; exit 1; }
+      "$tool" render $ck --seed 2 --resume --out "$out/resumed.csv" 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "the checkpoint's seed is '1', this run's '2'" "$out.err" ||
+        { echo "resume with another seed: exit $s"; cat "$out.err"; exit 1; }
+      "$tool" render $ck --sky physical --resume --out "$out/resumed.csv" 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "the checkpoint's sky is 'artistic', this run's 'physical'" "$out.err" || { echo "resume under another sky: exit $s"; cat "$out.err"; exit 1; }
+      "$tool" render $ck --resume --out "$out/none.csv" 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "none.csv.checkpoint: no checkpoint to resume" "$out.err" || { echo "resume nothing: exit $s"; exit 1; }
+      cp "$out/resumed.csv.checkpoint" "$out/damaged.checkpoint"
+      printf 'x' >>"$out/damaged.checkpoint"
+      "$tool" render $ck --resume --checkpoint "$out/damaged.checkpoint" --out "$out/damaged.csv" 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "damaged.checkpoint: bytes after the end line" "$out.err" || { echo "damaged: exit $s"; cat "$out.err"; exit 1; }
+      "$tool" render $ck --resume --out "$out/resumed.csv" >/dev/null || { echo "resume failed"; exit 1; }
+      [ ! -e "$out/resumed.csv.checkpoint" ] || { echo "the resumed render left its checkpoint"; exit 1; }
+      grep -q '^# runs: 2$' "$out/resumed.csv" || { echo "resumed: want 2 runs"; exit 1; }
+      grep '^[0-9]' "$out/adaptive.csv" >"$out/a.rows"; grep '^[0-9]' "$out/resumed.csv" >"$out/r.rows"
+      cmp -s "$out/a.rows" "$out/r.rows" || { echo "the resumed render differs from the uninterrupted one"; exit 1; }
+      for bad in "--budget-minutes 0" "--budget-minutes -1" "--budget-minutes nan"; do
+        "$tool" render --preset ground --out x.csv $bad 2>/dev/null; s=$?
+        [ $s -eq 2 ] || { echo "render $bad: exit $s, want 2"; exit 1; }
+      done
       "$tool" report --presets ground --variant "default=" --variant "march=light=march" --data "$out" \
         --docs "$out/docs" --cache "$cache" --quiet >/dev/null || { echo "report failed"; exit 1; }
       for f in lighting_truth.md images/truth_ground.png; do
