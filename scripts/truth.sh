@@ -221,6 +221,7 @@ if [[ $fit == 1 ]]; then
     cmake --build "$build" --target cloudmath_volume_truth >/dev/null
 fi
 
+finished=0  # truths written by this run
 if [[ $reports_only == 0 ]]; then
     start=$SECONDS
     for p in "${selection[@]}" "${presets[@]}"; do
@@ -256,7 +257,12 @@ if [[ $reports_only == 0 ]]; then
             break
         fi
         [[ $status == 0 ]] || exit "$status"
+        finished=$((finished + 1))
     done
+    if [[ $finished == 0 ]]; then
+        echo "truth.sh: no truth finished, the report stays as it is" >&2
+        exit 0
+    fi
 fi
 traced_report_args
 "$tool" report "${report_args[@]}" --data "$data" --docs "$docs"

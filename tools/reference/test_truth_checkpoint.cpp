@@ -67,7 +67,7 @@ void require_same(const std::vector<vt::rgb_estimate>& a, const std::vector<vt::
 bool trace(vt::truth_checkpoint& c, const sphere_scene& s, unsigned threads, std::size_t batch_jobs, int batches) {
     const vt::path_tracer tracer(s.sphere, s.phase, 0.99, s.light);
     int done = 0;
-    return vt::continue_trace(c, tracer, s.rays, options(threads), batch_jobs, 1e9,
+    return vt::continue_trace(c, tracer, s.rays, options(threads), batch_jobs, 0.0, 1e9,
                               [&]() { return batches > 0 && done++ >= batches; }, nullptr);
 }
 
@@ -112,6 +112,18 @@ TEST_CASE("a render stopped, written, read back and resumed is the uninterrupted
     // Every chunk of every ray merged once, in order.
     for (const std::uint64_t k : resumed.next_chunk) CHECK(k == 2);
     CHECK(vt::next_jobs(resumed, 10).empty());
+}
+
+TEST_CASE("batches sized by time give the same numbers as fixed ones") {
+    const sphere_scene s;
+    const vt::path_tracer tracer(s.sphere, s.phase, 0.99, s.light);
+    vt::truth_checkpoint fixed = vt::uniform_plan(identity(), s.rays.size(), 9000);
+    vt::truth_checkpoint timed = fixed;
+    CHECK(trace(fixed, s, 2, 4, 0));
+    int batches = 0;
+    CHECK(vt::continue_trace(timed, tracer, s.rays, options(2), 1, 1e-4, 1e9, [&]() { return ++batches > 1000; }, nullptr));
+    CHECK(batches > 3);  // 18 chunks in batches of 1 or more
+    require_same(vt::estimates(timed), vt::estimates(fixed));
 }
 
 TEST_CASE("an adaptive plan stopped and resumed is estimate_radiance with its counts, and meets its target") {
@@ -229,7 +241,7 @@ TEST_CASE("a checkpoint of another run or scene is refused, naming what differs"
     // Another image size: the pixel count does not match the rays.
     const sphere_scene s;
     const vt::path_tracer tracer(s.sphere, s.phase, 0.99, s.light);
-    CHECK_THROWS_AS(vt::continue_trace(c, tracer, s.rays, options(1), 4, 1e9, nullptr, nullptr), std::invalid_argument);
+    CHECK_THROWS_AS(vt::continue_trace(c, tracer, s.rays, options(1), 4, 0.0, 1e9, nullptr, nullptr), std::invalid_argument);
 }
 
 TEST_CASE("the scene fingerprint sees the medium, the light and the camera") {

@@ -137,19 +137,25 @@ void merge_jobs(truth_checkpoint& c, const std::vector<chunk_job>& jobs, const s
 }
 
 bool continue_trace(truth_checkpoint& c, const path_tracer& tracer, const std::vector<camera_ray>& rays,
-                    const mc::run_options& options, std::size_t batch_jobs, double save_every_seconds,
-                    const std::function<bool()>& stop, const std::function<void(const truth_checkpoint&)>& save) {
+                    const mc::run_options& options, std::size_t batch_jobs, double batch_seconds,
+                    double save_every_seconds, const std::function<bool()>& stop,
+                    const std::function<void(const truth_checkpoint&)>& save) {
     if (rays.size() != c.pixels()) throw std::invalid_argument("continue_trace: one camera ray per pixel of the plan");
     using clock = std::chrono::steady_clock;
     auto last_save = clock::now();
+    double size = static_cast<double>(std::max<std::size_t>(batch_jobs, 1));
     for (;;) {
         if (c.plan_done() && !extend_plan(c)) break;
         if (stop && stop()) break;
         const auto start = clock::now();
-        const std::vector<chunk_job> jobs = next_jobs(c, std::max<std::size_t>(batch_jobs, 1));
+        const std::vector<chunk_job> jobs = next_jobs(c, static_cast<std::size_t>(size));
         merge_jobs(c, jobs, trace_chunks(tracer, rays, jobs, options));
         const auto end = clock::now();
-        c.seconds += std::chrono::duration<double>(end - start).count();
+        const double seconds = std::chrono::duration<double>(end - start).count();
+        c.seconds += seconds;
+        // The next batch for about batch_seconds at this batch's rate, growing at most 4x.
+        if (batch_seconds > 0.0)
+            size = std::clamp(size * batch_seconds / std::max(seconds, 1e-3), 1.0, 4.0 * size);
         if (save && std::chrono::duration<double>(end - last_save).count() >= save_every_seconds) {
             save(c);
             last_save = end;

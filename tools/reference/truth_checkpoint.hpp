@@ -100,13 +100,17 @@ bool extend_plan(truth_checkpoint& c);
 // Merges the tallies of trace_chunks(jobs) (jobs from next_jobs) into the checkpoint.
 void merge_jobs(truth_checkpoint& c, const std::vector<chunk_job>& jobs, const std::vector<path_tally>& tallies);
 
-// Traces the plan batch by batch (batch_jobs chunks each, merged in order) until it is done,
-// extending it as extend_plan says, or until stop() (asked between batches) says so; save(c)
-// is called every save_every_seconds of tracing and once at the end. Returns true when the
-// plan is done. c.seconds grows by the time spent.
+// Traces the plan batch by batch (chunks merged in order) until it is done, extending it as
+// extend_plan says, or until stop() (asked between batches) says so; save(c) is called every
+// save_every_seconds of tracing and once at the end. Returns true when the plan is done.
+// c.seconds grows by the time spent. The first batch holds batch_jobs chunks; with
+// batch_seconds > 0 the next ones are sized to last about that long (a pixel's chunks cost
+// from microseconds to seconds), so a budget is kept to within about one batch; with 0 every
+// batch holds batch_jobs. The numbers do not depend on the batches.
 bool continue_trace(truth_checkpoint& c, const path_tracer& tracer, const std::vector<camera_ray>& rays,
-                    const mc::run_options& options, std::size_t batch_jobs, double save_every_seconds,
-                    const std::function<bool()>& stop, const std::function<void(const truth_checkpoint&)>& save);
+                    const mc::run_options& options, std::size_t batch_jobs, double batch_seconds,
+                    double save_every_seconds, const std::function<bool()>& stop,
+                    const std::function<void(const truth_checkpoint&)>& save);
 
 // The file's bytes, and back. parse_checkpoint throws std::runtime_error("PATH: why").
 [[nodiscard]] std::string serialize_checkpoint(const truth_checkpoint& c);

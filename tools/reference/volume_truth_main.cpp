@@ -454,16 +454,17 @@ int run_render(int argc, char** argv) {
         }
         return budget_minutes > 0.0 && std::chrono::steady_clock::now() >= deadline;
     };
-    // Batches of 64 chunks a thread: seconds each, so the budget is kept to within one; the
-    // checkpoint is written every 2 minutes, so a killed run loses at most that.
+    // Batches of about 10 s, so the budget is kept to within about that; the checkpoint is
+    // written every 2 minutes, so a killed run loses at most that.
     const unsigned threads = options.threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : options.threads;
-    const bool done = vt::continue_trace(c, tracer, rays, options, 64 * std::size_t(threads), 120.0, stop,
+    const bool done = vt::continue_trace(c, tracer, rays, options, 4 * std::size_t(threads), 10.0, 120.0, stop,
                                          [&](const vt::truth_checkpoint& k) { vt::write_checkpoint(checkpoint, k); });
     if (!done) {
         std::cout << "render " << s.name << ": stopped by the budget of " << budget_minutes << " minutes, "
                   << c.traced_paths() << " of " << c.planned_paths() << " planned paths traced ("
                   << fixed_1(100.0 * static_cast<double>(c.traced_paths()) / static_cast<double>(c.planned_paths()))
-                  << "%, " << fixed_1(c.seconds) << " s over " << c.runs << " runs); continue with --resume from "
+                  << "%, " << fixed_1(c.seconds) << " s over " << c.runs << (c.runs == 1 ? " run" : " runs")
+                  << "); continue with --resume from "
                   << checkpoint << '\n';
         return exit_budget_spent;
     }
