@@ -77,6 +77,20 @@ if(CLOUDMATH_BUILD_TESTS)
       "$tool" ground --paths 50 --threads 2 >"$out/ground.md" || { echo "ground failed"; exit 1; }
       [ "$(grep -c '^| -\{0,1\}[0-9]* | [0-9]* m |' "$out/ground.md")" -eq 20 ] || { echo "ground: want 20 rows"; cat "$out/ground.md"; exit 1; }
       grep -q '^50 paths per channel and view' "$out/ground.md" || { echo "ground: no paths line"; exit 1; }
+      # horizon: a tiny trace writes the 16 views; the table of the stored truth is the one in
+      # docs/atmosphere.md, line for line; a file of another set is refused.
+      "$tool" horizon --out "$out/h.csv" --paths 0 2>/dev/null; s=$?; [ $s -eq 2 ] || { echo "horizon --paths 0: exit $s, want 2"; exit 1; }
+      "$tool" horizon --out "$out/h.csv" --paths 40 --threads 2 --quiet || { echo "horizon trace failed"; exit 1; }
+      [ "$(grep -c '^horizon,up' "$out/h.csv")" -eq 16 ] || { echo "horizon: want 16 rows"; exit 1; }
+      "$tool" horizon --data "$out/h.csv" | grep -q '^| 60 | 10 up | away |' || { echo "horizon: no table of a tiny trace"; exit 1; }
+      "$tool" horizon --data "$out/t.csv" 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "t.csv: 4355 rows, the set has 16" "$out.err" || { echo "horizon of the wrong file: exit $s"; cat "$out.err"; exit 1; }
+      "$tool" horizon --data "$src/docs/data/atmosphere_horizon.csv" >"$out/horizon.md" || { echo "horizon of the stored truth failed"; exit 1; }
+      [ "$(grep -c '^|' "$out/horizon.md")" -eq 18 ] || { echo "horizon: want a table of 16 rows"; exit 1; }
+      while IFS= read -r line; do
+        [ -z "$line" ] || grep -qxF -- "$line" "$src/docs/atmosphere.md" ||
+          { echo "docs/atmosphere.md lacks the horizon table's line: $line"; exit 1; }
+      done <"$out/horizon.md"
       exit 0
       ]=] sh $<TARGET_FILE:cloudmath_atmosphere_truth> "${CMAKE_CURRENT_BINARY_DIR}/atmosphere_truth_cli_test"
         "${PROJECT_SOURCE_DIR}")

@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include <cloudmath/atmosphere.hpp>
@@ -55,7 +56,27 @@ std::vector<truth_row> truth_set(const std::vector<double>& sun_elevations) {
     return rows;
 }
 
+std::vector<truth_row> horizon_set() {
+    std::vector<truth_row> rows;
+    for (double e : horizon_sun_elevations)
+        for (const auto& [name, el, az] : {std::tuple{"up2_sun", 2.0, 0.0}, {"up2_away", 2.0, 180.0},
+                                           {"up10_sun", 10.0, 0.0}, {"up10_away", 10.0, 180.0}}) {
+            truth_row r;
+            r.set = "horizon";
+            r.name = name;
+            r.sun_elevation = e;
+            r.view_elevation = el;
+            r.view_azimuth = az;
+            rows.push_back(r);
+        }
+    return rows;
+}
+
 std::vector<truth_row> read_truth(const std::string& path, const std::vector<double>& sun_elevations) {
+    return read_rows(path, truth_set(sun_elevations));
+}
+
+std::vector<truth_row> read_rows(const std::string& path, const std::vector<truth_row>& want) {
     std::ifstream in(path);
     if (!in) throw std::runtime_error(path + ": cannot read the truth file");
     std::vector<truth_row> rows;
@@ -96,7 +117,6 @@ std::vector<truth_row> read_truth(const std::string& path, const std::vector<dou
         }
         rows.push_back(r);
     }
-    const std::vector<truth_row> want = truth_set(sun_elevations);
     if (rows.size() != want.size())
         throw std::runtime_error(path + ": " + std::to_string(rows.size()) + " rows, the set has " + std::to_string(want.size()));
     for (std::size_t i = 0; i < rows.size(); ++i)

@@ -48,6 +48,15 @@ std::vector<truth_row> truth_set(const std::vector<double>& sun_elevations = set
 std::vector<truth_row> read_truth(const std::string& path,
                                   const std::vector<double>& sun_elevations = set_sun_elevations("truth"));
 
+// The sky near the horizon (issue 37): views 2 and 10 degrees up, toward the sun's azimuth and
+// away from it (up2_sun, up2_away, up10_sun, up10_away), for the sun at 2, 6, 20 and 60
+// degrees; set "horizon". Its truth (docs/data/atmosphere_horizon.csv) is traced by
+// `cloudmath_atmosphere_truth horizon --out`.
+inline constexpr std::array<double, 4> horizon_sun_elevations{2.0, 6.0, 20.0, 60.0};
+std::vector<truth_row> horizon_set();
+// Reads a truth CSV whose rows must be `want`'s (set, name and directions), as read_truth.
+std::vector<truth_row> read_rows(const std::string& path, const std::vector<truth_row>& want);
+
 // The model's radiance (per unit sun illuminance, 1/sr) for each row, float, as documented.
 std::vector<std::array<double, 3>> model_radiance(const std::vector<truth_row>& rows);
 
