@@ -94,10 +94,6 @@ struct pixel_program {
     // variant::ambient_by_phase: the share from the upper hemisphere of HG(phase_g_mean) about
     // a view whose vertical cosine is c, at c = -1 + 2 i / (n - 1) (linear between).
     std::array<float, 65> upper_share{};
-    // variant::ambient_directional: the upper sky weighted by HG(phase_g_mean) about a view of
-    // vertical cosine c_i = -1 + 2 i / 16 and azimuth from the sun's a_j = pi j / 8, over the
-    // upper sky's mean, per channel (bilinear between).
-    std::array<vec3, 17 * 9> directional{};
     vec2 band;           // altitudes of the cloud type's band (height_range_for_type): no density outside
     const cm::diffusion_model* model;  // the diffusion model's fitted numbers
     const haze_table* haze = nullptr;  // the physical sky's aerial perspective (physical_sky.hpp)
@@ -131,40 +127,6 @@ struct pixel_program {
                     }
                 upper_share[i] = float(sum * 6.283185307179586 / double(n * n));
             }
-        }
-        if (v.ambient_directional) {
-            const sky_view_table* top = sc.sky == sky_model::physical ? &physical_sky_view(sc.layer_top, k.sun_dir) : nullptr;
-            const vec3 east = glm::normalize(glm::length(vec3(k.sun_dir.x, 0.0f, k.sun_dir.z)) > 1e-6f
-                                                 ? vec3(k.sun_dir.x, 0.0f, k.sun_dir.z) : vec3(1.0f, 0.0f, 0.0f));
-            const vec3 north = glm::cross(east, vec3(0.0f, 1.0f, 0.0f));
-            constexpr int n = 48;
-            std::vector<vec3> dirs, radiance;
-            vec3 mean(0.0f);
-            for (int a = 0; a < n; ++a)
-                for (int b = 0; b < 2 * n; ++b) {
-                    const float y = (float(a) + 0.5f) / float(n), r = std::sqrt(1.0f - y * y);
-                    const float phi = 3.14159265f * (float(b) + 0.5f) / float(n);
-                    const vec3 w = r * std::cos(phi) * east + y * vec3(0.0f, 1.0f, 0.0f) + r * std::sin(phi) * north;
-                    const vec3 L = top != nullptr ? sky_view_lookup(*top, w, k.sun_dir) : sky_radiance(k, w, false);
-                    dirs.push_back(w);
-                    radiance.push_back(L);
-                    mean += L;
-                }
-            mean /= float(dirs.size());
-            for (int i = 0; i < 17; ++i)
-                for (int j = 0; j < 9; ++j) {
-                    const float c = -1.0f + 2.0f * float(i) / 16.0f, r = std::sqrt(std::max(0.0f, 1.0f - c * c));
-                    const float az = 3.14159265f * float(j) / 8.0f;
-                    const vec3 view = r * std::cos(az) * east + c * vec3(0.0f, 1.0f, 0.0f) + r * std::sin(az) * north;
-                    vec3 sum(0.0f);
-                    float weights = 0.0f;
-                    for (std::size_t q = 0; q < dirs.size(); ++q) {
-                        const float p = cm::phase_hg(glm::dot(view, dirs[q]), phase_g_mean);
-                        sum += p * radiance[q];
-                        weights += p;
-                    }
-                    directional[std::size_t(i * 9 + j)] = (sum / weights) / glm::max(mean, vec3(1e-20f));
-                }
         }
         if (needs_shadow_map(v)) {
             if (v.lod) map_footprint = 2.0f * k.shadow_half_extent / float(shadow_map_size);
@@ -328,23 +290,8 @@ struct pixel_program {
         return glm::mix(h, glm::mix(upper_share[std::size_t(i)], upper_share[std::size_t(i) + 1], f), v.ambient_phase_blend);
     }
 
-    // variant::ambient_directional's factor on the top's sky light for the view dir (1 without).
-    vec3 directional_factor(vec3 dir) const {
-        if (!v.ambient_directional) return vec3(1.0f);
-        const vec2 horizontal(glm::dot(vec2(dir.x, dir.z), vec2(k.sun_dir.x, k.sun_dir.z)),
-                              std::abs(vec2(dir.x, dir.z).x * k.sun_dir.z - vec2(dir.x, dir.z).y * k.sun_dir.x));
-        const float az = std::atan2(horizontal.y, horizontal.x);  // 0 .. pi
-        const float x = glm::clamp(0.5f * (dir.y + 1.0f), 0.0f, 1.0f) * 16.0f, y = glm::clamp(az / 3.14159265f, 0.0f, 1.0f) * 8.0f;
-        const int i = cm::detail::floor_to_int(x, 0, 15), j = cm::detail::floor_to_int(y, 0, 7);
-        const float fx = glm::clamp(x - float(i), 0.0f, 1.0f), fy = glm::clamp(y - float(j), 0.0f, 1.0f);
-        const auto at = [&](int a, int b) { return directional[std::size_t(a * 9 + b)]; };
-        return glm::mix(glm::mix(at(i, j), at(i, j + 1), fy), glm::mix(at(i + 1, j), at(i + 1, j + 1), fy), fx);
-    }
-
-    // top: the sky light's weight of the top against the bottom (sky_top_weight); sky_dir: the
-    // top's directional factor (directional_factor).
-    vec3 in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h, float top, float far_light,
-                       vec3 sky_dir = vec3(1.0f)) const {
+    // top: the sky light's weight of the top against the bottom (sky_top_weight).
+    vec3 in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h, float top, float far_light) const {
         const auto phase_fn = [this](float m, float scale) { return phase(m, scale); };
         float sun = v.lighting == lighting_model::diffusion
                         ? cm::diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, phase_g_mean, s.albedo,
@@ -354,7 +301,7 @@ struct pixel_program {
         const vec3 sun_light = sun_at_height(k, haze != nullptr, h) * far_light;  // the physical sky's sun by height
         if (!v.occluded_ambient) return sun_light * sun + glm::mix(k.ambient_bottom, k.ambient_top, top);
         const vec2 o = sky_occlusion(tau_light, tau_behind);
-        return sun_light * sun + glm::mix(k.ambient_bottom * o.y, k.ambient_top * sky_dir * o.x, top);
+        return sun_light * sun + glm::mix(k.ambient_bottom * o.y, k.ambient_top * o.x, top);
     }
 
     // The physical sky's far shadow at p (altitude alt): the table by the sun's zenith cosine
@@ -418,7 +365,6 @@ struct pixel_program {
             const std::uint32_t pixel_hash = cm::noise_hash(static_cast<std::uint32_t>(x) + static_cast<std::uint32_t>(y) * 8192u);
             const float offset = v.jitter ? cm::frame_jitter(pixel_hash, s.frame) : 0.5f;
             const float mu = glm::dot(dir, k.sun_dir);
-            const vec3 sky_dir = directional_factor(dir);
             const float n = float(v.view_steps);
             const auto at = [&](float u) {
                 return v.schedule == step_schedule::growing ? cm::march_schedule_distance(u, seg.x, t1, k.march_near_distance)
@@ -447,7 +393,7 @@ struct pixel_program {
                     const float h = cm::height_fraction(alts, s.layer_bottom, s.layer_top);
                     const float top = sky_top_weight(h, dir.y);
                     const vec3 S = (s.albedo * e.sigma_t) *
-                                   in_scattering(tau_light, tau_behind, e.tau_view, mu, h, top, far_shadow_at(dir * e.t, alts), sky_dir);
+                                   in_scattering(tau_light, tau_behind, e.tau_view, mu, h, top, far_shadow_at(dir * e.t, alts));
                     if (grad != nullptr) {
                         // This step's weight in the pixel per unit source (add_segment's).
                         const float w = e.transmittance * s.albedo * e.sigma_t * cm::integrate_scattering(1.0f, e.sigma_t, e.ds);

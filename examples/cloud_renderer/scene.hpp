@@ -101,10 +101,6 @@ struct variant {
     // ambient=phase:X blends the two weights, X of the phase's share and 1 - X of the height.
     bool ambient_by_phase = false;
     float ambient_phase_blend = 1.0f;
-    // Research (issue 37; CPU only): the sky light from above modulated by the direction of the
-    // view: the upper sky's radiance weighted by HG(phase mean cosine) about the view, over its
-    // isotropic mean (`ambient=directional`, with the default's height weights).
-    bool ambient_directional = false;
     // Explicit texture LOD: every density sample reads the mip level whose texels match the
     // pixel's footprint at the view sample (texture_lod; the light's samples inherit it; the
     // shadow map uses its texel width); off: level 0 everywhere.
