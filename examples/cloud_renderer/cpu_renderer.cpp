@@ -91,9 +91,6 @@ struct pixel_program {
     cloud_density field;
     cm::mie_approx_parameters<float> mie;
     float phase_g_mean;  // the diffusion model's g
-    // variant::ambient_by_phase: the share from the upper hemisphere of HG(phase_g_mean) about
-    // a view whose vertical cosine is c, at c = -1 + 2 i / (n - 1) (linear between).
-    std::array<float, 65> upper_share{};
     vec2 band;           // altitudes of the cloud type's band (height_range_for_type): no density outside
     const cm::diffusion_model* model;  // the diffusion model's fitted numbers
     const haze_table* haze = nullptr;  // the physical sky's aerial perspective (physical_sky.hpp)
@@ -112,22 +109,6 @@ struct pixel_program {
           model(m != nullptr ? m : va.table == diffusion_table::clouds ? &cm::diffusion_models::clouds : &cm::diffusion_models::fitted),
           haze(sc.sky == sky_model::physical ? &physical_haze(sc.camera_altitude, k.sun_dir) : nullptr),
           far_field(sc.sky == sky_model::physical ? &far_shadow(sc, k.sun_dir, t, light_reach(va, k)) : nullptr) {
-        if (v.ambient_by_phase) {
-            // Midpoint quadrature over the upper hemisphere (128 x 128: within 1e-4 for g <= 0.8).
-            constexpr int n = 128;
-            for (std::size_t i = 0; i < upper_share.size(); ++i) {
-                const float c = -1.0f + 2.0f * float(i) / float(upper_share.size() - 1);
-                const vec3 axis(std::sqrt(std::max(0.0f, 1.0f - c * c)), c, 0.0f);
-                double sum = 0.0;
-                for (int a = 0; a < n; ++a)
-                    for (int b = 0; b < n; ++b) {
-                        const float y = (float(a) + 0.5f) / float(n), r = std::sqrt(1.0f - y * y);
-                        const float phi = 6.2831853f * (float(b) + 0.5f) / float(n);
-                        sum += double(cm::phase_hg(glm::dot(axis, vec3(r * std::cos(phi), y, r * std::sin(phi))), phase_g_mean));
-                    }
-                upper_share[i] = float(sum * 6.283185307179586 / double(n * n));
-            }
-        }
         if (needs_shadow_map(v)) {
             if (v.lod) map_footprint = 2.0f * k.shadow_half_extent / float(shadow_map_size);
             shadow_map.resize(static_cast<std::size_t>(shadow_map_size) * static_cast<std::size_t>(shadow_map_size));
@@ -279,19 +260,7 @@ struct pixel_program {
 
     // tau_behind and tau_view are used by the diffusion model only; far: the far shadow's
     // transmittance (far_shadow_at), on the sun's light only.
-    // The weight of the sky light's top against its bottom for a sample at height fraction h
-    // seen along a view of vertical cosine view_up: h, or with variant::ambient_by_phase the
-    // phase function's share from above.
-    float sky_top_weight(float h, float view_up) const {
-        if (!v.ambient_by_phase) return h;
-        const float x = glm::clamp(0.5f * (view_up + 1.0f), 0.0f, 1.0f) * float(upper_share.size() - 1);
-        const int i = cm::detail::floor_to_int(x, 0, int(upper_share.size()) - 2);
-        const float f = glm::clamp(x - float(i), 0.0f, 1.0f);
-        return glm::mix(h, glm::mix(upper_share[std::size_t(i)], upper_share[std::size_t(i) + 1], f), v.ambient_phase_blend);
-    }
-
-    // top: the sky light's weight of the top against the bottom (sky_top_weight).
-    vec3 in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h, float top, float far_light) const {
+    vec3 in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h, float far_light = 1.0f) const {
         const auto phase_fn = [this](float m, float scale) { return phase(m, scale); };
         float sun = v.lighting == lighting_model::diffusion
                         ? cm::diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, phase_g_mean, s.albedo,
@@ -299,9 +268,9 @@ struct pixel_program {
                         : cm::multiple_scattering_with(tau_light, mu, k.ms_a, k.ms_b, k.ms_c, v.octaves, phase_fn);
         if (v.powder) sun *= glm::mix(2.0f * cm::powder(tau_light, 2.0f), 1.0f, 0.5f + 0.5f * mu);
         const vec3 sun_light = sun_at_height(k, haze != nullptr, h) * far_light;  // the physical sky's sun by height
-        if (!v.occluded_ambient) return sun_light * sun + glm::mix(k.ambient_bottom, k.ambient_top, top);
+        if (!v.occluded_ambient) return sun_light * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
         const vec2 o = sky_occlusion(tau_light, tau_behind);
-        return sun_light * sun + glm::mix(k.ambient_bottom * o.y, k.ambient_top * o.x, top);
+        return sun_light * sun + glm::mix(k.ambient_bottom * o.y, k.ambient_top * o.x, h);
     }
 
     // The physical sky's far shadow at p (altitude alt): the table by the sun's zenith cosine
@@ -391,16 +360,15 @@ struct pixel_program {
                                                  ? light_optical_depth(dir * e.t, alts, -k.sun_dir, v.behind, light_reads, footprint, lo)
                                                  : 0.0f;
                     const float h = cm::height_fraction(alts, s.layer_bottom, s.layer_top);
-                    const float top = sky_top_weight(h, dir.y);
                     const vec3 S = (s.albedo * e.sigma_t) *
-                                   in_scattering(tau_light, tau_behind, e.tau_view, mu, h, top, far_shadow_at(dir * e.t, alts));
+                                   in_scattering(tau_light, tau_behind, e.tau_view, mu, h, far_shadow_at(dir * e.t, alts));
                     if (grad != nullptr) {
                         // This step's weight in the pixel per unit source (add_segment's).
                         const float w = e.transmittance * s.albedo * e.sigma_t * cm::integrate_scattering(1.0f, e.sigma_t, e.ds);
                         add_gradient(grad, w, tau_light, tau_behind, e.tau_view, mu);
                         const vec2 o = v.occluded_ambient ? sky_occlusion(tau_light, tau_behind) : vec2(1.0f);
-                        sky[0] += w * top * o.x;
-                        sky[1] += w * (1.0f - top) * o.y;
+                        sky[0] += w * h * o.x;
+                        sky[1] += w * (1.0f - h) * o.y;
                     }
                     // Energy-conserving (add_segment's source term), or the textbook Riemann
                     // sum: the source at full strength over the whole step.

@@ -41,8 +41,6 @@ struct shader_int {
     int value;
 };
 std::vector<shader_int> variant_values(const variant& v, cloud_shape shape) {
-    if (v.ambient_by_phase)
-        throw std::runtime_error("ambient=phase is a CPU-only research variant (docs/lighting_research.md), not in clouds.frag");
     return {{"u_shape", static_cast<int>(shape)},
             {"u_phase_model", static_cast<int>(v.phase)},
             // 0 octaves, 1 diffusion with diffusion_models::clouds, 2 with ::fitted

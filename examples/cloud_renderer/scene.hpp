@@ -93,14 +93,6 @@ struct variant {
     // optical depth above the sample, the bottom's of the depth below, both estimated from
     // the light estimates toward and away from the sun times the sun's elevation sine.
     bool occluded_ambient = true;
-    // Research (issue 37; CPU only, the GL renderer refuses it): the occluded sky light's top
-    // and bottom weighted by the share of the phase function (HG with the phase's mean cosine)
-    // that brings light from the upper hemisphere into the pixel's view, instead of by the
-    // sample's height in the layer: a cloud's base seen from below gets the sky above it through
-    // the cloud, not only the ground (`ambient=phase`; docs/lighting_research.md).
-    // ambient=phase:X blends the two weights, X of the phase's share and 1 - X of the height.
-    bool ambient_by_phase = false;
-    float ambient_phase_blend = 1.0f;
     // Explicit texture LOD: every density sample reads the mip level whose texels match the
     // pixel's footprint at the view sample (texture_lod; the light's samples inherit it; the
     // shadow map uses its texel width); off: level 0 everywhere.
