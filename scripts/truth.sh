@@ -18,7 +18,8 @@
 #                                  (the same noise target: hours on 2 cores)
 #   --only P1,P2                   renders only these presets, keeps the other stored ones,
 #                                  then reruns the report
-#   --noise F                      the noise target (default 0.03)
+#   --noise F                      the noise target (default 0.03; 0.05 with --sky physical
+#                                  --shape detailed)
 #   --sky physical                 the presets under the renderer's physical sky (--sky physical,
 #                                  the atmosphere module's sun and sky; docs/atmosphere.md): data
 #                                  in docs/data/physical/, report docs/physical_sky/lighting_truth.md
@@ -29,8 +30,8 @@
 #                                  docs/physical_sky/detailed/lighting_truth.md, noise target 5%
 #   --budget-minutes N             stop tracing after N minutes in all: the render under way stops
 #                                  cleanly and keeps its checkpoint (docs/data/.../truth_P.csv.checkpoint,
-#                                  about 1.2 MB: commit it), the report is regenerated from the
-#                                  truths there are. A preset with a checkpoint is always resumed
+#                                  about 1.2 MB: commit it); the report is regenerated when a truth
+#                                  was finished, else left as it is. A preset with a checkpoint is always resumed
 #                                  (cloudmath_volume_truth render --resume), so the same command in
 #                                  the next session goes on where this one stopped
 #   --pending                      trace only the presets still to do (cloudmath_volume_truth

@@ -4,10 +4,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -377,23 +380,22 @@ void write_checkpoint(const std::string& path, const truth_checkpoint& c) {
 }
 
 void check_same_run(const truth_checkpoint& c, const std::map<std::string, std::string>& identity, const std::string& path) {
-    // The flags first, then the scene they make: a resume under another sky names the sky.
-    std::vector<std::string> keys;
+    // The flags first (in key order), then the scene they make: a resume under another sky
+    // names the sky, not only the fingerprint that follows from it.
+    std::set<std::string> keys;
     for (const auto* m : {&c.identity, &identity})
         for (const auto& kv : *m)
-            if (kv.first != "scene" && std::find(keys.begin(), keys.end(), kv.first) == keys.end()) keys.push_back(kv.first);
-    std::sort(keys.begin(), keys.end());
-    keys.push_back("scene");
-    for (const std::string& key : keys) {
-        const std::pair<const std::string, std::string> kv{key, ""};
-        const auto a = c.identity.find(kv.first), b = identity.find(kv.first);
+            if (kv.first != "scene") keys.insert(kv.first);
+    std::vector<std::string> order(keys.begin(), keys.end());
+    order.push_back("scene");
+    for (const std::string& key : order) {
+        const auto a = c.identity.find(key), b = identity.find(key);
         const std::string was = a == c.identity.end() ? "(none)" : "'" + a->second + "'";
         const std::string now = b == identity.end() ? "(none)" : "'" + b->second + "'";
         if (was != now)
-            throw std::runtime_error(path + ": the checkpoint's " + kv.first + " is " + was + ", this run's " + now +
-                                     (kv.first == "scene" ? " (the renderer's field, sky, sun or camera changed since it was"
-                                                            " traced)"
-                                                          : "") +
+            throw std::runtime_error(path + ": the checkpoint's " + key + " is " + was + ", this run's " + now +
+                                     (key == "scene" ? " (the renderer's field, sky, sun or camera changed since it was traced)"
+                                                     : "") +
                                      ": resume with the flags it was started with, or delete it to start over");
     }
 }

@@ -406,7 +406,7 @@ int run_render(int argc, char** argv) {
     const bool quiet = f.has("--quiet"), resume = f.has("--resume");
     const std::string phase_spec = f.get("--phase", vt::renderer_phase_spec(s));
     const mc::phase_model phase = mc::make_phase(phase_spec);  // invalid_argument: exit 2
-    std::ifstream existing(checkpoint);
+    const bool existing = static_cast<bool>(std::ifstream(checkpoint));
     if (!resume && existing)
         throw std::runtime_error(checkpoint + ": a checkpoint of an unfinished render is there: --resume continues it, "
                                               "or delete it to start over");
