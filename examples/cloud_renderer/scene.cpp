@@ -235,6 +235,15 @@ frame_constants make_frame_constants(const scene& s) {
         f.exposure = s.exposure;
     }
     f.sun_angular_radius = cloudmath::sun_angular_radius<float>();  // the real Sun: 0.27 degrees
+    // The tools' split by source (scene::light), after the exposure, which stays the whole's.
+    if (s.sky == sky_model::physical && s.light == light_sources::sun) {
+        f.ambient_top = f.ambient_bottom = f.sky_zenith = f.sky_horizon = f.ground = glm::vec3(0.0f);
+        f.aureole = 0.0f;
+        f.sky_view = nullptr;  // the background: the (black) gradient
+    } else if (s.sky == sky_model::physical && s.light == light_sources::sky) {
+        f.sun_radiance = glm::vec3(0.0f);
+        for (glm::vec3& sun : f.sun_by_height) sun = glm::vec3(0.0f);
+    }
 
     f.phase_g = 0.8f;
     f.phase_g_back = -0.25f;
@@ -301,6 +310,13 @@ const char* name(sky_model m) { return m == sky_model::artistic ? "artistic" : "
 std::optional<sky_model> sky_model_named(const std::string& n) {
     if (n == "artistic") return sky_model::artistic;
     if (n == "physical") return sky_model::physical;
+    return std::nullopt;
+}
+
+const char* name(light_sources l) { return l == light_sources::all ? "all" : l == light_sources::sun ? "sun" : "sky"; }
+std::optional<light_sources> light_sources_named(const std::string& n) {
+    for (const light_sources l : {light_sources::all, light_sources::sun, light_sources::sky})
+        if (n == name(l)) return l;
     return std::nullopt;
 }
 

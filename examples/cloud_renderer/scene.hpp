@@ -142,6 +142,14 @@ enum class sky_model { artistic, physical };
 // ground and the clouds' ambient light from the same sky, and the display exposure from EV100
 // (exposure_from_ev100). See make_frame_constants and docs/atmosphere.md.
 
+// Which light reaches the clouds, for the whole-cloud truth's split of its error by source
+// (cloudmath_volume_truth render --light; the renderers' options do not set it): all; the sun
+// alone (no sky light, no ground, a black background); or the sky alone (the sky, the ground
+// the sun and sky light, and the background, but no sun on the clouds). The truth and the
+// model are linear in the two, so the sun's and the sky's parts add up to the whole. With the
+// physical sky only: the artistic sky's glow is drawn from the sun's colour.
+enum class light_sources { all, sun, sky };
+
 // The picture: camera, sun, sky, clouds. Angles in degrees, lengths in metres.
 struct scene {
     std::string name = "custom";
@@ -175,6 +183,7 @@ struct scene {
     float exposure = 1.0f;           // the display's exposure with the artistic sky
     enum sky_model sky = sky_model::artistic;
     float ev100 = -100.0f;           // the physical sky's exposure value; below -50: from the sky (auto_ev100)
+    light_sources light = light_sources::all;  // the tools' split by source (above); the exposure stays the whole's
 };
 
 // The exposure the tonemap uses (frame_constants::exposure): scene::exposure with the artistic
@@ -307,6 +316,8 @@ const char* name(cloud_shape c);
 // "artistic" or "physical", and back (none for any other name).
 const char* name(sky_model m);
 std::optional<sky_model> sky_model_named(const std::string& name);
+const char* name(light_sources l);
+std::optional<light_sources> light_sources_named(const std::string& name);
 
 // The unit view direction through the centre of pixel (x, y) of a width x height image (y = 0
 // the bottom row): the shader's ray (clouds.frag main), shared by the CPU renderer, the

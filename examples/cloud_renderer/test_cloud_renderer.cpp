@@ -716,6 +716,43 @@ int main(int argc, char** argv) {
     return context.run();
 }
 
+TEST_CASE("the light split by source (scene::light): the sun's and the sky's images add up to the whole") {
+    // The whole-cloud truth's research split (cloudmath_volume_truth render --light): the model
+    // is linear in its two sources, so its sun-alone and sky-alone images sum to the whole one
+    // (to float rounding), and each alone is darker than the whole.
+    scene s = *find_preset("sunrise");
+    variant v;  // as the truth's report renders the model: no sun disc, no air, no ground shadows
+    v.sun = false;
+    v.haze = false;
+    v.shadows = false;
+    const image all = render_cpu_linear(s, v, shared().textures, 32, 18);
+    s.light = light_sources::sun;
+    const frame_constants sun_k = make_frame_constants(s);
+    CHECK(sun_k.ambient_top == glm::vec3(0.0f));
+    CHECK(sun_k.ground == glm::vec3(0.0f));
+    CHECK(sun_k.sky_view == nullptr);
+    CHECK(sun_k.exposure == make_frame_constants(*find_preset("sunrise")).exposure);  // the whole's
+    const image sun = render_cpu_linear(s, v, shared().textures, 32, 18);
+    s.light = light_sources::sky;
+    CHECK(make_frame_constants(s).sun_by_height[3] == glm::vec3(0.0f));
+    const image sky = render_cpu_linear(s, v, shared().textures, 32, 18);
+    double worst = 0.0, sun_sum = 0.0, sky_sum = 0.0;
+    for (std::size_t i = 0; i < all.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double whole = all.pixels[i][c], parts = double(sun.pixels[i][c]) + double(sky.pixels[i][c]);
+            worst = std::max(worst, std::fabs(parts - whole) / std::max(whole, 1.0));
+            sun_sum += sun.pixels[i][c];
+            sky_sum += sky.pixels[i][c];
+        }
+    CHECK(worst < 1e-4);
+    CHECK(sun_sum > 0.0);
+    CHECK(sky_sum > 0.0);
+    // Names round-trip; anything else is refused.
+    for (const light_sources l : {light_sources::all, light_sources::sun, light_sources::sky})
+        CHECK(light_sources_named(name(l)) == l);
+    CHECK_FALSE(light_sources_named("moon").has_value());
+}
+
 TEST_CASE("the physical sky: cloudmath's atmosphere in lux and cd/m^2, exposure from EV100; GPU and CPU agree") {
     // The artistic sky keeps its numbers: the glow's 0.05 and the scene's exposure.
     const frame_constants art = make_frame_constants(*find_preset("ground"));

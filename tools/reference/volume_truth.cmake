@@ -78,6 +78,31 @@ if(CLOUDMATH_BUILD_TESTS)
       "$tool" report --presets ground,inside --data "$out/mixed" --docs "$out/mixed" --cache "$cache" --quiet \
         2>"$out.err" >/dev/null; s=$?
       [ $s -eq 2 ] && grep -q "one report, one sky" "$out.err" || { echo "two skies in one report: exit $s"; cat "$out.err"; exit 1; }
+      # --light: the truth split by source (the physical sky only); with the same seed and paths the
+      # sun's and the sky's files add up to the whole's, row by row; the report renders the model
+      # with the same light and refuses two lights in one report.
+      "$tool" render --preset ground --light sun --out x.csv 2>"$out.err"; s=$?
+      [ $s -eq 2 ] && grep -q "needs the physical sky" "$out.err" || { echo "--light sun, artistic sky: exit $s"; exit 1; }
+      "$tool" render --preset ground --sky physical --light moon --out x.csv 2>/dev/null; s=$?
+      [ $s -eq 2 ] || { echo "--light moon: exit $s, want 2"; exit 1; }
+      mkdir -p "$out/light/images"
+      for l in all sun sky; do
+        "$tool" render --preset sunrise --light $l --width 8 --height 4 --spp 16 --threads 2 --cache "$cache" --quiet \
+          --out "$out/light/$l.csv" >/dev/null || { echo "render --light $l failed"; exit 1; }
+      done
+      grep -q '^# light: sun$' "$out/light/sun.csv" || { echo "no light line"; exit 1; }
+      paste -d, "$out/light/all.csv" "$out/light/sun.csv" "$out/light/sky.csv" | grep '^[0-9]' | awk -F, '
+        { for (c = 3; c <= 5; ++c) { whole = $c; parts = $(c + 8) + $(c + 16); d = whole - parts; if (d < 0) d = -d
+            if (d > 1e-5 * (whole > 1 ? whole : 1)) bad++ } n++ }
+        END { if (n != 32 || bad) { print "the sun and the sky do not add up to the whole: " bad + 0 " of " n " rows"; exit 1 } }' ||
+        exit 1
+      cp "$out/light/sun.csv" "$out/light/truth_sunrise.csv"
+      "$tool" report --presets sunrise --variant "default=" --data "$out/light" --docs "$out/light" --cache "$cache" \
+        --quiet >/dev/null || { echo "sun-alone report failed"; exit 1; }
+      grep -qF 'Light: **the sun alone**' "$out/light/lighting_truth.md" || { echo "the report does not name its light"; exit 1; }
+      sed 's/^# preset: sunrise$/# preset: sunset/' "$out/light/sky.csv" >"$out/light/truth_sunset.csv"
+      "$tool" report --presets sunrise,sunset --data "$out/light" --docs "$out/light" --cache "$cache" --quiet 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 2 ] && grep -q "one report, one light" "$out.err" || { echo "two lights in one report: exit $s"; cat "$out.err"; exit 1; }
       # Adaptive sampling: a pilot, then the paths for a noise floor; the file says so.
       "$tool" render --preset ground --width 8 --height 4 --noise-target 0.5 --pilot-spp 4 --min-spp 4 --threads 2 \
         --cache "$cache" --quiet --out "$out/adaptive.csv" >/dev/null || { echo "adaptive render failed"; exit 1; }

@@ -80,6 +80,8 @@ const char* const usage_text =
     "           checkpoint with the same flags (another preset, sky, size, seed, sampling or a\n"
     "           changed scene is refused), giving the numbers of an uninterrupted render to\n"
     "           the bit. Without --resume an existing checkpoint is refused, never overwritten.\n"
+    "           [--light all|sun|sky] (with the physical sky: the sun alone or the sky alone, the\n"
+    "           truth's split by source; the file says which, and report renders the model so)\n"
     "           --phase: a montecarlo phase spec (hg:G, dual_hg:G0,G1,W, cs:G, mie_approx:D,\n"
     "           table:PATH, ...); default the renderer's dual_hg:0.8,-0.25,0.2.\n"
     "  report   the renderer (render_cpu_linear) for each variant against the truth files\n"
@@ -108,6 +110,10 @@ const char* const usage_text =
     "                  [--sky] (a diagnosis: also fits scales of the sky light's top and bottom,\n"
     "                  printed, not stored) [--threads 0] [--cache DIR] [--quiet]\n"
     "           SHAPE:PRESET reads DATA/truth_PRESET.csv (classic) or DATA/detailed/...\n"
+    "  status   where each preset's truth stands (scripts/truth.sh --pending): one line a preset,\n"
+    "           PRESET done|checkpoint|stale|short|missing and why\n"
+    "           flags: --presets P1,P2 --noise-target F [--data docs/data] [--shape classic]\n"
+    "                  [--sky S] [--light L] [--cache DIR]\n"
     "  --shape: the renderer's density field, classic (default: the stored truth's) or\n"
     "           detailed; report refuses truth files traced over the other field.\n"
     "  --cache: the renderer's texture cache (default $XDG_CACHE_HOME/cloudmath or\n"
@@ -147,6 +153,17 @@ cr::scene with_sky(cr::scene s, const std::string& value) {
     const std::optional<cr::sky_model> m = cr::sky_model_named(value);
     if (!m) throw usage_error("--sky must be artistic or physical, not '" + value + "'");
     s.sky = *m;
+    return s;
+}
+
+// --light: all unless asked; sun or sky (the truth's split by source) with the physical sky only.
+cr::scene with_light(cr::scene s, const std::string& value) {
+    if (value.empty()) return s;
+    const std::optional<cr::light_sources> l = cr::light_sources_named(value);
+    if (!l) throw usage_error("--light must be all, sun or sky, not '" + value + "'");
+    if (*l != cr::light_sources::all && s.sky != cr::sky_model::physical)
+        throw usage_error("--light " + value + " needs the physical sky (--sky physical)");
+    s.light = *l;
     return s;
 }
 
@@ -347,6 +364,7 @@ std::map<std::string, std::string> run_identity(const cr::scene& s, int width, i
     return {{"preset", s.name},
             {"shape", cr::name(s.shape)},
             {"sky", cr::name(s.sky)},
+            {"light", cr::name(s.light)},
             {"width", std::to_string(width)},
             {"height", std::to_string(height)},
             {"seed", std::to_string(options.seed)},
@@ -362,7 +380,8 @@ constexpr int exit_budget_spent = 3;
 int run_render(int argc, char** argv) {
     const flags f(argc, argv,
                   {"--preset", "--out", "--width", "--height", "--spp", "--seed", "--phase", "--threads", "--cache", "--shape",
-                   "--sky", "--noise-target", "--pilot-spp", "--min-spp", "--max-spp", "--checkpoint", "--budget-minutes"},
+                   "--sky", "--light", "--noise-target", "--pilot-spp", "--min-spp", "--max-spp", "--checkpoint",
+                   "--budget-minutes"},
                   {"--quiet", "--resume"});
     if (!f.has("--preset")) throw usage_error("render needs --preset NAME");
     if (!f.has("--out")) throw usage_error("render needs --out FILE.csv");
@@ -372,7 +391,8 @@ int run_render(int argc, char** argv) {
     for (const std::string& path : {out, checkpoint})
         if (const std::string error = cloudmath::tools::check_output_path(path); !error.empty())
             throw std::runtime_error(error);
-    const cr::scene s = with_sky(preset(f.get("--preset", ""), shape_flag(f.get("--shape", "classic"))), f.get("--sky", ""));
+    const cr::scene s = with_light(with_sky(preset(f.get("--preset", ""), shape_flag(f.get("--shape", "classic"))), f.get("--sky", "")),
+                                   f.get("--light", ""));
     const int width = static_cast<int>(f.integer("--width", 160, 1, 4096));
     const int height = static_cast<int>(f.integer("--height", 90, 1, 4096));
     const auto spp = static_cast<std::uint64_t>(f.integer("--spp", 64, 1, 1 << 24));
@@ -428,6 +448,7 @@ int run_render(int argc, char** argv) {
     vt::truth_checkpoint c;
     if (resume) {
         c = vt::read_checkpoint(checkpoint);
+        c.identity.emplace("light", "all");  // checkpoints from before the split by source
         vt::check_same_run(c, identity, checkpoint);
         if (!quiet)
             std::cerr << "render " << s.name << ": resuming " << checkpoint << ", " << c.traced_paths() << " of "
@@ -484,6 +505,7 @@ int run_render(int argc, char** argv) {
               {"description", s.description},
               {"shape", cr::name(s.shape)},
               {"sky", cr::name(s.sky)},
+              {"light", cr::name(s.light)},
               {"width", std::to_string(width)},
               {"height", std::to_string(height)},
               {"spp", std::to_string((total_paths + rays.size() / 2) / rays.size())},
@@ -497,7 +519,7 @@ int run_render(int argc, char** argv) {
               {"runs", std::to_string(c.runs)},
               {"seconds", fixed_1(c.seconds)}};
     cloudmath::reference::write_text_file_atomically(
-        out, format_csv(t, {"preset", "description", "shape", "sky", "width", "height", "spp", "allocation", "noise floor",
+        out, format_csv(t, {"preset", "description", "shape", "sky", "light", "width", "height", "spp", "allocation", "noise floor",
                             "seed", "phase", "albedo", "scene", "threads", "runs", "seconds"}));
     std::remove(checkpoint.c_str());
     std::cout << "render " << s.name << ": " << width << "x" << height << ", " << t.meta.at("spp") << " spp ("
@@ -531,6 +553,15 @@ cr::sky_model traced_sky(const truth_image& t, const cr::scene& preset_scene, co
     const std::optional<cr::sky_model> m = cr::sky_model_named(it->second);
     if (!m) throw std::runtime_error(path + ": unknown sky '" + it->second + "' (artistic or physical)");
     return *m;
+}
+
+// The light a stored truth was traced with: its "light" line, or all for files from before it.
+cr::light_sources traced_light(const truth_image& t, const std::string& path) {
+    const auto it = t.meta.find("light");
+    if (it == t.meta.end()) return cr::light_sources::all;
+    const std::optional<cr::light_sources> l = cr::light_sources_named(it->second);
+    if (!l) throw std::runtime_error(path + ": unknown light '" + it->second + "' (all, sun or sky)");
+    return *l;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -680,6 +711,8 @@ int run_report(int argc, char** argv) {
     std::vector<truth_image> truths;
     // One sky for a report: the model is rendered under the sky its truths were traced under.
     std::optional<cr::sky_model> sky;
+    // ... and one light (the truth's split by source: all, the sun alone or the sky alone).
+    std::optional<cr::light_sources> light;
     for (const std::string& n : names) {
         const std::string path = data + "/truth_" + n + ".csv";
         truths.push_back(read_truth(path));
@@ -688,6 +721,11 @@ int run_report(int argc, char** argv) {
             throw usage_error(path + " was traced under the " + cr::name(traced_under) + " sky, the presets before it under the " +
                               cr::name(*sky) + " one: one report, one sky");
         sky = traced_under;
+        const cr::light_sources traced_with = traced_light(truths.back(), path);
+        if (light && *light != traced_with)
+            throw usage_error(path + " was traced with the light '" + cr::name(traced_with) + "', the presets before it with '" +
+                              cr::name(*light) + "': one report, one light");
+        light = traced_with;
         // Files from before the shape existed were traced over the classic field.
         const auto it = truths.back().meta.find("shape");
         const std::string traced = it == truths.back().meta.end() ? "classic" : it->second;
@@ -699,8 +737,13 @@ int run_report(int argc, char** argv) {
 
     std::ostringstream md;
     md << "# Lighting models against the path-traced truth of whole cloud images\n\n"
-       << "Density field: `" << cr::name(shape) << "` (the renderer's `--shape`).\n\n"
-          "Generated by `bash scripts/truth.sh"
+       << "Density field: `" << cr::name(shape) << "` (the renderer's `--shape`).\n\n";
+    if (*light != cr::light_sources::all)
+        md << "Light: **the " << (*light == cr::light_sources::sun ? "sun alone** (no sky light, no ground, a black background)"
+                                                                  : "sky alone** (the sky, the lit ground and the background; no sun on the clouds)")
+           << ", in the truth (`cloudmath_volume_truth render --light " << cr::name(*light)
+           << "`) and in the model alike: the whole's error split by source.\n\n";
+    md << "Generated by `bash scripts/truth.sh"
        << (*sky == cr::sky_model::physical ? " --sky physical" : "")
        << "` (tools/reference/volume_truth_main.cpp; the truth\n"
           "images by `cloudmath_volume_truth render`, this report by `cloudmath_volume_truth report`).\n"
@@ -755,6 +798,7 @@ int run_report(int argc, char** argv) {
         };
         cr::scene s = preset(names[p], shape);
         s.sky = *sky;
+        s.light = *light;
         sections << "## " << names[p] << " (" << s.description << ")"
                  << (p < selection.size() ? ", selection split" : "") << "\n\n";
         sections << "Truth: " << t.width << " x " << t.height << " pixels, " << meta("spp") << " paths per pixel, phase `"
@@ -974,6 +1018,7 @@ int run_fit_clouds(int argc, char** argv) {
         if ((it == t.meta.end() ? std::string("classic") : it->second) != cr::name(shape))
             throw std::runtime_error(path + " was not traced over the " + std::string(cr::name(shape)) + " field");
         s.sky = traced_sky(t, s, path);
+        s.light = traced_light(t, path);
     };
     std::vector<std::pair<cr::scene, truth_image>> fit_data(fit_list.size());
     for (std::size_t i = 0; i < fit_list.size(); ++i) load(fit_list[i], fit_data[i].first, fit_data[i].second);
@@ -1147,7 +1192,7 @@ int run_fit_clouds(int argc, char** argv) {
 //   missing     no truth.
 // A malformed checkpoint or truth file is an error (exit 1), as everywhere.
 int run_status(int argc, char** argv) {
-    const flags f(argc, argv, {"--presets", "--data", "--shape", "--sky", "--noise-target", "--cache"}, {"--quiet"});
+    const flags f(argc, argv, {"--presets", "--data", "--shape", "--sky", "--light", "--noise-target", "--cache"}, {"--quiet"});
     const std::vector<std::string> names = split_list(f.get("--presets", ""));
     if (names.empty()) throw usage_error("status needs --presets P1,P2,...");
     const std::optional<double> target = cloudmath::tools::parse_finite(f.get("--noise-target", ""));
@@ -1159,7 +1204,7 @@ int run_status(int argc, char** argv) {
     // The fingerprint of the scene the renderer makes now, at the file's size.
     const auto fingerprint_now = [&](const std::string& name, int width, int height) {
         if (!textures) textures = load_textures(f, true);
-        const cr::scene s = with_sky(preset(name, shape), sky);
+        const cr::scene s = with_light(with_sky(preset(name, shape), sky), f.get("--light", ""));
         const vt::cloud_medium medium(s, *textures);
         return vt::scene_fingerprint(medium, vt::make_cloud_lighting(s), vt::make_camera_rays(s, width, height));
     };
