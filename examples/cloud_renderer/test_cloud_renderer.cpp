@@ -747,6 +747,13 @@ TEST_CASE("the light split by source (scene::light): the sun's and the sky's ima
     CHECK(worst < 1e-4);
     CHECK(sun_sum > 0.0);
     CHECK(sky_sum > 0.0);
+    // The GL renderer draws all the light: a split scene is refused, with the reason.
+    if (shared().gpu) {
+        image img;
+        std::string why;
+        CHECK_FALSE(shared().gpu->render(s, v, true, 32, 18, img, nullptr, why));
+        CHECK(why.find("scene::light") != std::string::npos);
+    }
     // Names round-trip; anything else is refused.
     for (const light_sources l : {light_sources::all, light_sources::sun, light_sources::sky})
         CHECK(light_sources_named(name(l)) == l);
