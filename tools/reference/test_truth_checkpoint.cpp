@@ -126,6 +126,26 @@ TEST_CASE("batches sized by time give the same numbers as fixed ones") {
     require_same(vt::estimates(timed), vt::estimates(fixed));
 }
 
+TEST_CASE("next_jobs: batches bounded by the pilot's predicted cost, at least one job") {
+    // Cheap pixels first (the ground, the clear sky), then costly ones (the clouds): a batch of
+    // the cheap ones' rate must not run on into the costly ones.
+    const std::vector<double> variance(6, 1.0), cost{1.0, 1.0, 1.0, 1000.0, 1000.0, 1000.0};
+    const vt::truth_checkpoint c = vt::adaptive_plan(identity(), variance, cost, 0.3, 0.05, 0.85, 100, 100);
+    for (std::size_t i = 0; i < 6; ++i) REQUIRE(c.planned[i] == 100);
+    const auto total = [&](const std::vector<vt::chunk_job>& jobs) {
+        double sum = 0.0;
+        for (const vt::chunk_job& j : jobs) sum += vt::job_cost(c, j);
+        return sum;
+    };
+    const std::vector<vt::chunk_job> cheap = vt::next_jobs(c, 100, 350.0);
+    CHECK(cheap.size() == 3);  // 3 x 100 of cost 1; the 4th would cost 100000
+    CHECK(total(cheap) == 300.0);
+    const std::vector<vt::chunk_job> one = vt::next_jobs(c, 100, 1.0);  // less than any job
+    CHECK(one.size() == 1);
+    CHECK(vt::next_jobs(c, 2).size() == 2);  // by count alone
+    CHECK(vt::next_jobs(c, 100).size() == 6);
+}
+
 TEST_CASE("an adaptive plan stopped and resumed is estimate_radiance with its counts, and meets its target") {
     const sphere_scene s;
     const vt::path_tracer tracer(s.sphere, s.phase, 0.99, s.light);

@@ -115,14 +115,23 @@ bool extend_plan(truth_checkpoint& c) {
     return true;
 }
 
-std::vector<chunk_job> next_jobs(const truth_checkpoint& c, std::size_t max_jobs) {
+double job_cost(const truth_checkpoint& c, const chunk_job& j) {
+    const double per_path = j.ray < c.pilot_cost.size() ? c.pilot_cost[j.ray] : 1.0;
+    return static_cast<double>(j.paths) * per_path;
+}
+
+std::vector<chunk_job> next_jobs(const truth_checkpoint& c, std::size_t max_jobs, double max_cost) {
     std::vector<chunk_job> jobs;
-    for (std::size_t i = 0; i < c.planned.size() && jobs.size() < max_jobs; ++i) {
+    double cost = 0.0;
+    const auto full = [&] { return jobs.size() >= max_jobs || (!jobs.empty() && cost >= max_cost); };
+    for (std::size_t i = 0; i < c.planned.size() && !full(); ++i) {
         std::uint64_t left = c.planned[i] - std::min(c.planned[i], c.tally[i].paths);
-        for (std::uint64_t k = c.next_chunk[i]; left > 0 && jobs.size() < max_jobs; ++k) {
-            const std::uint64_t n = std::min(left, paths_per_chunk);
-            jobs.push_back({i, k, n});
-            left -= n;
+        for (std::uint64_t k = c.next_chunk[i]; left > 0 && !full(); ++k) {
+            const chunk_job j{i, k, std::min(left, paths_per_chunk)};
+            if (!jobs.empty() && cost + job_cost(c, j) > max_cost) return jobs;
+            jobs.push_back(j);
+            cost += job_cost(c, j);
+            left -= j.paths;
         }
     }
     return jobs;
@@ -146,19 +155,22 @@ bool continue_trace(truth_checkpoint& c, const path_tracer& tracer, const std::v
     if (rays.size() != c.pixels()) throw std::invalid_argument("continue_trace: one camera ray per pixel of the plan");
     using clock = std::chrono::steady_clock;
     auto last_save = clock::now();
-    double size = static_cast<double>(std::max<std::size_t>(batch_jobs, 1));
+    const std::size_t first = std::max<std::size_t>(batch_jobs, 1);
+    double traced_cost = 0.0, traced_seconds = 0.0;  // of the batches so far: the rate
     for (;;) {
         if (c.plan_done() && !extend_plan(c)) break;
         if (stop && stop()) break;
+        const bool by_cost = batch_seconds > 0.0 && traced_seconds > 0.0 && traced_cost > 0.0;
+        const std::vector<chunk_job> jobs =
+            by_cost ? next_jobs(c, std::numeric_limits<std::size_t>::max(), traced_cost / traced_seconds * batch_seconds)
+                    : next_jobs(c, first);
         const auto start = clock::now();
-        const std::vector<chunk_job> jobs = next_jobs(c, static_cast<std::size_t>(size));
         merge_jobs(c, jobs, trace_chunks(tracer, rays, jobs, options));
         const auto end = clock::now();
         const double seconds = std::chrono::duration<double>(end - start).count();
         c.seconds += seconds;
-        // The next batch for about batch_seconds at this batch's rate, growing at most 4x.
-        if (batch_seconds > 0.0)
-            size = std::clamp(size * batch_seconds / std::max(seconds, 1e-3), 1.0, 4.0 * size);
+        traced_seconds += seconds;
+        for (const chunk_job& j : jobs) traced_cost += job_cost(c, j);
         if (save && std::chrono::duration<double>(end - last_save).count() >= save_every_seconds) {
             save(c);
             last_save = end;

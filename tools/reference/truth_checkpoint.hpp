@@ -36,6 +36,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <map>
 #include <string>
 #include <string_view>
@@ -95,8 +96,13 @@ struct truth_checkpoint {
 // it, is uniform, or has been extended max_extensions times.
 bool extend_plan(truth_checkpoint& c);
 
-// The next jobs of the plan in pixel order, each pixel's chunks in order, at most max_jobs.
-[[nodiscard]] std::vector<chunk_job> next_jobs(const truth_checkpoint& c, std::size_t max_jobs);
+// The next jobs of the plan in pixel order, each pixel's chunks in order: at most max_jobs, and
+// no more than max_cost of predicted cost (job_cost's; at least one job whatever its cost).
+[[nodiscard]] std::vector<chunk_job> next_jobs(const truth_checkpoint& c, std::size_t max_jobs,
+                                               double max_cost = std::numeric_limits<double>::infinity());
+// A job's predicted cost: its paths times the pilot's cost per path of its pixel (1 without a
+// pilot).
+[[nodiscard]] double job_cost(const truth_checkpoint& c, const chunk_job& j);
 // Merges the tallies of trace_chunks(jobs) (jobs from next_jobs) into the checkpoint.
 void merge_jobs(truth_checkpoint& c, const std::vector<chunk_job>& jobs, const std::vector<path_tally>& tallies);
 
@@ -104,9 +110,12 @@ void merge_jobs(truth_checkpoint& c, const std::vector<chunk_job>& jobs, const s
 // extend_plan says, or until stop() (asked between batches) says so; save(c) is called every
 // save_every_seconds of tracing and once at the end. Returns true when the plan is done.
 // c.seconds grows by the time spent. The first batch holds batch_jobs chunks; with
-// batch_seconds > 0 the next ones are sized to last about that long (a pixel's chunks cost
-// from microseconds to seconds), so a budget is kept to within about one batch; with 0 every
-// batch holds batch_jobs. The numbers do not depend on the batches.
+// batch_seconds > 0 the next ones hold the predicted cost (job_cost) that the batches so far
+// traced in about that long: a pixel's chunks cost from microseconds (the ground, the clear
+// sky) to seconds, so a count of chunks is no measure (a batch sized by its count from the
+// cheap rows at the bottom of an image once took in the whole cloud, 17 minutes with no
+// checkpoint). A budget is so kept to within about one batch. With 0 every batch holds
+// batch_jobs. The numbers do not depend on the batches.
 bool continue_trace(truth_checkpoint& c, const path_tracer& tracer, const std::vector<camera_ray>& rays,
                     const mc::run_options& options, std::size_t batch_jobs, double batch_seconds,
                     double save_every_seconds, const std::function<bool()>& stop,
