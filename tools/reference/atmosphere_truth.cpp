@@ -22,18 +22,24 @@ std::vector<double> set_sun_elevations(const std::string& set_name) {
     throw std::invalid_argument("no set named '" + set_name + "' (truth or holdout)");
 }
 
+namespace {
+// A row of a set, its radiance not filled in.
+truth_row row(const std::string& set, const std::string& name, double sun_elevation, double view_elevation,
+              double view_azimuth) {
+    truth_row r;
+    r.set = set;
+    r.name = name;
+    r.sun_elevation = sun_elevation;
+    r.view_elevation = view_elevation;
+    r.view_azimuth = view_azimuth;
+    return r;
+}
+}  // namespace
+
 std::vector<truth_row> truth_set(const std::vector<double>& sun_elevations) {
     std::vector<truth_row> rows;
     for (double e : sun_elevations) {
-        const auto add = [&](const char* name, double el, double az) {
-            truth_row r;
-            r.set = "table";
-            r.name = name;
-            r.sun_elevation = e;
-            r.view_elevation = el;
-            r.view_azimuth = az;
-            rows.push_back(r);
-        };
+        const auto add = [&](const char* name, double el, double az) { rows.push_back(row("table", name, e, el, az)); };
         add("zenith", 90.0, 0.0);
         add("horizon_sun", 1.0, 0.0);
         add("horizon_side", 1.0, 90.0);
@@ -44,15 +50,9 @@ std::vector<truth_row> truth_set(const std::vector<double>& sun_elevations) {
     }
     for (double e : sun_elevations)
         for (int j = 0; j < panorama_elevations; ++j)
-            for (int i = 0; i < panorama_azimuths; ++i) {
-                truth_row r;
-                r.set = "panorama";
-                r.name = std::to_string(i) + "_" + std::to_string(j);
-                r.sun_elevation = e;
-                r.view_elevation = (j + 0.5) * 90.0 / panorama_elevations;
-                r.view_azimuth = (i + 0.5) * 180.0 / panorama_azimuths;
-                rows.push_back(r);
-            }
+            for (int i = 0; i < panorama_azimuths; ++i)
+                rows.push_back(row("panorama", std::to_string(i) + "_" + std::to_string(j), e,
+                                   (j + 0.5) * 90.0 / panorama_elevations, (i + 0.5) * 180.0 / panorama_azimuths));
     return rows;
 }
 
@@ -60,15 +60,8 @@ std::vector<truth_row> horizon_set() {
     std::vector<truth_row> rows;
     for (double e : horizon_sun_elevations)
         for (const auto& [name, el, az] : {std::tuple{"up2_sun", 2.0, 0.0}, {"up2_away", 2.0, 180.0},
-                                           {"up10_sun", 10.0, 0.0}, {"up10_away", 10.0, 180.0}}) {
-            truth_row r;
-            r.set = "horizon";
-            r.name = name;
-            r.sun_elevation = e;
-            r.view_elevation = el;
-            r.view_azimuth = az;
-            rows.push_back(r);
-        }
+                                           {"up10_sun", 10.0, 0.0}, {"up10_away", 10.0, 180.0}})
+            rows.push_back(row("horizon", name, e, el, az));
     return rows;
 }
 
