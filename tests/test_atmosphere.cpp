@@ -500,6 +500,84 @@ TEST_CASE("atmosphere_multiple_scattering_refined_lut: Hillaire's with no pass, 
     CHECK(moment_ground.z > 0.1f * refined.z);
 }
 
+TEST_CASE("atmosphere_make_sky_luts: the aerosol field keeps the field's light, turns it forward, and is read only where the sun is up") {
+    const auto a = earth_atmosphere<float>();
+    const atmosphere_sky_luts<float> luts = atmosphere_make_sky_luts(a, 16, 8, 3, 64, 12, 16);
+    const std::size_t texels = 16 * 8;
+    constexpr int J = atmosphere_aerosol_field_nodes;
+    REQUIRE(luts.texels.size() == texels);
+    REQUIRE(luts.vertical_moments.size() == texels);
+    REQUIRE(luts.sun_azimuth_moments.size() == texels);
+    REQUIRE(luts.aerosol_field.size() == texels * J);
+    // The nodes: view zenith cosines x|x| over x evenly spaced in [-1, 1], the horizon in the middle.
+    CHECK(detail::atmosphere_aerosol_node<float>(0) == -1.0f);
+    CHECK(detail::atmosphere_aerosol_node<float>(J / 2) == 0.0f);
+    CHECK(detail::atmosphere_aerosol_node<float>(J - 1) == 1.0f);
+    // The weights: Cornette-Shanks averaged over azimuth, normalised to a mean of 1 over the
+    // rays per node (an isotropic field is carried as it is).
+    const std::vector<float> w = detail::atmosphere_aerosol_weights<float>(64, a.mie_g);
+    REQUIRE(w.size() == std::size_t(64 * J));
+    for (int j = 0; j < J; ++j) {
+        double mean = 0.0;
+        for (int k = 0; k < 64; ++k) mean += double(w[std::size_t(k * J + j)]) / 64.0;
+        CHECK(std::fabs(mean - 1.0) < 1e-5);
+    }
+    // A view up weighs the ray nearest the zenith (k = 0) far above the ray nearest the nadir.
+    CHECK(w[std::size_t(0 * J + J - 1)] > 20.0f * w[std::size_t(63 * J + J - 1)]);
+    // The field's light: the phase integrates to 1, so the turned field averaged over all views
+    // (trapezoid over the nodes' cosines) is the field's mean, within the 17 nodes' quadrature.
+    for (std::size_t t = 0; t < texels; ++t) {
+        glm::dvec3 mean(0.0);
+        for (int j = 0; j + 1 < J; ++j) {
+            const double d = double(detail::atmosphere_aerosol_node<float>(j + 1) - detail::atmosphere_aerosol_node<float>(j));
+            mean += 0.25 * d * (glm::dvec3(luts.aerosol_field[std::size_t(j) * texels + t]) +
+                                glm::dvec3(luts.aerosol_field[std::size_t(j + 1) * texels + t]));
+        }
+        for (int c = 0; c < 3; ++c) CHECK(cm_test::rel_err(mean[c], double(luts.texels[t][c])) < 0.03);
+        // The horizontal moment towards the sun's azimuth: between none and all of the light
+        // that is not vertical.
+        for (int c = 0; c < 3; ++c) {
+            CHECK(luts.sun_azimuth_moments[t][c] >= 0.0f);
+            CHECK(luts.sun_azimuth_moments[t][c] <= (luts.texels[t][c] - luts.vertical_moments[t][c]) * 1.0001f);
+        }
+    }
+    // At the ground with the sun 10 degrees up the field is brightest along the horizon, and
+    // the aerosols' forward peak turns that into views along it: the horizon node above the
+    // field's mean, the zenith node below.
+    const float mu_s = float(std::sin(10.0 * 3.14159265358979323846 / 180.0));
+    const glm::vec2 uv = atmosphere_multiple_scattering_lut_uv(a, 0.0f, mu_s, glm::vec2(16.0f, 8.0f));
+    const int col = std::min(15, int(uv.x * 16.0f));  // row 0: the ground
+    const std::size_t t = std::size_t(col);
+    MESSAGE("ground, sun at 10 degrees, blue: field " << luts.texels[t].z << ", turned into the horizon "
+                                                      << luts.aerosol_field[std::size_t(J / 2) * texels + t].z << ", the zenith "
+                                                      << luts.aerosol_field[std::size_t(J - 1) * texels + t].z);
+    CHECK(luts.aerosol_field[std::size_t(J / 2) * texels + t].z > 1.05f * luts.texels[t].z);
+    CHECK(luts.aerosol_field[std::size_t(J - 1) * texels + t].z < luts.texels[t].z);
+    // Read only where the sun is above a point's horizon: with the sun 30 degrees below the
+    // horizon (below every point of the air along these rays) a field of zeros changes nothing,
+    // with the sun 10 degrees up it darkens the sky.
+    atmosphere_sky_luts<float> zeroed = luts;
+    std::fill(zeroed.aerosol_field.begin(), zeroed.aerosol_field.end(), glm::vec3(0.0f));
+    const atmosphere_multiple_scattering_table<float> with = luts.table(), without = zeroed.table();
+    const glm::vec3 view = glm::normalize(glm::vec3(0.0f, 0.05f, 1.0f));
+    const float down = float(std::sin(-30.0 * 3.14159265358979323846 / 180.0));
+    const glm::vec3 set_sun(std::sqrt(1.0f - down * down), down, 0.0f), up_sun(std::sqrt(1.0f - mu_s * mu_s), mu_s, 0.0f);
+    CHECK(atmosphere_sky_radiance(a, with, 0.0f, view, set_sun) == atmosphere_sky_radiance(a, without, 0.0f, view, set_sun));
+    CHECK(atmosphere_sky_radiance(a, without, 0.0f, view, up_sun).z < 0.99f * atmosphere_sky_radiance(a, with, 0.0f, view, up_sun).z);
+    // A black sky stays black; a NaN direction gives NaN, not a value from a clamped lookup.
+    atmosphere_parameters<float> dark = a;
+    dark.rayleigh_scattering = glm::vec3(0.0f);
+    dark.mie_scattering = 0.0f;
+    dark.ground_albedo = 0.0f;
+    const atmosphere_sky_luts<float> black = atmosphere_make_sky_luts(dark, 4, 4, 2, 16, 4, 4);
+    for (const glm::vec3& v : black.aerosol_field) CHECK(v == glm::vec3(0.0f));
+    CHECK(atmosphere_sky_radiance(dark, black.table(), 0.0f, view, up_sun) == glm::vec3(0.0f));
+    if (cm_test::ieee_build) {
+        const float nan = std::numeric_limits<float>::quiet_NaN();
+        CHECK(std::isnan(atmosphere_sky_radiance(a, with, 0.0f, glm::vec3(nan, nan, nan), up_sun).x));
+    }
+}
+
 TEST_CASE("global illuminance at sea level for a zenith sun: 110-130 klux (REFERENCES.md)") {
     // Direct normal (the sun's transmittance) plus the sky's irradiance on a horizontal plane
     // (the radiance's cosine-weighted integral over the upper hemisphere: 64 azimuths x 32

@@ -626,6 +626,23 @@ TEST_CASE_TEMPLATE("fuzz the sky: scattering, multiple scattering, in-scattering
                 CHECK(moments[i][c] <= refined[i][c] * T(1.0001) + T(1e-30));
             }
     }
+    // The sky's LUTs with every output (atmosphere_make_sky_luts: the moments and the aerosol
+    // field), for odd sizes, counts and passes: finite and non-negative, and the sky through
+    // them for any view and sun (the sun below the horizon too).
+    for (int k = 0; k < 4; ++k) {
+        const cm::atmosphere_sky_luts<T> luts = cm::atmosphere_make_sky_luts(air, 2 + k % 3, 2 + k % 2, k % 3, 1 + k, 1 + k % 4, 1 + k % 2);
+        const std::size_t texels = std::size_t(luts.width) * std::size_t(luts.height);
+        REQUIRE(luts.texels.size() == texels);
+        REQUIRE(luts.sun_azimuth_moments.size() == texels);
+        REQUIRE(luts.aerosol_field.size() == texels * std::size_t(cm::atmosphere_aerosol_field_nodes));
+        for (const glm::vec<3, T>& v : luts.aerosol_field) CHECK((ok(v.x) && ok(v.z) && v.x >= T(0) && v.z >= T(0)));
+        for (const glm::vec<3, T>& v : luts.sun_azimuth_moments) CHECK((ok(v.y) && v.y >= T(0)));
+        const cm::atmosphere_multiple_scattering_table<T> table = luts.table();
+        for (int q = 0; q < 8; ++q) {
+            const glm::vec<3, T> seen = cm::atmosphere_sky_radiance(air, table, r.in(T(0), T(1e5)), unit(), unit(), 1 + q % 6, 1 + q % 3);
+            for (int c = 0; c < 3; ++c) CHECK((ok(seen[c]) && seen[c] >= T(0)));
+        }
+    }
 }
 
 TEST_CASE_TEMPLATE("fuzz the atmosphere: extinction, optical depth and transmittance in range, the LUT mapping inside it", T, float, double) {

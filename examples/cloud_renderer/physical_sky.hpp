@@ -31,13 +31,15 @@ inline constexpr float sun_lux = 128000.0f;
 
 struct physical_air {
     cloudmath::atmosphere_parameters<float> air = cloudmath::earth_atmosphere<float>();
-    // 32 x 32, Hillaire's size, with the orders gathered, the sky-lit ground and the field's
-    // vertical moment (3 passes).
-    std::vector<glm::vec3> ms_moments;
-    std::vector<glm::vec3> ms_lut = cloudmath::atmosphere_multiple_scattering_refined_lut(air, 32, 32, 3, 64, 20, 32, &ms_moments);
-    cloudmath::atmosphere_multiple_scattering_table<float> ms{&ms_lut, 32, 32, &ms_moments};
+    // 32 x 32, Hillaire's size, with the orders gathered, the sky-lit ground, the field's
+    // vertical and sun-azimuth moments and its aerosol field (3 passes).
+    cloudmath::atmosphere_sky_luts<float> luts = cloudmath::atmosphere_make_sky_luts(air, 32, 32);
+    cloudmath::atmosphere_multiple_scattering_table<float> ms = luts.table();  // points into luts
+    physical_air() = default;
+    physical_air(const physical_air&) = delete;  // ms would point into the original
+    physical_air& operator=(const physical_air&) = delete;
 };
-// Earth's air and its multiple-scattering LUT, made at the first call (about 1 s).
+// Earth's air and its multiple-scattering LUT, made at the first call (about 1.5 s).
 const physical_air& earth_air();
 
 struct haze_table {

@@ -12,12 +12,10 @@
 //           const auto air = cloudmath::earth_atmosphere<float>();
 //           glm::vec3 T_sun = cloudmath::atmosphere_transmittance(air, camera_altitude, sun_dir.y);
 //           // once per atmosphere, then per pixel (directions in the camera's frame, +y up):
-//           std::vector<glm::vec3> moments;
-//           std::vector<glm::vec3> ms_lut = cloudmath::atmosphere_multiple_scattering_refined_lut(air, 32, 32, 3, 64, 20, 32, &moments);
-//           cloudmath::atmosphere_multiple_scattering_table<float> ms{&ms_lut, 32, 32, &moments};
+//           cloudmath::atmosphere_sky_luts<float> luts = cloudmath::atmosphere_make_sky_luts(air);  // 32 x 32
 //           // the ground below the horizon lit by the sky too (else by the sun alone):
-//           std::vector<glm::vec3> sky_on_ground = cloudmath::atmosphere_ground_irradiance_lut(air, ms);
-//           ms.ground_irradiance = &sky_on_ground;
+//           luts.ground_irradiance = cloudmath::atmosphere_ground_irradiance_lut(air, luts.table());
+//           const cloudmath::atmosphere_multiple_scattering_table<float> ms = luts.table();
 //           glm::vec3 sky = sun_lux * cloudmath::atmosphere_sky_radiance(air, ms, camera_altitude, view_dir, sun_dir);
 //           auto haze = cloudmath::atmosphere_inscatter(air, ms, camera_altitude, view_dir, sun_dir, distance);
 //           glm::vec3 seen = surface * haze.transmittance + sun_lux * haze.radiance;
@@ -37,12 +35,12 @@
 //           LUT's bilinear lookup is within 2.5e-3 more than 0.06 in cosine from the horizon
 //           (worst at 40 km, the ozone tent's kink between two rows; 256 x 128: 1.0e-3) and
 //           within 0.02 nearer to it.
-//           The sky (atmosphere_sky_radiance, float, 32 steps, the 32 x 32 LUT of
-//           atmosphere_multiple_scattering_refined_lut with its vertical moments) is within
-//           0.9-2.1% rms of a path tracer with every order of scattering for the sun at 90-10
-//           degrees and 2.4-3.9% at 2 and -2 (docs/atmosphere_truth.md; a held-out set at 60,
-//           20, 5, 0 and -1 degrees: 1.1-4.8%, docs/atmosphere_holdout.md); with Hillaire's LUT
-//           alone 1.7-5.5% and 10-11%.
+//           The sky (atmosphere_sky_radiance, float, 32 steps, atmosphere_make_sky_luts' 32 x 32
+//           LUTs) is within 0.5-0.9% rms of a path tracer with every order of scattering for
+//           the sun at 90-10 degrees and 1.4-3.5% at 2 and -2 (docs/atmosphere_truth.md; a
+//           held-out set at 60, 20, 5, 0 and -1 degrees: 0.7-3.5%, docs/atmosphere_holdout.md),
+//           and 0.80% rms, worst 1.54%, 2-10 degrees above the horizon for the sun at 2-60
+//           degrees (docs/atmosphere.md); with Hillaire's LUT alone 1.7-5.5% and 10-11%.
 // Light:    per unit of the sun's illuminance above the air: radiance in 1/sr, to be multiplied
 //           by the sun's illuminance (lux per channel gives cd/m^2; docs/atmosphere.md).
 // GLSL twin: cloudmath/glsl/atmosphere.glsl (the LUT bakers and lookups, atmosphere_inscatter
@@ -103,6 +101,10 @@ template <class T>
             T(15e3),
             T(0.1)};
 }
+
+// The number of view zenith cosines at which atmosphere_multiple_scattering_refined_lut
+// tabulates the aerosol field (the multiple-scattering field turned by Cornette-Shanks).
+inline constexpr int atmosphere_aerosol_field_nodes = 17;
 
 // atmosphere_extinction(air, altitude): sigma_t (1/m per channel) at `altitude` metres above
 // the ground: Rayleigh + Mie extinction + ozone absorption. Altitudes below 0 are taken as 0;
@@ -246,8 +248,7 @@ template <class T>
 namespace detail {
 // A LUT of width x height texels sampled as GL_LINEAR with clamp-to-edge would at uv.
 template <class T>
-inline glm::vec<3, T> lut_bilinear(const std::vector<glm::vec<3, T>>& lut, int w, int h, const glm::vec<2, T>& uv) noexcept {
-    if (w < 2 || h < 2 || lut.size() < static_cast<std::size_t>(w) * static_cast<std::size_t>(h)) return glm::vec<3, T>(T(0));
+inline glm::vec<3, T> lut_bilinear(const glm::vec<3, T>* lut, int w, int h, const glm::vec<2, T>& uv) noexcept {
     const T x = uv.x * T(w) - T(0.5), y = uv.y * T(h) - T(0.5);
     const int x0 = floor_to_int(x, 0, w - 2), y0 = floor_to_int(y, 0, h - 2);
     const T fx = saturate(x - T(x0)), fy = saturate(y - T(y0));
@@ -257,6 +258,12 @@ inline glm::vec<3, T> lut_bilinear(const std::vector<glm::vec<3, T>>& lut, int w
     const glm::vec<3, T> bottom = at(x0, y0) * (T(1) - fx) + at(x0 + 1, y0) * fx;
     const glm::vec<3, T> upper = at(x0, y0 + 1) * (T(1) - fx) + at(x0 + 1, y0 + 1) * fx;
     return bottom * (T(1) - fy) + upper * fy;
+}
+
+template <class T>
+inline glm::vec<3, T> lut_bilinear(const std::vector<glm::vec<3, T>>& lut, int w, int h, const glm::vec<2, T>& uv) noexcept {
+    if (w < 2 || h < 2 || lut.size() < static_cast<std::size_t>(w) * static_cast<std::size_t>(h)) return glm::vec<3, T>(T(0));
+    return lut_bilinear(lut.data(), w, h, uv);
 }
 }  // namespace detail
 
@@ -330,14 +337,54 @@ inline glm::vec<3, T> atmosphere_golden_ray(T mu, int k) noexcept {
 // The second order's turn towards the point (1/(m sr)): the sun's light scattered once at
 // altitude h by the angle whose cosine is nu. Molecules with Rayleigh's phase: from a high sun
 // the light that reaches a point along the horizon is turned by 90 degrees, 0.75 of the
-// isotropic value Hillaire 2020 uses. Aerosols isotropic: Cornette-Shanks's forward peak
-// (g = 0.8) is narrower than 64 rays resolve (with it the sky at a high sun was 3% rms off,
-// not 1.5%; docs/atmosphere.md).
+// isotropic value Hillaire 2020 uses. Aerosols isotropic for Hillaire's LUT (and its GLSL,
+// HLSL and WGSL twins): alone, Cornette-Shanks's forward peak (g = 0.8), narrower than 64
+// rays resolve, put the sky at a high sun 3% rms off, not 1.5%. With Cornette-Shanks where
+// the refined LUT also carries the aerosol field (cornette_shanks): the aureole's light is
+// then in the field, and the aerosol field turns it on forward (with an isotropic turn the
+// sky 2-10 degrees up was 1-2% too dark; docs/atmosphere.md).
 template <class T>
-inline glm::vec<3, T> atmosphere_second_order_turn(const atmosphere_parameters<T>& air, T altitude, T nu) noexcept {
+inline glm::vec<3, T> atmosphere_second_order_turn(const atmosphere_parameters<T>& air, T altitude, T nu,
+                                                   bool cornette_shanks = false) noexcept {
     const T h = max(altitude, T(0));
+    const T aerosol_phase = cornette_shanks ? phase_cornette_shanks(nu, air.mie_g) : inv_four_pi_v<T>;
     return air.rayleigh_scattering * (std::exp(-h / air.rayleigh_scale_height) * phase_rayleigh(nu)) +
-           glm::vec<3, T>(air.mie_scattering * std::exp(-h / air.mie_scale_height) * inv_four_pi_v<T>);
+           glm::vec<3, T>(air.mie_scattering * std::exp(-h / air.mie_scale_height) * aerosol_phase);
+}
+
+// The aerosol field's nodes: view zenith cosines mu_j = x_j |x_j|, x_j = -1 + 2 j / (J - 1),
+// crowded around the horizon.
+template <class T>
+inline T atmosphere_aerosol_node(int j) noexcept {
+    const T x = T(-1) + T(2) * T(j) / T(atmosphere_aerosol_field_nodes - 1);
+    return x * abs(x);
+}
+
+// w[k J + j]: Cornette-Shanks between ray k of the golden set of n_dir rays (zenith cosine
+// 1 - (2k + 1)/n_dir) and a view of zenith cosine mu_j, averaged over the azimuth between
+// them (the field is taken as symmetric about the vertical), normalised so that the mean over
+// the rays is 1 for each node: an isotropic field is carried as it is.
+template <class T>
+inline std::vector<T> atmosphere_aerosol_weights(int n_dir, T g) {
+    const int J = atmosphere_aerosol_field_nodes, M = 256;
+    std::vector<T> w(static_cast<std::size_t>(n_dir) * static_cast<std::size_t>(J));
+    for (int j = 0; j < J; ++j) {
+        const double mj = double(atmosphere_aerosol_node<T>(j)), sj = std::sqrt(max(1.0 - mj * mj, 0.0));
+        double sum = 0.0;
+        std::vector<double> pb(static_cast<std::size_t>(n_dir));
+        for (int k = 0; k < n_dir; ++k) {
+            const double mk = 1.0 - (2.0 * k + 1.0) / n_dir, sk = std::sqrt(max(1.0 - mk * mk, 0.0));
+            double acc = 0.0;
+            for (int m = 0; m < M; ++m)
+                acc += double(phase_cornette_shanks(T(mk * mj + sk * sj * std::cos(pi_v<double> * (m + 0.5) / M)), g));
+            pb[static_cast<std::size_t>(k)] = acc / M;
+            sum += acc / M;
+        }
+        for (int k = 0; k < n_dir; ++k)
+            w[static_cast<std::size_t>(k) * static_cast<std::size_t>(J) + static_cast<std::size_t>(j)] =
+                T(pb[static_cast<std::size_t>(k)] * n_dir / sum);
+    }
+    return w;
 }
 }  // namespace detail
 
@@ -349,17 +396,21 @@ namespace detail {
 template <class T>
 struct atmosphere_second_order_parts {
     glm::vec<3, T> L2, f, b2;
+    glm::vec<3, T> c2{T(0)};  // the mean of the light times the square of the ray's horizontal cosine towards the sun's azimuth
+    glm::vec<3, T> S[atmosphere_aerosol_field_nodes] = {};  // the light turned by Cornette-Shanks into each node's view (with weights)
 };
 
 template <class T>
 inline atmosphere_second_order_parts<T> atmosphere_second_order(const atmosphere_parameters<T>& air, T altitude, T cos_sun_zenith,
-                                                                int directions, int steps, int sun_steps) noexcept {
+                                                                int directions, int steps, int sun_steps,
+                                                                const T* aerosol_weights = nullptr) noexcept {
     const int n_dir = directions > 1 ? directions : 1, n = steps > 1 ? steps : 1;
     const T h = clamp(altitude, T(0), air.top_radius - air.bottom_radius);
     const T r = air.bottom_radius + h;
     const T mu_s = clamp(cos_sun_zenith, T(-1), T(1));
     const glm::vec<3, T> sun = atmosphere_sun_direction(mu_s);
     glm::vec<3, T> L2(T(0)), f(T(0)), b2(T(0));
+    atmosphere_second_order_parts<T> out{};
     for (int k = 0; k < n_dir; ++k) {
         // Spherical Fibonacci: cosines evenly spaced in (-1, 1), azimuths by the golden angle.
         const T mu = T(1) - (T(2) * T(k) + T(1)) / T(n_dir);
@@ -379,7 +430,7 @@ inline atmosphere_second_order_parts<T> atmosphere_second_order(const atmosphere
             // (1 - e^-sigma ds)/sigma without the textbook form's loss in thin air (core.hpp).
             const glm::vec<3, T> integral = one_minus_exp_neg_over_x(sigma_t * ds) * ds;
             const glm::vec<3, T> sun_t = atmosphere_transmittance(air, hy, mu_sy, sun_steps);
-            L += throughput * atmosphere_second_order_turn(air, hy, nu) * sun_t * integral;
+            L += throughput * atmosphere_second_order_turn(air, hy, nu, aerosol_weights != nullptr) * sun_t * integral;
             F += throughput * sigma_s * integral;
             throughput *= step_t;
         }
@@ -390,8 +441,17 @@ inline atmosphere_second_order_parts<T> atmosphere_second_order(const atmosphere
         L2 += L;
         f += F;
         b2 += L * (mu * mu);
+        out.c2 += L * (dir.x * dir.x);  // the sun is at azimuth 0 (+x)
+        if (aerosol_weights != nullptr)
+            for (int j = 0; j < atmosphere_aerosol_field_nodes; ++j)
+                out.S[j] += L * aerosol_weights[k * atmosphere_aerosol_field_nodes + j];
     }
-    return {L2 / T(n_dir), f / T(n_dir), b2 / T(n_dir)};
+    out.L2 = L2 / T(n_dir);
+    out.f = f / T(n_dir);
+    out.b2 = b2 / T(n_dir);
+    out.c2 /= T(n_dir);
+    for (int j = 0; j < atmosphere_aerosol_field_nodes; ++j) out.S[j] /= T(n_dir);
+    return out;
 }
 
 // Hillaire's geometric series over the orders from the second on. f < 1 for any air that
@@ -504,6 +564,13 @@ struct atmosphere_multiple_scattering_table {
     // The sky's irradiance on the ground by the sun's angle (atmosphere_ground_irradiance_lut),
     // for atmosphere_sky_radiance's ground; none: the ground reflects only the sun.
     const std::vector<glm::vec<3, T>>* ground_irradiance = nullptr;
+    // Where given (atmosphere_multiple_scattering_refined_lut's last two outputs): the field's
+    // horizontal second moment towards the sun's azimuth (same size as texels), for Rayleigh's
+    // turn by the view's azimuth as well; and the aerosol field, atmosphere_aerosol_field_nodes
+    // blocks of width x height texels (node-major), the field turned by Cornette-Shanks into a
+    // view of each node's zenith cosine.
+    const std::vector<glm::vec<3, T>>* sun_azimuth_moments = nullptr;
+    const std::vector<glm::vec<3, T>>* aerosol_field = nullptr;
 };
 
 namespace detail {
@@ -547,15 +614,50 @@ template <class T>
 
 namespace detail {
 // What the table's field scatters into a ray with zenith cosine mu_view at (altitude, mu_s).
+// cos2_azimuth: the square of the cosine of the azimuth between the view and the sun.
 template <class T>
 inline glm::vec<3, T> atmosphere_table_source(const atmosphere_parameters<T>& air, const atmosphere_multiple_scattering_table<T>& ms,
-                                              T altitude, T cos_sun_zenith, T cos_view_zenith) noexcept {
+                                              T altitude, T cos_sun_zenith, T cos_view_zenith, T cos2_azimuth) noexcept {
     const glm::vec<2, T> uv =
         atmosphere_multiple_scattering_lut_uv(air, altitude, cos_sun_zenith, glm::vec<2, T>(T(ms.width), T(ms.height)));
     const glm::vec<3, T> psi = lut_bilinear(*ms.texels, ms.width, ms.height, uv);
     if (ms.vertical_moments == nullptr) return atmosphere_scattering_coefficient(air, altitude) * psi;
-    return atmosphere_multiple_scattering_source(air, altitude, psi, lut_bilinear(*ms.vertical_moments, ms.width, ms.height, uv),
-                                                 cos_view_zenith);
+    const glm::vec<3, T> b = lut_bilinear(*ms.vertical_moments, ms.width, ms.height, uv);
+    const std::size_t texels = static_cast<std::size_t>(ms.width) * static_cast<std::size_t>(ms.height);
+    if (ms.sun_azimuth_moments == nullptr || ms.aerosol_field == nullptr || ms.sun_azimuth_moments->size() < texels ||
+        ms.aerosol_field->size() < texels * std::size_t(atmosphere_aerosol_field_nodes))
+        return atmosphere_multiple_scattering_source(air, altitude, psi, b, cos_view_zenith);
+    const T h = max(altitude, T(0));
+    const T mu2 = clamp(cos_view_zenith * cos_view_zenith, T(0), T(1));
+    const T c2 = clamp(cos2_azimuth, T(0), T(1));
+    const glm::vec<3, T> along = lut_bilinear(*ms.sun_azimuth_moments, ms.width, ms.height, uv);  // towards the sun's azimuth
+    const glm::vec<3, T> horizontal = along * c2 + (psi - b - along) * (T(1) - c2);
+    const glm::vec<3, T> rayleigh = air.rayleigh_scattering * std::exp(-h / air.rayleigh_scale_height) *
+                                    (T(0.75) * (psi + horizontal * (T(1) - mu2) + b * mu2));
+    glm::vec<3, T> aerosol = psi;
+    // Where the sun is below this point's horizon the field is lit from one side of the sky
+    // only, and its azimuthal average misplaces Cornette-Shanks's forward peak: isotropic there.
+    if (cos_sun_zenith > T(0)) {
+        const T m = clamp(cos_view_zenith, T(-1), T(1));
+        const T x = m < T(0) ? -std::sqrt(-m) : std::sqrt(m);
+        const T fj = (x + T(1)) * T(0.5) * T(atmosphere_aerosol_field_nodes - 1);
+        const int j0 = floor_to_int(fj, 0, atmosphere_aerosol_field_nodes - 2);
+        const T fr = saturate(fj - T(j0));
+        const glm::vec<3, T>* field = ms.aerosol_field->data();
+        aerosol = lut_bilinear(field + texels * std::size_t(j0), ms.width, ms.height, uv) * (T(1) - fr) +
+                  lut_bilinear(field + texels * std::size_t(j0 + 1), ms.width, ms.height, uv) * fr;
+    }
+    return rayleigh + aerosol * (air.mie_scattering * std::exp(-h / air.mie_scale_height));
+}
+
+// The square of the cosine of the azimuth between directions of zenith cosines mu and mu_s
+// whose dot product is nu; 1/2 (no azimuth) when either is vertical.
+template <class T>
+inline T atmosphere_cos2_azimuth(T mu, T mu_s, T nu) noexcept {
+    const T den = (T(1) - mu * mu) * (T(1) - mu_s * mu_s);
+    if (!(den > T(1e-8))) return T(0.5);
+    const T c = nu - mu * mu_s;
+    return clamp(c * c / den, T(0), T(1));
 }
 }  // namespace detail
 
@@ -585,6 +687,8 @@ template <class T>
     const T edge = detail::atmosphere_ray_length(air, h, mu);
     const T D = detail::clamp(distance, T(0), edge);  // a NaN distance stays NaN: NaN out
     const bool use_ms = ms.texels != nullptr && !ms.texels->empty();
+    // The view's azimuth from the sun's, from the camera (it turns little along the ray).
+    const T cos2_azimuth = detail::atmosphere_cos2_azimuth(mu, mu_s, nu);
     atmosphere_segment<T> out{glm::vec<3, T>(T(1)), glm::vec<3, T>(T(0))};
     for (int i = 0; i < n; ++i) {
         const T x0 = T(i) / T(n), x1 = T(i + 1) / T(n);
@@ -596,7 +700,8 @@ template <class T>
         glm::vec<3, T> source = atmosphere_scattering(air, hy, nu) * atmosphere_transmittance(air, hy, mu_sy, sun_steps);
         if (use_ms)
             source += detail::atmosphere_table_source(air, ms, hy, mu_sy,
-                                                      detail::clamp((r * mu + t) / (air.bottom_radius + hy), T(-1), T(1)));
+                                                      detail::clamp((r * mu + t) / (air.bottom_radius + hy), T(-1), T(1)),
+                                                      cos2_azimuth);
         const glm::vec<3, T> step_t = beer_lambert(sigma_t * ds);
         const glm::vec<3, T> integral = one_minus_exp_neg_over_x(sigma_t * ds) * ds;
         out.radiance += out.transmittance * source * integral;
@@ -691,25 +796,30 @@ namespace detail {
 template <class T>
 struct atmosphere_gathered {
     glm::vec<3, T> E, b;
+    glm::vec<3, T> c2{T(0)};
+    glm::vec<3, T> S[atmosphere_aerosol_field_nodes] = {};
 };
 
 template <class T>
 inline atmosphere_gathered<T> atmosphere_orders_gathered(const atmosphere_parameters<T>& air,
                                                                    const atmosphere_multiple_scattering_table<T>& field,
                                                                    const std::vector<glm::vec<3, T>>& sky_on_ground, T altitude,
-                                                                   T cos_sun_zenith, int directions, int steps) noexcept {
+                                                                   T cos_sun_zenith, int directions, int steps,
+                                                                   const T* aerosol_weights = nullptr) noexcept {
     const int n_dir = directions > 1 ? directions : 1, n = steps > 1 ? steps : 1;
     const T h = clamp(altitude, T(0), air.top_radius - air.bottom_radius);
     const T r = air.bottom_radius + h;
     const T mu_s = clamp(cos_sun_zenith, T(-1), T(1));
     const glm::vec<3, T> sun = atmosphere_sun_direction(mu_s);
     glm::vec<3, T> E(T(0)), b(T(0));
+    atmosphere_gathered<T> out{};
     for (int k = 0; k < n_dir; ++k) {
         const T mu = T(1) - (T(2) * T(k) + T(1)) / T(n_dir);  // atmosphere_second_order's rays
         const glm::vec<3, T> dir = atmosphere_golden_ray(mu, k);
         const T length = atmosphere_ray_length(air, h, mu);
         const T ds = length / T(n);
         const T nu = glm::dot(dir, sun);
+        const T cos2_azimuth = atmosphere_cos2_azimuth(mu, mu_s, nu);
         glm::vec<3, T> throughput(T(1)), G(T(0));
         for (int i = 0; i < n; ++i) {
             const T t = (T(i) + T(0.5)) * ds;
@@ -718,7 +828,8 @@ inline atmosphere_gathered<T> atmosphere_orders_gathered(const atmosphere_parame
             const T mu_sy = clamp((r * mu_s + t * nu) / ry, T(-1), T(1));
             const glm::vec<3, T> sigma_t = atmosphere_extinction(air, hy);
             const glm::vec<3, T> integral = one_minus_exp_neg_over_x(sigma_t * ds) * ds;
-            G += throughput * integral * atmosphere_table_source(air, field, hy, mu_sy, clamp((r * mu + t) / ry, T(-1), T(1)));
+            G += throughput * integral *
+                 atmosphere_table_source(air, field, hy, mu_sy, clamp((r * mu + t) / ry, T(-1), T(1)), cos2_azimuth);
             throughput *= beer_lambert(sigma_t * ds);
         }
         if (atmosphere_ray_hits_ground(air, h, mu)) {
@@ -728,8 +839,16 @@ inline atmosphere_gathered<T> atmosphere_orders_gathered(const atmosphere_parame
         }
         E += G;
         b += G * (mu * mu);
+        out.c2 += G * (dir.x * dir.x);
+        if (aerosol_weights != nullptr)
+            for (int j = 0; j < atmosphere_aerosol_field_nodes; ++j)
+                out.S[j] += G * aerosol_weights[k * atmosphere_aerosol_field_nodes + j];
     }
-    return {E / T(n_dir), b / T(n_dir)};
+    out.E = E / T(n_dir);
+    out.b = b / T(n_dir);
+    out.c2 /= T(n_dir);
+    for (int j = 0; j < atmosphere_aerosol_field_nodes; ++j) out.S[j] /= T(n_dir);
+    return out;
 }
 }  // namespace detail
 
@@ -751,20 +870,41 @@ inline atmosphere_gathered<T> atmosphere_orders_gathered(const atmosphere_parame
 //     moment (written to *vertical_moments when given, for atmosphere_multiple_scattering_table)
 //     and the molecules scatter the field by Rayleigh's phase over it
 //     (atmosphere_multiple_scattering_source), in the passes and in the sky's march.
+//   - With aerosol_field given (and sun_azimuth_moments, for the table): the aerosols turn the
+//     field by Cornette-Shanks, not isotropically. Each texel keeps the field turned into a
+//     view at each of atmosphere_aerosol_field_nodes zenith cosines (node-major blocks of
+//     width x height texels) and its horizontal second moment towards the sun's azimuth (the
+//     molecules' Rayleigh turn by the view's azimuth too), and the second order's turn uses
+//     Cornette-Shanks. Near the ground the field is brightest along the horizon and the
+//     aerosols' forward peak sends it into views just above it: without this the sky 2-10
+//     degrees up was 2.0% rms, 3.4% worst too dark against the path tracer; with it 0.80%,
+//     1.54% (docs/atmosphere.md, "The sky near the horizon").
 // `passes` (default 3) such passes; the third and the fifth differ by under 0.5%. The sky with
-// the LUT and its moments is within 0.9-2.1% rms of the path-traced truth for the sun at
-// 90-10 degrees and 2.4-3.9% at 2 and -2 (docs/atmosphere_truth.md). C++ only: every pass reads
-// the previous LUT and the sky's irradiance (a shader would bake it as one compute pass per
-// iteration with the LUTs bound as textures). CPU cost: 2.4 times
-// atmosphere_multiple_scattering_lut's (1.2 s against 0.5 s on one thread; docs/atmosphere.md).
+// every output (atmosphere_make_sky_luts) is within 0.5-0.9% rms of the path-traced truth for
+// the sun at 90-10 degrees and 1.4-3.5% at 2 and -2 (docs/atmosphere_truth.md); with the
+// vertical moments only 0.9-2.1% and 2.4-3.9%. C++ only: every pass reads the previous LUT and
+// the sky's irradiance (a shader would bake it as one compute pass per iteration with the LUTs
+// bound as textures). CPU cost at 32 x 32 (one run, one thread): 2.6 s with the vertical
+// moments, 2.9 s with every output (docs/atmosphere.md).
 template <class T>
 [[nodiscard]] inline std::vector<glm::vec<3, T>> atmosphere_multiple_scattering_refined_lut(
     const atmosphere_parameters<T>& air, int width, int height, int passes = 3, int directions = 64, int steps = 20,
-    int sun_steps = 32, std::vector<glm::vec<3, T>>* vertical_moments = nullptr) {
+    int sun_steps = 32, std::vector<glm::vec<3, T>>* vertical_moments = nullptr,
+    std::vector<glm::vec<3, T>>* sun_azimuth_moments = nullptr, std::vector<glm::vec<3, T>>* aerosol_field = nullptr) {
     const int w = width > 2 ? width : 2, h = height > 2 ? height : 2;
     const glm::vec<2, T> size{T(w), T(h)};
     const std::size_t texels = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     std::vector<glm::vec<3, T>> second(texels), second_moment(texels), psi(texels), moment(texels);
+    constexpr int J = atmosphere_aerosol_field_nodes;
+    const std::size_t nodes = texels * std::size_t(J);
+    std::vector<glm::vec<3, T>> second_along(texels), along(texels), second_aerosol(nodes), aerosol(nodes);
+    // The aerosol field (and Cornette-Shanks in the second order's turn) only where it is asked
+    // for: without it the sky reads the aerosols' light as isotropic, and an isotropic turn
+    // keeps that consistent.
+    const bool aerosol_turn = aerosol_field != nullptr;
+    const std::vector<T> weights =
+        aerosol_turn ? detail::atmosphere_aerosol_weights<T>(directions > 1 ? directions : 1, air.mie_g) : std::vector<T>();
+    const T* turn = aerosol_turn ? weights.data() : nullptr;
     std::vector<glm::vec<2, T>> where(texels);
     for (int j = 0; j < h; ++j)
         for (int i = 0; i < w; ++i) {
@@ -772,27 +912,70 @@ template <class T>
             where[k] = atmosphere_multiple_scattering_lut_altitude_mu(
                 air, glm::vec<2, T>((T(i) + T(0.5)) / size.x, (T(j) + T(0.5)) / size.y), size);
             const detail::atmosphere_second_order_parts<T> p =
-                detail::atmosphere_second_order(air, where[k].x, where[k].y, directions, steps, sun_steps);
+                detail::atmosphere_second_order(air, where[k].x, where[k].y, directions, steps, sun_steps, turn);
             second[k] = p.L2;
             second_moment[k] = p.b2;
+            second_along[k] = p.c2;
             psi[k] = detail::atmosphere_geometric_orders(p);
             moment[k] = psi[k] / T(3);  // isotropic until a pass gathers the field's own
+            along[k] = psi[k] / T(3);
+            for (int n = 0; n < J; ++n) {
+                second_aerosol[std::size_t(n) * texels + k] = p.S[n];
+                aerosol[std::size_t(n) * texels + k] = psi[k];
+            }
         }
-    std::vector<glm::vec<3, T>> sky_on_ground, next(texels), next_moment(texels);
+    std::vector<glm::vec<3, T>> sky_on_ground, next(texels), next_moment(texels), next_along(texels), next_aerosol(nodes);
     for (int pass = 0; pass < passes; ++pass) {
-        const atmosphere_multiple_scattering_table<T> field{&psi, w, h, &moment};
+        const atmosphere_multiple_scattering_table<T> field{&psi, w, h, &moment, nullptr, aerosol_turn ? &along : nullptr,
+                                                            aerosol_turn ? &aerosol : nullptr};
         sky_on_ground = atmosphere_ground_irradiance_lut(air, field, w, 128, 32, sun_steps);
         for (std::size_t k = 0; k < texels; ++k) {
             const detail::atmosphere_gathered<T> g =
-                detail::atmosphere_orders_gathered(air, field, sky_on_ground, where[k].x, where[k].y, directions, steps);
+                detail::atmosphere_orders_gathered(air, field, sky_on_ground, where[k].x, where[k].y, directions, steps, turn);
             next[k] = second[k] + g.E;
             next_moment[k] = second_moment[k] + g.b;
+            next_along[k] = second_along[k] + g.c2;
+            for (int n = 0; n < J; ++n) next_aerosol[std::size_t(n) * texels + k] = second_aerosol[std::size_t(n) * texels + k] + g.S[n];
         }
         psi.swap(next);
         moment.swap(next_moment);
+        along.swap(next_along);
+        aerosol.swap(next_aerosol);
     }
     if (vertical_moments != nullptr) *vertical_moments = moment;
+    if (sun_azimuth_moments != nullptr) *sun_azimuth_moments = along;
+    if (aerosol_field != nullptr) *aerosol_field = aerosol;
     return psi;
+}
+
+// atmosphere_sky_luts<T>: the refined LUT with everything the sky's march reads, owned.
+// table() hands them to atmosphere_sky_radiance and atmosphere_inscatter; it points into this
+// object, so keep the object in place (not moved or destroyed) while the table is in use.
+// ground_irradiance starts empty (the ground reflects the sun only); fill it with
+// atmosphere_ground_irradiance_lut(air, luts.table()) for a sky-lit ground below the horizon.
+template <class T>
+struct atmosphere_sky_luts {
+    int width = 0, height = 0;
+    std::vector<glm::vec<3, T>> texels, vertical_moments, sun_azimuth_moments, aerosol_field, ground_irradiance;
+    [[nodiscard]] atmosphere_multiple_scattering_table<T> table() const noexcept {
+        return {&texels, width, height, &vertical_moments, ground_irradiance.empty() ? nullptr : &ground_irradiance,
+                &sun_azimuth_moments, &aerosol_field};
+    }
+};
+
+// atmosphere_make_sky_luts(air, width, height, passes, directions, steps, sun_steps): the
+// refined LUT with its vertical and sun-azimuth moments and its aerosol field
+// (atmosphere_multiple_scattering_refined_lut with every output), the sky's defaults.
+template <class T>
+[[nodiscard]] inline atmosphere_sky_luts<T> atmosphere_make_sky_luts(const atmosphere_parameters<T>& air, int width = 32,
+                                                                     int height = 32, int passes = 3, int directions = 64,
+                                                                     int steps = 20, int sun_steps = 32) {
+    atmosphere_sky_luts<T> out;
+    out.width = width > 2 ? width : 2;
+    out.height = height > 2 ? height : 2;
+    out.texels = atmosphere_multiple_scattering_refined_lut(air, out.width, out.height, passes, directions, steps, sun_steps,
+                                                            &out.vertical_moments, &out.sun_azimuth_moments, &out.aerosol_field);
+    return out;
 }
 
 // ---------------------------------------------------------------------------------------

@@ -123,9 +123,8 @@ std::vector<truth_row> read_rows(const std::string& path, const std::vector<trut
 
 std::vector<std::array<double, 3>> model_radiance(const std::vector<truth_row>& rows) {
     const auto air = earth_atmosphere<float>();
-    std::vector<glm::vec3> moments;
-    const std::vector<glm::vec3> lut = atmosphere_multiple_scattering_refined_lut(air, 32, 32, 3, 64, 20, 32, &moments);
-    const atmosphere_multiple_scattering_table<float> ms{&lut, 32, 32, &moments};
+    const atmosphere_sky_luts<float> luts = atmosphere_make_sky_luts(air, 32, 32);
+    const atmosphere_multiple_scattering_table<float> ms = luts.table();
     std::vector<std::array<double, 3>> out;
     out.reserve(rows.size());
     for (const truth_row& r : rows) {
@@ -157,11 +156,11 @@ std::vector<ground_row> ground_check(const std::vector<double>& sun_elevations, 
         }
     const std::vector<sky_estimate> est = trace_sky(earth_atmosphere<double>(), queries, paths, options);
     const auto air = earth_atmosphere<float>();
-    std::vector<glm::vec3> moments;
-    const std::vector<glm::vec3> lut = atmosphere_multiple_scattering_refined_lut(air, 32, 32, 3, 64, 20, 32, &moments);
-    const atmosphere_multiple_scattering_table<float> sun_only{&lut, 32, 32, &moments};
+    const atmosphere_sky_luts<float> luts = atmosphere_make_sky_luts(air, 32, 32);
+    const atmosphere_multiple_scattering_table<float> sun_only = luts.table();
     const std::vector<glm::vec3> sky_on_ground = atmosphere_ground_irradiance_lut(air, sun_only);
-    const atmosphere_multiple_scattering_table<float> sky_lit{&lut, 32, 32, &moments, &sky_on_ground};
+    atmosphere_multiple_scattering_table<float> sky_lit = sun_only;
+    sky_lit.ground_irradiance = &sky_on_ground;
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const glm::vec3 v(glm::dvec3(queries[i].view.x, queries[i].view.y, queries[i].view.z));
         const glm::vec3 s(glm::dvec3(queries[i].sun.x, queries[i].sun.y, queries[i].sun.z));

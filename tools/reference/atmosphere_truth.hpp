@@ -6,8 +6,9 @@
 // the half sky on the sun's side of symmetry (36 azimuths 0-180 x 24 elevations 0-90, cell
 // centres). The held-out set: the same directions for the sun at 60, 20, 5, 0 and -1 degrees.
 // The model: atmosphere_sky_radiance in float with the 32 x 32 multiple-scattering LUT of
-// atmosphere_multiple_scattering_refined_lut (64 directions, 20 steps, 3 passes), 32 view and
-// 32 sun steps: the defaults docs/atmosphere.md documents.
+// atmosphere_multiple_scattering_refined_lut (64 directions, 20 steps, 3 passes) with its
+// moments and aerosol field (atmosphere_make_sky_luts), 32 view and 32 sun steps: the defaults
+// docs/atmosphere.md documents.
 #ifndef CLOUDMATH_TOOLS_ATMOSPHERE_TRUTH_HPP
 #define CLOUDMATH_TOOLS_ATMOSPHERE_TRUTH_HPP
 

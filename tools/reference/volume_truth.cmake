@@ -72,6 +72,17 @@ if(CLOUDMATH_BUILD_TESTS)
       "$tool" report --presets ground --variant "default=" --data "$out/physical" --docs "$out/physical" --cache "$cache" \
         --quiet >/dev/null || { echo "physical report failed"; exit 1; }
       grep -qF '`--sky physical`' "$out/physical/lighting_truth.md" || { echo "physical report does not name its sky"; exit 1; }
+      # A truth over a scene that has changed since (its fingerprint differs): the report marks it
+      # stale, in its section and in the summary; the truth of the scene as it is, not.
+      grep -q "scene that has changed since" "$out/physical/lighting_truth.md" && { echo "a current truth marked stale"; exit 1; }
+      mkdir -p "$out/stale/images"
+      grep -q '^# scene: [0-9a-f]\{16\}$' "$out/physical/truth_ground.csv" || { echo "no scene line"; exit 1; }
+      sed 's/^# scene: .*/# scene: 0123456789abcdef/' "$out/physical/truth_ground.csv" >"$out/stale/truth_ground.csv"
+      "$tool" report --presets ground --variant "default=" --data "$out/stale" --docs "$out/stale" --cache "$cache" \
+        --quiet >/dev/null || { echo "report of a stale truth failed"; exit 1; }
+      [ "$(grep -c "scene that has changed since" "$out/stale/lighting_truth.md")" -eq 2 ] &&
+        grep -q "traces them again): ground\.$" "$out/stale/lighting_truth.md" ||
+        { echo "a stale truth not marked"; exit 1; }
       cp "$out/physical/truth_ground.csv" "$out/mixed/"
       sed 's/^# preset: ground$/# preset: inside/; s/^# sky: physical$/# sky: artistic/' "$out/physical/truth_ground.csv" \
         >"$out/mixed/truth_inside.csv"

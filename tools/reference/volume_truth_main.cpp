@@ -790,6 +790,7 @@ int run_report(int argc, char** argv) {
     std::vector<std::vector<double>> excess = rms, psnr = rms;
     std::vector<double> noise(names.size(), 0.0);
     std::ostringstream short_of_target;  // presets whose truth misses its noise target
+    std::ostringstream stale;            // presets whose truth was traced over a scene that changed since
     for (std::size_t p = 0; p < names.size(); ++p) {
         const truth_image& t = truths[p];
         const auto meta = [&](const char* key) {
@@ -841,6 +842,17 @@ int run_report(int argc, char** argv) {
                         "noise than planned, and it is to be traced further (scripts/truth.sh --pending).";
             short_of_target << (short_of_target.tellp() > 0 ? ", " : "") << names[p] << " (" << percent(last.noise_floor)
                             << " against " << percent(*target) << ")";
+        }
+        // A truth that records its scene (render's fingerprint of the field, the light and the
+        // rays) and whose scene the renderer no longer makes: its errors here mix the model's
+        // with the change (for example of the sky), until it is traced again.
+        if (const auto scene = t.meta.find("scene"); scene != t.meta.end()) {
+            const vt::cloud_medium medium(s, textures);
+            if (scene->second != vt::scene_fingerprint(medium, vt::make_cloud_lighting(s), vt::make_camera_rays(s, t.width, t.height))) {
+                sections << " **The truth was traced over a scene that has changed since** (its fingerprint differs):\n"
+                            "it is stale, and is to be traced again (scripts/truth.sh --pending).";
+                stale << (stale.tellp() > 0 ? ", " : "") << names[p];
+            }
         }
         sections << "\n\n";
     }
@@ -897,6 +909,10 @@ int run_report(int argc, char** argv) {
         md << "Truths whose noise floor misses the target they were traced for (their errors above carry more of\n"
               "the truth's noise; scripts/truth.sh --pending traces them further): "
            << short_of_target.str() << ".\n\n";
+    if (stale.tellp() > 0)
+        md << "Truths traced over a scene that has changed since (stale; their errors above mix the model's with\n"
+              "the change, and scripts/truth.sh --pending traces them again): "
+           << stale.str() << ".\n\n";
     md << "## PSNR of the display images (dB)\n\n";
     summary_table(psnr, true, false);
     md << sections.str();
