@@ -28,6 +28,12 @@
 #                                  traced yet are left out with a note. With --shape detailed: data
 #                                  in docs/data/physical/detailed/, report
 #                                  docs/physical_sky/detailed/lighting_truth.md, noise target 5%
+#   --light sun|sky                with --sky physical: the truths of one light alone (the sun, or
+#                                  the sky: cloudmath_volume_truth render --light), for research
+#                                  that splits the model's error by source; data in
+#                                  docs/data/physical/light_L/, report docs/physical_sky/light_L/
+#                                  lighting_truth.md (the default variant rendered with the
+#                                  same light)
 #   --budget-minutes N             stop tracing after N minutes in all: the render under way stops
 #                                  cleanly and keeps its checkpoint (docs/data/.../truth_P.csv.checkpoint,
 #                                  about 1.2 MB: commit it); the report is regenerated when a truth
@@ -91,7 +97,7 @@ variants=(default= previous_estimators=refine=1,light-spacing=uniform,light-jitt
           diffusion_cone=light=cone,behind=cone cone_behind=behind=cone flat_ambient=ambient=flat
           capped=reach=capped reach_map=reach=map reach_band=reach=band fitted_table=table=fitted)
 width=160 height=90 noise=""
-reports_only=0 build="" check="" cache=() shape=classic sky=artistic only="" fit=0 added_variants=0 pending=0 budget=""
+reports_only=0 build="" check="" cache=() shape=classic sky=artistic only="" fit=0 added_variants=0 pending=0 budget="" light=""
 while [[ $# -gt 0 ]]; do
     case "$1" in
         --reports-only) reports_only=1 ;;
@@ -105,9 +111,10 @@ while [[ $# -gt 0 ]]; do
         --shape) shape="${2:?--shape needs classic or detailed}"; shift ;;
         --sky) sky="${2:?--sky needs artistic or physical}"; shift ;;
         --pending) pending=1 ;;
+        --light) light="${2:?--light needs sun or sky}"; shift ;;
         --budget-minutes) budget="${2:?--budget-minutes needs a number of minutes}"; shift
             [[ $budget =~ ^[0-9]+$ && $budget -gt 0 ]] || { echo "truth.sh: --budget-minutes must be a whole number of minutes > 0, not '$budget'" >&2; exit 2; } ;;
-        *) echo "usage: bash scripts/truth.sh [--reports-only] [--fit] [--only PRESETS] [--noise F] [--build DIR] [--shape S] [--sky S] [--variant NAME=SPEC ...] [--pending] [--budget-minutes N]" >&2; exit 2 ;;
+        *) echo "usage: bash scripts/truth.sh [--reports-only] [--fit] [--only PRESETS] [--noise F] [--build DIR] [--shape S] [--sky S] [--variant NAME=SPEC ...] [--pending] [--budget-minutes N] [--light sun|sky]" >&2; exit 2 ;;
     esac
     shift
 done
@@ -137,6 +144,16 @@ case "$sky" in
         late=("${selection[@]}" "${presets[@]}") ;;
     *) echo "truth.sh: --sky must be artistic or physical, not '$sky'" >&2; exit 2 ;;
 esac
+case "$light" in
+    "") light_args=() ;;
+    sun|sky)
+        [[ $sky == physical ]] || { echo "truth.sh: --light $light needs --sky physical (the artistic sky has no split by source)" >&2; exit 2; }
+        data=$data/light_$light docs=$docs/light_$light
+        mkdir -p "$data" "$docs/images"
+        variants=(default=)  # research: the default's error by source, one image a preset
+        light_args=(--light "$light") ;;
+    *) echo "truth.sh: --light must be sun or sky, not '$light'" >&2; exit 2 ;;
+esac
 noise=${noise:-0.03}
 # The presets with a stored truth (the late ones may not have one yet), then the report's flags.
 keep_traced() {
@@ -152,6 +169,8 @@ keep_traced() {
 traced_report_args() {
     mapfile -t selection < <(keep_traced "${selection[@]}")
     mapfile -t presets < <(keep_traced "${presets[@]}")
+    # Only selection presets traced so far (a light's truths, say): they are the report's presets.
+    if [[ ${#presets[@]} == 0 ]]; then presets=("${selection[@]}"); selection=(); fi
     local v
     variant_args=()
     for v in "${variants[@]}"; do variant_args+=(--variant "$v"); done
@@ -229,7 +248,7 @@ if [[ $reports_only == 0 ]]; then
         [[ -z $only || ",$only," == *",$p,"* ]] || continue
         checkpoint="$data/truth_$p.csv.checkpoint"
         if [[ $pending == 1 ]]; then
-            state=$("$tool" status --presets "$p" --data "$data" --shape "$shape" --sky "$sky" --noise-target "$noise" "${cache[@]}")
+            state=$("$tool" status --presets "$p" --data "$data" --shape "$shape" --sky "$sky" "${light_args[@]}" --noise-target "$noise" "${cache[@]}")
             echo "truth.sh: $state" >&2
             case "$(awk '{ print $2 }' <<<"$state")" in
                 done) continue ;;
@@ -251,7 +270,7 @@ if [[ $reports_only == 0 ]]; then
             budget_args=(--budget-minutes "$((left / 60))")
         fi
         status=0
-        "$tool" render --preset "$p" --shape "$shape" --sky "$sky" --width "$width" --height "$height" --noise-target "$noise" \
+        "$tool" render --preset "$p" --shape "$shape" --sky "$sky" "${light_args[@]}" --width "$width" --height "$height" --noise-target "$noise" \
             "${cache[@]}" "${resume[@]}" "${budget_args[@]}" --out "$data/truth_$p.csv" || status=$?
         if [[ $status == 3 ]]; then
             echo "truth.sh: $p stopped by the budget, its checkpoint kept in $checkpoint: commit it, and run the same command again to go on" >&2

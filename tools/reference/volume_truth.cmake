@@ -233,6 +233,21 @@ x,y,r,g,b,se_r,se_g,se_b'
 endif()
 
 if(CLOUDMATH_BUILD_TESTS)
+  # The error by source (docs/lighting_research.md, "The error by source under the physical
+  # sky") is what scripts/split_by_source.sh makes of the two stored reports, line for line;
+  # an unreadable report is an error.
+  add_test(NAME reference.split_by_source
+    COMMAND bash -c [=[
+      set -u
+      src=$1
+      cd "$src" || exit 1
+      bash scripts/split_by_source.sh docs/none.md 2>/dev/null && { echo "a missing report accepted"; exit 1; }
+      bash scripts/split_by_source.sh >"$2" || { echo "split_by_source.sh failed"; exit 1; }
+      [ "$(grep -c '^| [a-z_]* | [0-9]' "$2")" -eq 11 ] || { echo "want 11 presets"; cat "$2"; exit 1; }
+      while IFS= read -r line; do
+        grep -qxF -- "$line" docs/lighting_research.md || { echo "docs/lighting_research.md lacks: $line"; exit 1; }
+      done <"$2"
+      ]=] bash "${PROJECT_SOURCE_DIR}" "${CMAKE_CURRENT_BINARY_DIR}/split_by_source.md")
   # The documented whole-cloud errors (docs/lighting_truth.md's summary table: the default's
   # row and the table before it) are what the renderer gives against the stored truth images
   # (docs/data/truth_*.csv), and the whole-cloud fit (docs/data/diffusion_clouds.txt) is what
