@@ -205,7 +205,7 @@ struct pixel_program {
     // lose nothing and a 225 m stratus sheet gets all of them instead of 1 in 11), its steps
     // uniform or quadratic (variant::light_quadratic), sampled at light_offset within each.
     float light_optical_depth(vec3 p, float alt, vec3 toward, light_mode mode, long* counter = nullptr,
-                              float footprint = 0.0f, float light_offset = 0.5f, float* covered = nullptr) const {
+                              float footprint = 0.0f, float light_offset = 0.5f) const {
         if (mode == light_mode::map) {
             // Toward the sun: the map's optical depth at p's depth; away from it: the rest of
             // the column. Off the map: the cone.
@@ -228,7 +228,6 @@ struct pixel_program {
         const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up_at(p)), s.planet_radius, band.x, band.y);
         const float reach = v.long_reach ? light_long_reach : k.light_march_max;
         const float length_to_exit = seg.y > seg.x ? std::min(seg.y, reach) : 0.0f;
-        if (covered != nullptr) *covered = length_to_exit;
         float tau = 0.0f;
         // Step i spans [at(i / n), at((i + 1) / n)], its sample at at((i + offset) / n).
         const float nl = float(v.light_steps);
@@ -244,7 +243,6 @@ struct pixel_program {
         if (v.far_steps && seg.y > length_to_exit && glm::dot(toward, k.sun_dir) > 0.0f) {
             const int nf = far_step_count(v.light_steps);
             const float span = (std::min(seg.y, light_long_reach) - length_to_exit) / float(nf);
-            if (covered != nullptr) *covered = std::min(seg.y, light_long_reach);
             for (int j = 0; j < nf; ++j) {
                 const vec3 q = p + toward * (length_to_exit + (float(j) + light_offset) * span);
                 tau += s.extinction * field.coarse_density(q, altitude(q), counter, footprint) * span;
@@ -262,8 +260,7 @@ struct pixel_program {
 
     // tau_behind and tau_view are used by the diffusion model only; far: the far shadow's
     // transmittance (far_shadow_at), on the sun's light only.
-    vec3 in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h, float far_light = 1.0f,
-                       vec2 column = vec2(-1.0f)) const {
+    vec3 in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h, float far_light = 1.0f) const {
         const auto phase_fn = [this](float m, float scale) { return phase(m, scale); };
         float sun = v.lighting == lighting_model::diffusion
                         ? cm::diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, phase_g_mean, s.albedo,
@@ -272,7 +269,7 @@ struct pixel_program {
         if (v.powder) sun *= glm::mix(2.0f * cm::powder(tau_light, 2.0f), 1.0f, 0.5f + 0.5f * mu);
         const vec3 sun_light = sun_at_height(k, haze != nullptr, h) * far_light;  // the physical sky's sun by height
         if (!v.occluded_ambient) return sun_light * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
-        const vec2 o = sky_occlusion(tau_light, tau_behind, column);
+        const vec2 o = sky_occlusion(tau_light, tau_behind);
         return sun_light * sun + glm::mix(k.ambient_bottom * o.y, k.ambient_top * o.x, h);
     }
 
@@ -286,21 +283,9 @@ struct pixel_program {
     // variant::occluded_ambient: what reaches the sample of the sky light from above (x) and
     // below (y), diffuse_transmittance of the vertical optical depths estimated from the
     // slanted light estimates (times the sun's elevation sine).
-    vec2 sky_occlusion(float tau_light, float tau_behind, vec2 column = vec2(-1.0f)) const {
-        if (v.ambient_column && column.x >= 0.0f)
-            return {cm::diffuse_transmittance(column.x, phase_g_mean), cm::diffuse_transmittance(column.y, phase_g_mean)};
+    vec2 sky_occlusion(float tau_light, float tau_behind) const {
         const float up = std::max(k.sun_dir.y, 0.0f);
         return {cm::diffuse_transmittance(tau_light * up, phase_g_mean), cm::diffuse_transmittance(tau_behind * up, phase_g_mean)};
-    }
-
-    // variant::ambient_column: the optical depths above (x) and below (y) the sample at
-    // altitude alt, each estimate's mean extinction (its optical depth over the length it
-    // covered) times the vertical distance to the layer's top or bottom; (-1, -1) when off.
-    vec2 column_depths(float tau_light, float covered_light, float tau_behind, float covered_behind, float alt) const {
-        if (!v.ambient_column) return vec2(-1.0f);
-        const auto mean = [](float tau, float length) { return length > 0.0f ? tau / length : 0.0f; };
-        const float behind = covered_behind > 0.0f ? mean(tau_behind, covered_behind) : mean(tau_light, covered_light);
-        return {mean(tau_light, covered_light) * std::max(s.layer_top - alt, 0.0f), behind * std::max(alt - s.layer_bottom, 0.0f)};
     }
 
     // One sample's share of the pixel's gradient (shade_linear's grad): its source is
@@ -370,23 +355,18 @@ struct pixel_program {
                     const float footprint = footprint_at(e.t, height);
                     // The light march's offset: new for each light estimate and frame.
                     const float lo = v.jitter && v.light_jitter ? cm::sample_jitter(pixel_hash, s.frame, light_index++) : 0.5f;
-                    float covered_light = 0.0f, covered_behind = 0.0f;
-                    const float tau_light =
-                        light_optical_depth(dir * e.t, alts, k.sun_dir, v.light, light_reads, footprint, lo, &covered_light);
+                    const float tau_light = light_optical_depth(dir * e.t, alts, k.sun_dir, v.light, light_reads, footprint, lo);
                     const float tau_behind = v.lighting == lighting_model::diffusion
-                                                 ? light_optical_depth(dir * e.t, alts, -k.sun_dir, v.behind, light_reads, footprint, lo,
-                                                                       &covered_behind)
+                                                 ? light_optical_depth(dir * e.t, alts, -k.sun_dir, v.behind, light_reads, footprint, lo)
                                                  : 0.0f;
                     const float h = cm::height_fraction(alts, s.layer_bottom, s.layer_top);
-                    // ambient=column: the depths above and below from the estimates' mean extinction.
-                    const vec2 column = column_depths(tau_light, covered_light, tau_behind, covered_behind, alts);
                     const vec3 S = (s.albedo * e.sigma_t) *
-                                   in_scattering(tau_light, tau_behind, e.tau_view, mu, h, far_shadow_at(dir * e.t, alts), column);
+                                   in_scattering(tau_light, tau_behind, e.tau_view, mu, h, far_shadow_at(dir * e.t, alts));
                     if (grad != nullptr) {
                         // This step's weight in the pixel per unit source (add_segment's).
                         const float w = e.transmittance * s.albedo * e.sigma_t * cm::integrate_scattering(1.0f, e.sigma_t, e.ds);
                         add_gradient(grad, w, tau_light, tau_behind, e.tau_view, mu);
-                        const vec2 o = v.occluded_ambient ? sky_occlusion(tau_light, tau_behind, column) : vec2(1.0f);
+                        const vec2 o = v.occluded_ambient ? sky_occlusion(tau_light, tau_behind) : vec2(1.0f);
                         sky[0] += w * h * o.x;
                         sky[1] += w * (1.0f - h) * o.y;
                     }

@@ -425,10 +425,9 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
         } else if (key == "skip") {
             if (!parse_switch(value, out.skip)) return "skip must be on or off, not '" + value + "'";
         } else if (key == "ambient") {
-            out.ambient_column = value == "column";
             if (value == "flat") out.occluded_ambient = false;
-            else if (value == "occluded" || value == "column") out.occluded_ambient = true;
-            else return "ambient must be flat, occluded or column, not '" + value + "'";
+            else if (value == "occluded") out.occluded_ambient = true;
+            else return "ambient must be flat or occluded, not '" + value + "'";
         } else if (key == "lod") {
             if (!parse_switch(value, out.lod)) return "lod must be on or off, not '" + value + "'";
         } else if (key == "far") {
@@ -458,7 +457,7 @@ std::string variant_spec(const variant& v) {
     s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",table=" << name(v.table) << ",octaves=" << v.octaves << ",powder=" << (v.powder ? "on" : "off")
       << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
       << ",light-spacing=" << (v.light_quadratic ? "quadratic" : "uniform") << ",light-jitter=" << (v.light_jitter ? "on" : "off")
-      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.ambient_column ? "column" : v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
+      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
       << ",reach=" << (v.long_reach ? "band" : v.far_map ? "map" : v.far_steps ? "far" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
     return s.str();
 }

@@ -93,12 +93,6 @@ struct variant {
     // optical depth above the sample, the bottom's of the depth below, both estimated from
     // the light estimates toward and away from the sun times the sun's elevation sine.
     bool occluded_ambient = true;
-    // Research (issue 37; the CPU reference only, the GL renderer refuses it): the occluded sky
-    // light's depths above and below as the mean extinction along the light estimates (their
-    // optical depth over the length they cover) times the vertical distance to the layer's top
-    // and bottom, instead of the depths times the sun's elevation sine (which is no occlusion
-    // at all with the sun at or below the horizon).
-    bool ambient_column = false;
     // Explicit texture LOD: every density sample reads the mip level whose texels match the
     // pixel's footprint at the view sample (texture_lod; the light's samples inherit it; the
     // shadow map uses its texel width); off: level 0 everywhere.
