@@ -760,6 +760,39 @@ TEST_CASE("the light split by source (scene::light): the sun's and the sky's ima
     CHECK_FALSE(light_sources_named("moon").has_value());
 }
 
+TEST_CASE("the sun below the horizon: the sky light inside the clouds is still occluded, GPU and CPU alike") {
+    // With the sun below the horizon the light estimate toward it looks down and the one away
+    // from it up; the occluded sky light uses them so (it used the sine of the sun's elevation
+    // clamped to 0, no occlusion at all: the sunset's sky light was 18% too bright against its
+    // truth). So at sunset the occluded sky light is darker than the flat one, as at sunrise.
+    variant occluded, flat;
+    REQUIRE(apply_variant_spec("sun=off,haze=off,shadows=off", occluded).empty());
+    REQUIRE(apply_variant_spec("sun=off,haze=off,shadows=off,ambient=flat", flat).empty());
+    const auto mean_luminance = [](const image& img) {
+        double sum = 0.0;
+        for (const glm::vec4& p : img.pixels) sum += double(luminance(glm::vec3(p)));
+        return sum / double(img.pixels.size());
+    };
+    for (const char* name : {"sunset", "sunrise"}) {
+        CAPTURE(std::string(name));
+        scene s = *find_preset(name);
+        s.light = light_sources::sky;
+        const double a = mean_luminance(render_cpu_linear(s, occluded, shared().textures, 48, 27));
+        const double b = mean_luminance(render_cpu_linear(s, flat, shared().textures, 48, 27));
+        MESSAGE(std::string(name) << ": the sky light alone, occluded " << a << ", flat " << b << " (ratio " << a / b << ")");
+        CHECK(a < 0.97 * b);
+        CHECK(a > 0.5 * b);
+    }
+    REQUIRE(make_frame_constants(*find_preset("sunset")).sun_dir.y < 0.0f);
+    if (!shared().gpu) return;
+    const scene& set = *find_preset("sunset");
+    const double a = statistics(render_gpu(set, occluded, true, 80, 45)).mean_brightness;
+    const double b = statistics(render_gpu(set, flat, true, 80, 45)).mean_brightness;
+    MESSAGE("sunset on the GPU, display brightness: occluded " << a << ", flat " << b);
+    CHECK(a < b - 0.005);
+    CHECK(compare(render_gpu(set, occluded, true, 80, 45), render_cpu(set, occluded, shared().textures, 80, 45)).psnr_db >= 35.0);
+}
+
 TEST_CASE("the physical sky: cloudmath's atmosphere in lux and cd/m^2, exposure from EV100; GPU and CPU agree") {
     // The artistic sky keeps its numbers: the glow's 0.05 and the scene's exposure.
     const frame_constants art = make_frame_constants(*find_preset("ground"));

@@ -315,10 +315,12 @@ vec3 cr_in_scattering(float tau_light, float tau_behind, float tau_view, float m
         sun *= mix(2.0 * cm_powder(tau_light, 2.0), 1.0, 0.5 + 0.5 * mu);
     }
     if (u_occluded_ambient == 0) return cr_sun_at(h) * (sun * far) + mix(u_ambient_bottom, u_ambient_top, h);
-    // Vertical optical depths above and below from the slanted light estimates.
-    float up = max(u_sun_dir.y, 0.0);
-    return cr_sun_at(h) * (sun * far) + mix(u_ambient_bottom * cm_diffuse_transmittance(tau_behind * up, u_phase_mean_cosine),
-                                      u_ambient_top * cm_diffuse_transmittance(tau_light * up, u_phase_mean_cosine), h);
+    // Vertical optical depths above (x) and below (y) from the slanted light estimates times
+    // the sun's elevation sine; with the sun below the horizon the estimate away from it looks
+    // up (a uniform select: no divergence).
+    vec2 depths = (u_sun_dir.y >= 0.0 ? vec2(tau_light, tau_behind) : vec2(tau_behind, tau_light)) * abs(u_sun_dir.y);
+    return cr_sun_at(h) * (sun * far) + mix(u_ambient_bottom * cm_diffuse_transmittance(depths.y, u_phase_mean_cosine),
+                                      u_ambient_top * cm_diffuse_transmittance(depths.x, u_phase_mean_cosine), h);
 }
 
 // Texel (i, j) of the Beer shadow map (pass 2): midpoint steps along the sunlight through the

@@ -255,9 +255,9 @@ fn cr_in_scattering(tau_light: f32, tau_behind: f32, tau_view: f32, mu: f32, h: 
         sun *= mix(2.0 * cm_powder(tau_light, 2.0), 1.0, 0.5 + 0.5 * mu);
     }
     if (u_occluded_ambient == 0) { return U.u_sun_radiance * sun + mix(U.u_ambient_bottom, U.u_ambient_top, h); }
-    let up = max(U.u_sun_dir.y, 0.0);
-    return U.u_sun_radiance * sun + mix(U.u_ambient_bottom * cm_diffuse_transmittance(tau_behind * up, U.u_phase_mean_cosine),
-                                        U.u_ambient_top * cm_diffuse_transmittance(tau_light * up, U.u_phase_mean_cosine), h);
+    let depths = select(vec2<f32>(tau_behind, tau_light), vec2<f32>(tau_light, tau_behind), U.u_sun_dir.y >= 0.0) * abs(U.u_sun_dir.y);
+    return U.u_sun_radiance * sun + mix(U.u_ambient_bottom * cm_diffuse_transmittance(depths.y, U.u_phase_mean_cosine),
+                                        U.u_ambient_top * cm_diffuse_transmittance(depths.x, U.u_phase_mean_cosine), h);
 }
 
 fn cr_shadow_texel(ij: vec2f) -> vec3f {
