@@ -273,54 +273,11 @@ struct pixel_program {
         return sun_light * sun + glm::mix(k.ambient_bottom * o.y, k.ambient_top * o.x, h);
     }
 
-    // variant::lift_degrees: the sun's direction at p raised to at least that elevation over
-    // p's horizon, along the sun's azimuth (the sun's own direction without it).
-    vec3 lifted_sun_dir(vec3 p) const {
-        if (v.lift_degrees <= 0) return k.sun_dir;
-        const vec3 up = up_at(p);
-        const float min_sine = std::sin(float(v.lift_degrees) * 0.017453292f);
-        const float sine = glm::dot(k.sun_dir, up);
-        if (sine >= min_sine) return k.sun_dir;
-        vec3 across = k.sun_dir - up * sine;
-        across = glm::length(across) > 1e-6f ? glm::normalize(across) : vec3(1.0f, 0.0f, 0.0f);
-        return up * min_sine + across * std::sqrt(1.0f - min_sine * min_sine);
-    }
-
     // The physical sky's far shadow at p (altitude alt): the table by the sun's zenith cosine
     // at p (clouds.frag's cr_far_shadow); 1 with the artistic sky.
     float far_shadow_at(vec3 p, float alt) const {
         if (far_field == nullptr) return 1.0f;
-        if (v.far_march) return far_shadow_marched(p, alt);
         return far_shadow_lookup(*far_field, alt, glm::dot(k.sun_dir, up_at(p)));
-    }
-
-    // variant::far_march: what far_shadow.cpp's node_mean marches for one start, from p itself:
-    // the sun's path from where the light march ends to where it leaves the band's top, less
-    // its dip below the band, 0 where it meets the ground; midpoint steps of far_shadow_step.
-    float far_shadow_marched(vec3 p, float alt) const {
-        const float R = s.planet_radius, mu = glm::dot(k.sun_dir, up_at(p));
-        const float lo = far_field->alt_lo, hi = far_field->alt_hi;
-        const vec2 ground = cm::ray_sphere_intersect_altitude(alt, mu, R, 0.0f);
-        if (ground.x >= 0.0f && ground.y > ground.x) return 0.0f;
-        const vec2 seg = cm::cloud_layer_segment(alt, mu, R, lo, hi);
-        const float start = seg.y > seg.x ? std::min(seg.y, far_field->reach) : 0.0f;
-        const float end = cm::ray_sphere_intersect_altitude(alt, mu, R, hi).y;
-        if (!(end > start)) return 1.0f;
-        const vec2 dip = cm::ray_sphere_intersect_altitude(alt, mu, R, lo);
-        const bool dips = dip.x > 0.0f && dip.y > dip.x;
-        const vec2 stretches[2] = {{start, dips ? std::min(dip.x, end) : end}, {dips ? std::max(dip.y, start) : end, end}};
-        float tau = 0.0f;
-        for (const vec2& st : stretches) {
-            const float length = st.y - st.x;
-            if (!(length > 0.0f) || tau > 9.2f) continue;
-            const int steps = std::max(1, static_cast<int>(std::ceil(length / far_shadow_step)));
-            const float ds = length / float(steps);
-            for (int j = 0; j < steps && tau <= 9.2f; ++j) {
-                const vec3 q = p + k.sun_dir * (st.x + (float(j) + 0.5f) * ds);
-                tau += s.extinction * field.density(q) * ds;
-            }
-        }
-        return std::exp(-tau);
     }
 
     // variant::occluded_ambient: what reaches the sample of the sky light from above (x) and
@@ -330,8 +287,7 @@ struct pixel_program {
     // swap (before, the sine was clamped to 0 there: no occlusion at all, and the sunset's sky
     // light 18% too bright; docs/lighting_research.md, "The sun below the horizon").
     vec2 sky_occlusion(float tau_light, float tau_behind) const {
-        float sine = k.sun_dir.y;
-        if (v.lift_degrees > 0) sine = std::max(sine, std::sin(float(v.lift_degrees) * 0.017453292f));
+        const float sine = k.sun_dir.y;
         const vec2 depths = sine >= 0.0f ? vec2(tau_light, tau_behind) : vec2(tau_behind, tau_light);
         const float up = std::fabs(sine);
         return {cm::diffuse_transmittance(depths.x * up, phase_g_mean), cm::diffuse_transmittance(depths.y * up, phase_g_mean)};
@@ -404,10 +360,9 @@ struct pixel_program {
                     const float footprint = footprint_at(e.t, height);
                     // The light march's offset: new for each light estimate and frame.
                     const float lo = v.jitter && v.light_jitter ? cm::sample_jitter(pixel_hash, s.frame, light_index++) : 0.5f;
-                    const vec3 toward = lifted_sun_dir(dir * e.t);
-                    const float tau_light = light_optical_depth(dir * e.t, alts, toward, v.light, light_reads, footprint, lo);
+                    const float tau_light = light_optical_depth(dir * e.t, alts, k.sun_dir, v.light, light_reads, footprint, lo);
                     const float tau_behind = v.lighting == lighting_model::diffusion
-                                                 ? light_optical_depth(dir * e.t, alts, -toward, v.behind, light_reads, footprint, lo)
+                                                 ? light_optical_depth(dir * e.t, alts, -k.sun_dir, v.behind, light_reads, footprint, lo)
                                                  : 0.0f;
                     const float h = cm::height_fraction(alts, s.layer_bottom, s.layer_top);
                     const vec3 S = (s.albedo * e.sigma_t) *

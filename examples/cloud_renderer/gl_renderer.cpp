@@ -344,10 +344,6 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
         why = "scene::light is the truth tool's split by source; the GL renderer draws all the light";
         return 0;
     }
-    if (v.far_march || v.lift_degrees > 0) {
-        why = "far-shadow=march and lift are research variants of the CPU reference only (issue 37)";
-        return 0;
-    }
     const gl_api& gl = st.gl;
     const GLuint program = st.program_for(v, sc.shape, compile_time, pass, sc.sky, why);
     if (program == 0) return 0;

@@ -440,17 +440,11 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             out.far_steps = value == "far";
             if (value != "capped" && value != "band" && value != "map" && value != "far")
                 return "reach must be capped, far, band or map, not '" + value + "'";
-        } else if (key == "lift") {
-            if (!parse_int(value, 0, 89, out.lift_degrees)) return "lift must be an integer from 0 to 89, not '" + value + "'";
-        } else if (key == "far-shadow") {
-            if (value == "table") out.far_march = false;
-            else if (value == "march") out.far_march = true;
-            else return "far-shadow must be table or march, not '" + value + "'";
         } else if (key == "shadows") {
             if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
         } else {
             return "unknown variant key '" + key +
-                   "' (known: phase, lighting, table, octaves, powder, light, behind, cone-samples, light-steps, light-spacing, light-jitter, integration, steps, refine, schedule, skip, ambient, lod, far, reach, far-shadow, shadows, sun, haze, dither, "
+                   "' (known: phase, lighting, table, octaves, powder, light, behind, cone-samples, light-steps, light-spacing, light-jitter, integration, steps, refine, schedule, skip, ambient, lod, far, reach, shadows, sun, haze, dither, "
                    "jitter)";
         }
     }
@@ -464,7 +458,7 @@ std::string variant_spec(const variant& v) {
       << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
       << ",light-spacing=" << (v.light_quadratic ? "quadratic" : "uniform") << ",light-jitter=" << (v.light_jitter ? "on" : "off")
       << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
-      << ",reach=" << (v.long_reach ? "band" : v.far_map ? "map" : v.far_steps ? "far" : "capped") << (v.far_march ? ",far-shadow=march" : "") << (v.lift_degrees > 0 ? ",lift=" + std::to_string(v.lift_degrees) : std::string()) << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
+      << ",reach=" << (v.long_reach ? "band" : v.far_map ? "map" : v.far_steps ? "far" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
     return s.str();
 }
 

@@ -122,14 +122,6 @@ struct variant {
     // the band ends within the cap and nothing changes. Chosen on the selection presets of
     // both fields (docs/lighting_research.md, "The far field toward the sun").
     bool far_steps = true;
-    // Research (issue 37; the CPU reference only, the GL renderer refuses it): the far field's
-    // shadow beyond the light march marched along this sample's own path toward the sun
-    // (far_shadow_step steps on the full density, as far_shadow.cpp marches each node), instead
-    // of far_shadow's table of means: the upper bound of what a far-field shadow map could give.
-    bool far_march = false;
-    // Research (issue 37, CPU only): the light estimates toward the sun and away from it along
-    // the sun's azimuth at an elevation of at least this many degrees (0: the sun's own).
-    int lift_degrees = 0;
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
     bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
     bool sun = true;                 // draw the sun disc (sun_disc_radiance) in the background
