@@ -338,10 +338,12 @@ void bind_float_table(const gl_api& gl, int unit, GLuint& tex, const void*& uplo
 // u_pass before each draw.
 GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bool compile_time, int width, int height,
                    clouds_pass pass, glm::uvec2 offset, std::string& why) {
-    // scene::light splits the truth tool's light by source, for the CPU reference only: without
-    // the sky its frame has no sky-view table to bind.
-    if (sc.light != light_sources::all) {
-        why = "scene::light is the truth tool's split by source; the GL renderer draws all the light";
+    // scene::light splits the truth tool's light by source: the sky alone is drawn (its frame
+    // only lacks the sun), the sun alone is for the CPU reference only: without the sky its
+    // frame has no sky-view table to bind.
+    if (sc.light == light_sources::sun) {
+        why = "scene::light sun is the truth tool's split by source for the CPU reference; the GL renderer draws all "
+              "the light or the sky's alone";
         return 0;
     }
     const gl_api& gl = st.gl;

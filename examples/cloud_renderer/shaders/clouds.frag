@@ -139,9 +139,15 @@ float cr_far_shadow(vec3 p, float altitude) {
     float upper = mix(texelFetch(u_far_shadow, i + ivec2(0, 1), 0).r, texelFetch(u_far_shadow, i + ivec2(1, 1), 0).r, f.x);
     return mix(lower, upper, f.y);
 }
+// The depth toward the sun the occluded sky light reads: with the physical sky the light
+// estimate without its far field (near), which shades the sun but not the sky above the
+// sample (cpu_renderer.cpp's sky_depth_toward_sun says why and what it measures).
+float cr_sky_depth_toward_sun(float whole, float near) { return near; }
 #else
 vec3 cr_sun_at(float h) { return u_sun_radiance; }
 float cr_far_shadow(vec3 p, float altitude) { return 1.0; }
+// ... with the artistic sky the whole estimate, which its table was fitted with.
+float cr_sky_depth_toward_sun(float whole, float near) { return whole; }
 #endif
 
 const int CR_SKIP_BLOCK = 4;  // steps per empty-space probe (scene.hpp's skip_block)
@@ -243,20 +249,26 @@ vec3 cr_shadow_lookup(vec2 uv) {
 // Distance of fraction u of a light march of `length`: quadratic or uniform steps.
 float cr_light_distance(float u, float length) { return u_light_quadratic != 0 ? cm_light_march_distance(u, length) : u * length; }
 
+// The last cr_light_optical_depth's depth without the far field (u_long_reach 2 and 3): the
+// physical sky's occluded sky light reads it (cr_sky_depth_toward_sun).
+float cr_light_near_tau = 0.0;
+
 bool cr_on_map(vec3 uvd) { return uvd.x >= 0.0 && uvd.x <= 1.0 && uvd.y >= 0.0 && uvd.y <= 1.0; }
 
 // Optical depth from p along the unit vector `toward` (the sun, or away from it for the
 // diffusion model's tau_behind) by the cone (mode 0), a march (mode 1) to where the cloud
 // type's altitude band ends (no density beyond it; steps uniform or quadratic, sampled at
 // light_offset within each), or the shadow map (mode 2: toward the sun its optical depth at
-// p's depth, away from it the rest of the column; off the map the cone).
+// p's depth, away from it the rest of the column; off the map the cone). It sets
+// cr_light_near_tau.
 float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode, float light_offset) {
     if (mode == 2) {
         vec3 uvd = cm_shadow_map_project(p, u_shadow_origin, u_shadow_right, u_shadow_up, u_sun_dir, u_shadow_half_extent);
         if (cr_on_map(uvd)) {
             vec3 texel = cr_shadow_lookup(uvd.xy);
             float before = cm_beer_shadow_optical_depth(texel, uvd.z);
-            return dot(toward, u_sun_dir) > 0.0 ? before : max(texel.z - before, 0.0);
+            cr_light_near_tau = dot(toward, u_sun_dir) > 0.0 ? before : max(texel.z - before, 0.0);
+            return cr_light_near_tau;
         }
         mode = 0;
     }
@@ -264,7 +276,8 @@ float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode, floa
         CmConeLightConfig cone = CmConeLightConfig(u_cone_samples, u_cone_step, u_cone_spread,
                                                    u_cone_far_distance, u_cone_far_length);
         cr_far_index = u_cone_samples - 1;
-        return cm_cone_optical_depth(p, toward, cone);
+        cr_light_near_tau = cm_cone_optical_depth(p, toward, cone);
+        return cr_light_near_tau;
     }
     // March: midpoint steps up to where the ray leaves the cloud type's band.
     cr_far_index = CR_LIGHT_FAR_STEP;
@@ -277,6 +290,7 @@ float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode, floa
         float ds = cr_light_distance((float(i) + 1.0) / n, length_to_exit) - cr_light_distance(float(i) / n, length_to_exit);
         tau += cr_cone_extinction(p + toward * cr_light_distance((float(i) + light_offset) / n, length_to_exit), i) * ds;
     }
+    cr_light_near_tau = tau;
     // The far field by steps (u_long_reach 3): toward the sun, the rest of the band beyond the
     // capped march, uniform steps on the base shape (the near steps keep the detail).
     if (u_long_reach == 3 && seg.y > length_to_exit && dot(toward, u_sun_dir) > 0.0) {
@@ -300,8 +314,9 @@ float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode, floa
 // Radiance scattered toward the camera per unit scattering coefficient: sunlight through
 // the octaves or the diffusion model (phase and transmittance), the powder term, and
 // isotropic sky light. tau_behind and tau_view are used by the diffusion model only; far: the
-// far shadow's transmittance (cr_far_shadow), on the sun's light only.
-vec3 cr_in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h, float far) {
+// far shadow's transmittance (cr_far_shadow), on the sun's light only; tau_sky: the depth
+// toward the sun the occluded sky light reads (cr_sky_depth_toward_sun).
+vec3 cr_in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h, float far, float tau_sky) {
     float sun = u_lighting == 1
         ? cm_diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, u_phase_mean_cosine, u_albedo,
                                        CM_DIFFUSION_MODEL_CLOUDS)
@@ -318,7 +333,7 @@ vec3 cr_in_scattering(float tau_light, float tau_behind, float tau_view, float m
     // Vertical optical depths above (x) and below (y) from the slanted light estimates times
     // the sun's elevation sine; with the sun below the horizon the estimate away from it looks
     // up (a uniform select: no divergence).
-    vec2 depths = (u_sun_dir.y >= 0.0 ? vec2(tau_light, tau_behind) : vec2(tau_behind, tau_light)) * abs(u_sun_dir.y);
+    vec2 depths = (u_sun_dir.y >= 0.0 ? vec2(tau_sky, tau_behind) : vec2(tau_behind, tau_sky)) * abs(u_sun_dir.y);
     return cr_sun_at(h) * (sun * far) + mix(u_ambient_bottom * cm_diffuse_transmittance(depths.y, u_phase_mean_cosine),
                                       u_ambient_top * cm_diffuse_transmittance(depths.x, u_phase_mean_cosine), h);
 }
@@ -423,9 +438,10 @@ void cr_light_samples(inout vec3 luminance, int count, vec3 dir, float mu, uint 
         // The light march's offset: new for each light estimate and frame.
         float lo = u_jitter != 0 && u_light_jitter != 0 ? cm_sample_jitter(pixel_hash, u_frame, light_index++) : 0.5;
         float tau_light = cr_light_optical_depth(dir * q.t, alts, u_sun_dir, u_light_mode, lo);
+        float tau_sky = cr_sky_depth_toward_sun(tau_light, cr_light_near_tau);
         float tau_behind = u_lighting != 0 ? cr_light_optical_depth(dir * q.t, alts, -u_sun_dir, u_behind_mode, lo) : 0.0;
         float h = cm_height_fraction(alts, u_layer_bottom, u_layer_top);
-        vec3 S = (u_albedo * q.sigma_t) * cr_in_scattering(tau_light, tau_behind, q.tau_view, mu, h, cr_far_shadow(dir * q.t, alts));
+        vec3 S = (u_albedo * q.sigma_t) * cr_in_scattering(tau_light, tau_behind, q.tau_view, mu, h, cr_far_shadow(dir * q.t, alts), tau_sky);
         // Energy-conserving (cm_march_add_segment's source term), or the textbook Riemann sum,
         // kept as a variant to show its error: the source at full strength over the whole
         // step, ignoring the decay within it.
