@@ -269,7 +269,7 @@ struct pixel_program {
     // transmittance (far_shadow_at), on the sun's light only; tau_sky: the depth toward the sun
     // the occluded sky light uses (sky_depth_toward_sun).
     vec3 in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h, float far_light,
-                       float tau_sky, const vec2* vertical = nullptr) const {
+                       float tau_sky) const {
         const auto phase_fn = [this](float m, float scale) { return phase(m, scale); };
         float sun = v.lighting == lighting_model::diffusion
                         ? cm::diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, phase_g_mean, s.albedo,
@@ -278,7 +278,7 @@ struct pixel_program {
         if (v.powder) sun *= glm::mix(2.0f * cm::powder(tau_light, 2.0f), 1.0f, 0.5f + 0.5f * mu);
         const vec3 sun_light = sun_at_height(k, haze != nullptr, h) * far_light;  // the physical sky's sun by height
         if (!v.occluded_ambient) return sun_light * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
-        const vec2 o = vertical != nullptr ? vertical_occlusion(*vertical) : sky_occlusion(tau_sky, tau_behind);
+        const vec2 o = sky_occlusion(tau_sky, tau_behind);
         return sun_light * sun + glm::mix(k.ambient_bottom * o.y, k.ambient_top * o.x, h);
     }
 
@@ -312,26 +312,6 @@ struct pixel_program {
     // (diffusion_clouds.txt) was fitted with it, and refitted with near it loses 2.3 points at
     // low_sun_behind.
     float sky_depth_toward_sun(float whole, float near) const { return haze != nullptr ? near : whole; }
-
-    // variant::sky_vertical: the optical depths straight up (x) and down (y) to the band's
-    // edges, sky_vertical quadratic steps each at offset lo.
-    vec2 vertical_depths(vec3 p, float alt, long* counter, float footprint, float lo) const {
-        vec2 out(0.0f);
-        for (int side = 0; side < 2; ++side) {
-            const vec3 toward = side == 0 ? up_at(p) : -up_at(p);
-            const vec2 seg = cm::cloud_layer_segment(alt, side == 0 ? 1.0f : -1.0f, s.planet_radius, band.x, band.y);
-            const float length = seg.y > seg.x ? seg.y : 0.0f;
-            const float n = float(v.sky_vertical);
-            for (int i = 0; i < v.sky_vertical; ++i) {
-                const float ds = cm::light_march_distance((float(i) + 1.0f) / n, length) - cm::light_march_distance(float(i) / n, length);
-                out[side] += light_extinction(p + toward * cm::light_march_distance((float(i) + lo) / n, length), false, counter, footprint) * ds;
-            }
-        }
-        return out;
-    }
-    vec2 vertical_occlusion(vec2 depths) const {
-        return {cm::diffuse_transmittance(depths.x, phase_g_mean), cm::diffuse_transmittance(depths.y, phase_g_mean)};
-    }
 
     // One sample's share of the pixel's gradient (shade_linear's grad): its source is
     // weight * sun_radiance * (diffusion model), linear in the table and peak weights.
@@ -408,17 +388,13 @@ struct pixel_program {
                                                  ? light_optical_depth(dir * e.t, alts, -k.sun_dir, v.behind, light_reads, footprint, lo)
                                                  : 0.0f;
                     const float h = cm::height_fraction(alts, s.layer_bottom, s.layer_top);
-                    const vec2 vertical = v.sky_vertical > 0 ? vertical_depths(dir * e.t, alts, light_reads, footprint, lo) : vec2(0.0f);
                     const vec3 S = (s.albedo * e.sigma_t) *
-                                   in_scattering(tau_light, tau_behind, e.tau_view, mu, h, far_shadow_at(dir * e.t, alts), tau_sky,
-                                                 v.sky_vertical > 0 ? &vertical : nullptr);
+                                   in_scattering(tau_light, tau_behind, e.tau_view, mu, h, far_shadow_at(dir * e.t, alts), tau_sky);
                     if (grad != nullptr) {
                         // This step's weight in the pixel per unit source (add_segment's).
                         const float w = e.transmittance * s.albedo * e.sigma_t * cm::integrate_scattering(1.0f, e.sigma_t, e.ds);
                         add_gradient(grad, w, tau_light, tau_behind, e.tau_view, mu);
-                        const vec2 o = !v.occluded_ambient ? vec2(1.0f)
-                                       : v.sky_vertical > 0 ? vertical_occlusion(vertical)
-                                                            : sky_occlusion(tau_sky, tau_behind);
+                        const vec2 o = v.occluded_ambient ? sky_occlusion(tau_sky, tau_behind) : vec2(1.0f);
                         sky[0] += w * h * o.x;
                         sky[1] += w * (1.0f - h) * o.y;
                     }

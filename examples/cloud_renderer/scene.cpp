@@ -440,9 +440,6 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             out.far_steps = value == "far";
             if (value != "capped" && value != "band" && value != "map" && value != "far")
                 return "reach must be capped, far, band or map, not '" + value + "'";
-        } else if (key == "sky-vertical") {
-            if (!parse_int(value, 0, 16, out.sky_vertical))
-                return "sky-vertical must be an integer from 0 to 16, not '" + value + "'";
         } else if (key == "shadows") {
             if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
         } else {
@@ -462,7 +459,6 @@ std::string variant_spec(const variant& v) {
       << ",light-spacing=" << (v.light_quadratic ? "quadratic" : "uniform") << ",light-jitter=" << (v.light_jitter ? "on" : "off")
       << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
       << ",reach=" << (v.long_reach ? "band" : v.far_map ? "map" : v.far_steps ? "far" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
-    if (v.sky_vertical > 0) s << ",sky-vertical=" << v.sky_vertical;
     return s.str();
 }
 

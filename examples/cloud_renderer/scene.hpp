@@ -122,10 +122,6 @@ struct variant {
     // the band ends within the cap and nothing changes. Chosen on the selection presets of
     // both fields (docs/lighting_research.md, "The far field toward the sun").
     bool far_steps = true;
-    // Research (CPU reference only): the occluded sky light's depths above and below from
-    // sky_vertical quadratic steps straight up and down to the band's edges, in place of the
-    // light estimates times the sun's elevation sine; 0: off.
-    int sky_vertical = 0;
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
     bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
     bool sun = true;                 // draw the sun disc (sun_disc_radiance) in the background
