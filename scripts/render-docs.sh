@@ -21,9 +21,10 @@ common=(--width "$width" --height "$height" --cache build/main/texture-cache --q
 mkdir -p docs/images
 
 presets=$("$renderer" --list-presets | awk '{ print $1 }')
-# Before: what the renderer drew when the work on its images began (the classic field, the
-# octaves with the cone, flat sky light, no haze, no shadows, no dither, one frame).
-before=(--shape classic --variant lighting=octaves,powder=on,light=cone,ambient=flat,haze=off,shadows=off,dither=off,refine=1,reach=capped)
+# Before: what the renderer drew when the work on its images began (the artistic sky, the
+# classic field, the octaves with the cone, flat sky light, no haze, no shadows, no dither, one
+# frame). After: the default, the physical sky included.
+before=(--sky artistic --shape classic --variant lighting=octaves,powder=on,light=cone,ambient=flat,haze=off,shadows=off,dither=off,refine=1,reach=capped)
 for p in $presets; do
   "$renderer" --headless --preset "$p" "${common[@]}" --temporal 128 --out "docs/images/clouds_$p.png" >/dev/null
   "$renderer" --headless --preset "$p" "${common[@]}" "${before[@]}" --out "docs/images/before_$p.png" >/dev/null

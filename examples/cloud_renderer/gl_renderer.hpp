@@ -23,7 +23,7 @@ enum class clouds_pass { frame = 0, temporal_shading = 1, shadow_map = 2, backgr
 // the pass as constants when compile_time; as uniforms otherwise, where `pass` is unused), the
 // shader file with cloudmath.glsl resolved in.
 std::string fragment_shader_source(const variant& v, cloud_shape shape, bool compile_time,
-                                   clouds_pass pass = clouds_pass::frame, sky_model sky = sky_model::artistic);
+                                   clouds_pass pass = clouds_pass::frame, sky_model sky = sky_model::physical);
 std::string vertex_shader_source();
 // shaders/temporal_resolve.frag as compiled (#version, cloudmath.glsl resolved in).
 std::string temporal_resolve_shader_source();

@@ -71,9 +71,9 @@ const char* usage_text() {
            "  --altitude M, --yaw DEG, --pitch DEG, --fov DEG          camera\n"
            "  --sun-elevation DEG, --sun-azimuth DEG                   sun\n"
            "  --coverage X, --cloud-type X (0 stratus .. 1 cumulus), --exposure X\n"
-           "  --sky S             the sun and sky: artistic (hand-made colours, --exposure) or physical\n"
-           "                      (cloudmath's atmosphere: lux and cd/m^2, exposure from EV100; the\n"
-           "                      presets sunrise and sunset use it)\n"
+           "  --sky S             the sun and sky: physical (default: cloudmath's atmosphere, lux and\n"
+           "                      cd/m^2, exposure from EV100) or artistic (hand-made colours,\n"
+           "                      --exposure)\n"
            "  --ev100 X           --sky physical: the exposure value (-10..25; default: the one that\n"
            "                      exposes the sky's mean luminance to middle grey)\n"
            "  --shape S           the density field: detailed (default: per-cloud type and top from the\n"
@@ -85,7 +85,7 @@ const char* usage_text() {
 
 std::string parse_options(int argc, const char* const* argv, options& o) {
     std::vector<std::string> args(argv + 1, argv + argc);
-    bool mode_given = false, pass_given = false;
+    bool mode_given = false, pass_given = false, exposure_given = false, ev100_given = false;
     const auto set_mode = [&](run_mode m, const std::string& flag) -> std::string {
         if (mode_given && o.mode != m) return "choose one mode; " + flag + " conflicts with an earlier mode flag";
         o.mode = m;
@@ -156,8 +156,8 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
         else if (a == "--sun-azimuth") err = number(-360, 360, [&](double x) { o.sc.sun_azimuth = float(x); });
         else if (a == "--coverage") err = number(0, 1, [&](double x) { o.sc.coverage = float(x); });
         else if (a == "--cloud-type") err = number(0, 1, [&](double x) { o.sc.cloud_type = float(x); });
-        else if (a == "--exposure") err = number(0.01, 100, [&](double x) { o.sc.exposure = float(x); });
-        else if (a == "--ev100") err = number(-10, 25, [&](double x) { o.sc.ev100 = float(x); });
+        else if (a == "--exposure") err = number(0.01, 100, [&](double x) { o.sc.exposure = float(x); exposure_given = true; });
+        else if (a == "--ev100") err = number(-10, 25, [&](double x) { o.sc.ev100 = float(x); ev100_given = true; });
         else if (a == "--sky") {
             std::string v;
             if (!value(v)) return "--sky needs artistic or physical";
@@ -193,6 +193,11 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
             return a + " must be a whole number, not '" + args[i] + "'";
     }
     if (pass_given && o.mode != run_mode::dump_shader) return "--pass is an option of --dump-shader";
+    // Each sky has its own exposure: the other's would be ignored, so say so.
+    if (exposure_given && o.sc.sky == sky_model::physical)
+        return "--exposure is the artistic sky's (--sky artistic); the physical sky's exposure is --ev100";
+    if (ev100_given && o.sc.sky == sky_model::artistic)
+        return "--ev100 is the physical sky's; the artistic sky's exposure is --exposure";
     if (o.temporal > 0 && o.accumulate > 1) return "--temporal and --accumulate exclude each other (the scheme accumulates itself)";
     if ((o.pan != 0.0f || o.drift != 0.0f || o.save_every > 0) && o.temporal == 0)
         return "--pan, --drift and --save-every need --temporal N";

@@ -83,16 +83,13 @@ const std::vector<scene>& presets() {
         // preset.
         v.push_back(make("low_sun_ahead", "on the ground facing a sun 3 degrees up", 2, 100, 8, 3, 95, 0.3f, 0.7f));
         v.push_back(make("low_sun_behind", "on the ground, a sun 3 degrees up behind the camera", 2, 20, 12, 3, 200, 0.3f, 0.7f));
-        // The physical sky (sky_model::physical, cloudmath's atmosphere): cumulus at sunrise,
-        // the sun 2 degrees up ahead; and just after sunset, the sun 2 degrees below the
-        // horizon, lighting from below a layer at 4-9 km (above the 3.9 km where the Earth's
-        // shadow ends for a sun at -2 degrees).
-        scene sunrise = make("sunrise", "physical sky: cumulus at sunrise, the sun 2 degrees up ahead", 2, 80, 10, 2, 90, 0.3f, 0.9f);
-        sunrise.sky = sky_model::physical;
-        v.push_back(sunrise);
+        // Made for the physical sky (sky_model::physical, cloudmath's atmosphere; every preset's
+        // default): cumulus at sunrise, the sun 2 degrees up ahead; and just after sunset, the
+        // sun 2 degrees below the horizon, lighting from below a layer at 4-9 km (above the 3.9
+        // km where the Earth's shadow ends for a sun at -2 degrees).
+        v.push_back(make("sunrise", "physical sky: cumulus at sunrise, the sun 2 degrees up ahead", 2, 80, 10, 2, 90, 0.3f, 0.9f));
         scene sunset = make("sunset", "physical sky: just after sunset, the sun 2 degrees down, a 4-9 km layer lit from below", 2, 260, 12, -2,
                             270, 0.3f, 1.0f);
-        sunset.sky = sky_model::physical;
         sunset.layer_bottom = 4000.0f;
         sunset.layer_top = 9000.0f;
         sunset.max_distance = 60000.0f;

@@ -135,7 +135,8 @@ struct variant {
 // density scale for crisp edges, and the wide weather map (240 km period).
 enum class cloud_shape { classic, detailed };
 enum class sky_model { artistic, physical };
-// The sun and sky: `artistic`, the renderer's hand-made colours (a sky gradient with a glow
+// The sun and sky (the default: physical, on the CPU, the GPU and in the tools; the renderer's
+// --sky artistic keeps the other): `artistic`, the renderer's hand-made colours (a sky gradient with a glow
 // around the sun, a sun reddened by a Kasten-Young air mass, display units, the exposure
 // setting), or `physical`, from cloudmath's atmosphere (atmosphere.hpp, Earth's air): the sun's
 // illuminance in lux by height in the layer (128 klux above the air), the sky's
@@ -182,7 +183,7 @@ struct scene {
     glm::vec2 wind{1200.0f, -800.0f};  // offset of the textures (animate it for wind)
     std::uint32_t frame = 0;         // frame number: advances each pixel's march jitter (frame_jitter)
     float exposure = 1.0f;           // the display's exposure with the artistic sky
-    enum sky_model sky = sky_model::artistic;
+    enum sky_model sky = sky_model::physical;
     float ev100 = -100.0f;           // the physical sky's exposure value; below -50: from the sky (auto_ev100)
     light_sources light = light_sources::all;  // the tools' split by source (above); the exposure stays the whole's
 };

@@ -53,7 +53,7 @@ if(CLOUDMATH_BUILD_TESTS)
       "$tool" report --data "$out/none" --docs "$out/docs" --cache "$cache" 2>"$out.err"; s=$?
       [ $s -eq 1 ] || { echo "missing truth: exit $s, want 1"; exit 1; }
       grep -q "truth_ground.csv" "$out.err" || { echo "message does not name the path"; exit 1; }
-      "$tool" render --preset ground --width 8 --height 4 --spp 2 --threads 2 --cache "$cache" --quiet \
+      "$tool" render --preset ground --sky artistic --width 8 --height 4 --spp 2 --threads 2 --cache "$cache" --quiet \
         --out "$out/truth_ground.csv" >/dev/null || { echo "render failed"; exit 1; }
       [ "$(grep -c '^[0-9]' "$out/truth_ground.csv")" -eq 32 ] || { echo "want 32 pixel rows"; exit 1; }
       grep -q '^x,y,r,g,b,se_r,se_g,se_b$' "$out/truth_ground.csv" || { echo "no header"; exit 1; }
@@ -64,7 +64,8 @@ if(CLOUDMATH_BUILD_TESTS)
       "$tool" render --preset ground --sky blue --out x.csv 2>/dev/null; s=$?
       [ $s -eq 2 ] || { echo "bad sky: exit $s, want 2"; exit 1; }
       mkdir -p "$out/physical/images" "$out/mixed/images"
-      "$tool" render --preset ground --sky physical --width 8 --height 4 --spp 2 --threads 2 --cache "$cache" --quiet \
+      # No --sky: the presets' own sky, the physical one.
+      "$tool" render --preset ground --width 8 --height 4 --spp 2 --threads 2 --cache "$cache" --quiet \
         --out "$out/physical/truth_ground.csv" >/dev/null || { echo "physical render failed"; exit 1; }
       grep -q '^# sky: physical$' "$out/physical/truth_ground.csv" || { echo "no physical sky line"; exit 1; }
       grep '^[0-9]' "$out/truth_ground.csv" >"$out/artistic.rows"; grep '^[0-9]' "$out/physical/truth_ground.csv" >"$out/physical.rows"
@@ -92,7 +93,7 @@ if(CLOUDMATH_BUILD_TESTS)
       # --light: the truth split by source (the physical sky only); with the same seed and paths the
       # sun's and the sky's files add up to the whole's, row by row; the report renders the model
       # with the same light and refuses two lights in one report.
-      "$tool" render --preset ground --light sun --out x.csv 2>"$out.err"; s=$?
+      "$tool" render --preset ground --sky artistic --light sun --out x.csv 2>"$out.err"; s=$?
       [ $s -eq 2 ] && grep -q "needs the physical sky" "$out.err" || { echo "--light sun, artistic sky: exit $s"; exit 1; }
       "$tool" render --preset ground --sky physical --light moon --out x.csv 2>/dev/null; s=$?
       [ $s -eq 2 ] || { echo "--light moon: exit $s, want 2"; exit 1; }
@@ -136,8 +137,8 @@ if(CLOUDMATH_BUILD_TESTS)
       "$tool" render $ck --seed 2 --resume --out "$out/resumed.csv" 2>"$out.err" >/dev/null; s=$?
       [ $s -eq 1 ] && grep -q "the checkpoint's seed is '1', this run's '2'" "$out.err" ||
         { echo "resume with another seed: exit $s"; cat "$out.err"; exit 1; }
-      "$tool" render $ck --sky physical --resume --out "$out/resumed.csv" 2>"$out.err" >/dev/null; s=$?
-      [ $s -eq 1 ] && grep -q "the checkpoint's sky is 'artistic', this run's 'physical'" "$out.err" || { echo "resume under another sky: exit $s"; cat "$out.err"; exit 1; }
+      "$tool" render $ck --sky artistic --resume --out "$out/resumed.csv" 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "the checkpoint's sky is 'physical', this run's 'artistic'" "$out.err" || { echo "resume under another sky: exit $s"; cat "$out.err"; exit 1; }
       "$tool" render $ck --resume --out "$out/none.csv" 2>"$out.err" >/dev/null; s=$?
       [ $s -eq 1 ] && grep -q "none.csv.checkpoint: no checkpoint to resume" "$out.err" || { echo "resume nothing: exit $s"; exit 1; }
       cp "$out/resumed.csv.checkpoint" "$out/damaged.checkpoint"
@@ -172,7 +173,7 @@ if(CLOUDMATH_BUILD_TESTS)
       done
       "$tool" fit-clouds --data "$out/none" --cache "$cache" --quiet 2>"$out.err" >/dev/null; s=$?
       [ $s -eq 1 ] && grep -q "none/truth_sun_behind.csv" "$out.err" || { echo "fit-clouds, missing truth: exit $s"; exit 1; }
-      "$tool" render --preset inside --width 8 --height 4 --spp 2 --threads 2 --cache "$cache" --quiet \
+      "$tool" render --preset inside --sky artistic --width 8 --height 4 --spp 2 --threads 2 --cache "$cache" --quiet \
         --out "$out/truth_inside.csv" >/dev/null || { echo "render inside failed"; exit 1; }
       "$tool" fit-clouds --fit classic:ground,classic:inside --data "$out" --cache "$cache" --quiet \
         --out "$out/fit.txt" >/dev/null || { echo "fit-clouds failed"; exit 1; }

@@ -65,7 +65,7 @@ const char* const usage_text =
     "  render   path-trace one preset; CSV of linear rgb radiance and standard error per pixel\n"
     "           flags: --preset NAME --out F.csv [--width 160] [--height 90] [--spp 64]\n"
     "                  [--seed 1] [--phase SPEC] [--threads 0] [--cache DIR] [--shape classic]\n"
-    "                  [--sky artistic|physical] (default: the preset's; stored in the file,\n"
+    "                  [--sky physical|artistic] (default: physical, every preset's; stored in the file,\n"
     "                  report and fit-clouds render the model under it)\n"
     "                  [--quiet] [--noise-target F [--pilot-spp 64] [--min-spp 32] [--max-spp N]]\n"
     "           --noise-target: adaptive sampling instead of --spp: a pilot run measures each\n"
@@ -147,7 +147,7 @@ cr::scene preset(const std::string& name, cr::cloud_shape shape = cr::cloud_shap
     return out;
 }
 
-// --sky: the preset's own sky unless asked.
+// --sky: the preset's own sky (the physical one) unless asked.
 cr::scene with_sky(cr::scene s, const std::string& value) {
     if (value.empty()) return s;
     const std::optional<cr::sky_model> m = cr::sky_model_named(value);
@@ -546,10 +546,11 @@ std::optional<double> noise_target_of(const truth_image& t) {
 bool misses_target(double floor, double target) { return std::round(1000.0 * floor) > std::round(1000.0 * target); }
 
 // The sky a stored truth was traced under: its "sky" line, or for files from before the line
-// the preset's own (render used it; no preset has changed its sky since).
-cr::sky_model traced_sky(const truth_image& t, const cr::scene& preset_scene, const std::string& path) {
+// the artistic sky (render wrote the line from the physical sky's first truth on, and the
+// presets' default was the artistic sky until after every file without it was traced).
+cr::sky_model traced_sky(const truth_image& t, const std::string& path) {
     const auto it = t.meta.find("sky");
-    if (it == t.meta.end()) return preset_scene.sky;
+    if (it == t.meta.end()) return cr::sky_model::artistic;
     const std::optional<cr::sky_model> m = cr::sky_model_named(it->second);
     if (!m) throw std::runtime_error(path + ": unknown sky '" + it->second + "' (artistic or physical)");
     return *m;
@@ -716,7 +717,7 @@ int run_report(int argc, char** argv) {
     for (const std::string& n : names) {
         const std::string path = data + "/truth_" + n + ".csv";
         truths.push_back(read_truth(path));
-        const cr::sky_model traced_under = traced_sky(truths.back(), preset(n), path);
+        const cr::sky_model traced_under = traced_sky(truths.back(), path);
         if (sky && *sky != traced_under)
             throw usage_error(path + " was traced under the " + cr::name(traced_under) + " sky, the presets before it under the " +
                               cr::name(*sky) + " one: one report, one sky");
@@ -1033,7 +1034,7 @@ int run_fit_clouds(int argc, char** argv) {
         const auto it = t.meta.find("shape");
         if ((it == t.meta.end() ? std::string("classic") : it->second) != cr::name(shape))
             throw std::runtime_error(path + " was not traced over the " + std::string(cr::name(shape)) + " field");
-        s.sky = traced_sky(t, s, path);
+        s.sky = traced_sky(t, path);
         s.light = traced_light(t, path);
     };
     std::vector<std::pair<cr::scene, truth_image>> fit_data(fit_list.size());
