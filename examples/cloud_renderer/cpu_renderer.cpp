@@ -388,12 +388,19 @@ struct pixel_program {
                                                  ? light_optical_depth(dir * e.t, alts, -k.sun_dir, v.behind, light_reads, footprint, lo)
                                                  : 0.0f;
                     const float h = cm::height_fraction(alts, s.layer_bottom, s.layer_top);
-                    const vec3 S = (s.albedo * e.sigma_t) *
-                                   in_scattering(tau_light, tau_behind, e.tau_view, mu, h, far_shadow_at(dir * e.t, alts), tau_sky);
+                    const float far_light = far_shadow_at(dir * e.t, alts);
+                    const vec3 S = (s.albedo * e.sigma_t) * in_scattering(tau_light, tau_behind, e.tau_view, mu, h, far_light, tau_sky);
                     if (grad != nullptr) {
-                        // This step's weight in the pixel per unit source (add_segment's).
+                        // This step's weight in the pixel per unit source (add_segment's), times
+                        // the sun here over sun_radiance: with the physical sky the sun changes
+                        // with height and the far shadow dims it; the features are per unit of
+                        // one colour, so that ratio is the sun's projection on sun_radiance
+                        // (exactly 1 with the artistic sky).
+                        const vec3 sun_here = sun_at_height(k, haze != nullptr, h) * far_light;
+                        const float sun_sq = glm::dot(k.sun_radiance, k.sun_radiance);
+                        const float ratio = haze == nullptr ? 1.0f : sun_sq > 0.0f ? glm::dot(sun_here, k.sun_radiance) / sun_sq : 0.0f;
                         const float w = e.transmittance * s.albedo * e.sigma_t * cm::integrate_scattering(1.0f, e.sigma_t, e.ds);
-                        add_gradient(grad, w, tau_light, tau_behind, e.tau_view, mu);
+                        add_gradient(grad, w * ratio, tau_light, tau_behind, e.tau_view, mu);
                         const vec2 o = v.occluded_ambient ? sky_occlusion(tau_sky, tau_behind) : vec2(1.0f);
                         sky[0] += w * h * o.x;
                         sky[1] += w * (1.0f - h) * o.y;
