@@ -277,16 +277,9 @@ struct pixel_program {
                         : cm::multiple_scattering_with(tau_light, mu, k.ms_a, k.ms_b, k.ms_c, v.octaves, phase_fn);
         if (v.powder) sun *= glm::mix(2.0f * cm::powder(tau_light, 2.0f), 1.0f, 0.5f + 0.5f * mu);
         const vec3 sun_light = sun_at_height(k, haze != nullptr, h) * far_light;  // the physical sky's sun by height
-        vec3 dipole(0.0f);
-        if (v.sky_dipole > 0 && v.lighting == lighting_model::diffusion) {
-            const float diffuse = cm::diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, phase_g_mean, s.albedo, *model,
-                                                                [](float, float) { return 0.0f; });
-            dipole = (v.sky_dipole == 1 ? k.sky_dipole : k.sky_dipole_horizontal) * (v.sky_dipole_gain * diffuse *
-                                                                                      (v.sky_dipole_far ? far_light : 1.0f));
-        }
-        if (!v.occluded_ambient) return sun_light * sun + dipole + glm::mix(k.ambient_bottom, k.ambient_top, h);
+        if (!v.occluded_ambient) return sun_light * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
         const vec2 o = sky_occlusion(tau_sky, tau_behind);
-        return sun_light * sun + dipole + glm::mix(k.ambient_bottom * o.y, k.ambient_top * o.x, h);
+        return sun_light * sun + glm::mix(k.ambient_bottom * o.y, k.ambient_top * o.x, h);
     }
 
     // The physical sky's far shadow at p (altitude alt): the table by the sun's zenith cosine

@@ -100,13 +100,9 @@ sky_hemisphere upper_hemisphere(const sky_view_table& t, const glm::vec3& sun_di
             const glm::vec3 L = sky_view_lookup(t, glm::vec3(sn * std::cos(phi), c, sn * std::sin(phi)), sun);
             h.mean_radiance += L;
             h.irradiance += L * c;
-            h.flux_toward_sun += L * (sn * std::cos(phi) * sun.x + c * sun.y);
-            h.horizontal_flux_toward_sun += L * (sn * std::cos(phi));
         }
     h.mean_radiance /= float(n * n);                      // (1 / 2 pi) integral of L over the hemisphere
     h.irradiance *= 2.0f * pi / float(n * n);  // integral of L cos over it
-    h.flux_toward_sun *= 2.0f * pi / float(n * n);
-    h.horizontal_flux_toward_sun *= 2.0f * pi / float(n * n);
     return h;
 }
 

@@ -90,9 +90,6 @@ glm::vec3 sky_view_lookup(const sky_view_table& t, const glm::vec3& dir, const g
 // cosine and the azimuth from the sun (the table is symmetric about the sun's vertical plane).
 struct sky_hemisphere {
     glm::vec3 mean_radiance{0.0f}, irradiance{0.0f};
-    // Research (variant::sky_dipole): the hemisphere's net flux along the sun's direction
-    // (integral of L (w . s)) and along its horizontal azimuth (integral of L (w . s_h)).
-    glm::vec3 flux_toward_sun{0.0f}, horizontal_flux_toward_sun{0.0f};
 };
 sky_hemisphere upper_hemisphere(const sky_view_table& t, const glm::vec3& sun_dir);
 

@@ -165,8 +165,6 @@ void compute_physical_sky(const scene& s, frame_constants& f) {
     f.ground = a.air.ground_albedo / 3.14159265f * (sun_ground * std::fmax(f.sun_dir.y, 0.0f) + below.irradiance);
     f.ambient_top = top.mean_radiance;
     f.ambient_bottom = f.ground;
-    f.sky_dipole = top.flux_toward_sun - 3.14159265f * f.ground * f.sun_dir.y;
-    f.sky_dipole_horizontal = top.horizontal_flux_toward_sun;
 }
 
 // compute_physical_sky's fields of f, made once per sun direction and scene geometry.
@@ -186,8 +184,6 @@ void physical_sky(const scene& s, frame_constants& f) {
     f.sky_view = sky.sky_view;
     f.ambient_top = sky.ambient_top;
     f.ambient_bottom = sky.ambient_bottom;
-    f.sky_dipole = sky.sky_dipole;
-    f.sky_dipole_horizontal = sky.sky_dipole_horizontal;
     f.ground = sky.ground;
 }
 
@@ -441,14 +437,6 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             out.far_steps = value == "far";
             if (value != "capped" && value != "band" && value != "map" && value != "far")
                 return "reach must be capped, far, band or map, not '" + value + "'";
-        } else if (key == "sky-dipole") {
-            const std::size_t c = value.find(':');
-            const std::string mode = value.substr(0, c);
-            out.sky_dipole = mode == "off" ? 0 : mode == "sun" ? 1 : mode == "horizontal" ? 2 : mode == "sun-far" ? 3 : mode == "horizontal-far" ? 4 : -1;
-            if (out.sky_dipole < 0) return "sky-dipole must be off, sun, horizontal, sun-far or horizontal-far[:gain], not '" + value + "'";
-            out.sky_dipole_far = out.sky_dipole >= 3;
-            if (out.sky_dipole >= 3) out.sky_dipole -= 2;
-            out.sky_dipole_gain = c == std::string::npos ? 1.0f : std::stof(value.substr(c + 1));
         } else if (key == "shadows") {
             if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
         } else {
@@ -468,7 +456,6 @@ std::string variant_spec(const variant& v) {
       << ",light-spacing=" << (v.light_quadratic ? "quadratic" : "uniform") << ",light-jitter=" << (v.light_jitter ? "on" : "off")
       << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
       << ",reach=" << (v.long_reach ? "band" : v.far_map ? "map" : v.far_steps ? "far" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
-    if (v.sky_dipole > 0) s << ",sky-dipole=" << (v.sky_dipole == 1 ? "sun" : "horizontal") << (v.sky_dipole_far ? "-far" : "") << ":" << v.sky_dipole_gain;
     return s.str();
 }
 

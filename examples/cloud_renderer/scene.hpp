@@ -122,12 +122,6 @@ struct variant {
     // the band ends within the cap and nothing changes. Chosen on the selection presets of
     // both fields (docs/lighting_research.md, "The far field toward the sun").
     bool far_steps = true;
-    // Research (CPU reference only, physical sky): the sky's net flux toward the sun added to
-    // the sun's light in the diffusion model's diffuse term only; 0 off, 1 along the sun's
-    // direction (ground below), 2 its horizontal part; sky_dipole_far: times the far shadow.
-    int sky_dipole = 0;
-    bool sky_dipole_far = false;
-    float sky_dipole_gain = 1.0f;
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
     bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
     bool sun = true;                 // draw the sun disc (sun_disc_radiance) in the background
@@ -274,9 +268,6 @@ struct frame_constants {
     glm::vec3 sun_dir;               // unit, toward the sun
     glm::vec3 sun_radiance;          // colour * intensity of direct sunlight
     glm::vec3 ambient_top, ambient_bottom;  // isotropic sky light at the layer top / bottom
-    // Research (variant::sky_dipole): the environment's net flux along the sun's direction
-    // (the sky at the layer's top above, the ground below), and its horizontal part.
-    glm::vec3 sky_dipole{0.0f}, sky_dipole_horizontal{0.0f};
     glm::vec3 sky_zenith, sky_horizon, ground;
     float sun_angular_radius;        // the sun disc's angular radius (radians)
     float aureole;                   // the glow around the sun: aureole sun_radiance HG(mu, 0.75) in the sky
