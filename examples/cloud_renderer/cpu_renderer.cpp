@@ -269,7 +269,7 @@ struct pixel_program {
     // transmittance (far_shadow_at), on the sun's light only; tau_sky: the depth toward the sun
     // the occluded sky light uses (sky_depth_toward_sun).
     vec3 in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h, float far_light,
-                       float tau_sky, const vec2* vertical = nullptr, float view_up = 0.0f) const {
+                       float tau_sky) const {
         const auto phase_fn = [this](float m, float scale) { return phase(m, scale); };
         float sun = v.lighting == lighting_model::diffusion
                         ? cm::diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, phase_g_mean, s.albedo,
@@ -277,10 +277,6 @@ struct pixel_program {
                         : cm::multiple_scattering_with(tau_light, mu, k.ms_a, k.ms_b, k.ms_c, v.octaves, phase_fn);
         if (v.powder) sun *= glm::mix(2.0f * cm::powder(tau_light, 2.0f), 1.0f, 0.5f + 0.5f * mu);
         const vec3 sun_light = sun_at_height(k, haze != nullptr, h) * far_light;  // the physical sky's sun by height
-        if (v.sky_twostream > 0) {
-            const vec2 d = vertical != nullptr ? *vertical : sky_depths(tau_sky, tau_behind);
-            return sun_light * sun + two_stream_mean(v.sky_twostream_flux ? k.ambient_top_flux : k.ambient_top, k.ambient_bottom, d.x, d.y, view_up);
-        }
         if (!v.occluded_ambient) return sun_light * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
         const vec2 o = sky_occlusion(tau_sky, tau_behind);
         return sun_light * sun + glm::mix(k.ambient_bottom * o.y, k.ambient_top * o.x, h);
@@ -299,53 +295,6 @@ struct pixel_program {
     // horizon the estimate toward the sun looks down and the one away from it looks up, so they
     // swap (before, the sine was clamped to 0 there: no occlusion at all, and the sunset's sky
     // light 18% too bright; docs/lighting_research.md, "The sun below the horizon").
-    // variant::sky_twostream: sky_occlusion's depths above (x) and below (y).
-    vec2 sky_depths(float tau_light, float tau_behind) const {
-        const float sine = k.sun_dir.y;
-        const vec2 depths = sine >= 0.0f ? vec2(tau_light, tau_behind) : vec2(tau_behind, tau_light);
-        return depths * std::fabs(sine);
-    }
-    // The two-stream (Eddington) mean radiance at depth `up` below the top of a slab of depth
-    // up + down, lit by the isotropic radiance top from above and bottom from below, with the
-    // phase's mean cosine phase_g_mean and the scene's albedo (Meador and Weaver 1980's
-    // gamma_1, gamma_2; the conservative limit is (top (1/2 + gamma down) + bottom (1/2 + gamma
-    // up)) / (1 + gamma (up + down))).
-    vec3 two_stream_mean(vec3 top, vec3 bottom, float up, float down, float view_up) const {
-        const double w = double(s.albedo), g = double(phase_g_mean);
-        const double g1 = (7.0 - w * (4.0 + 3.0 * g)) / 4.0, g2 = -(1.0 - w * (4.0 - 3.0 * g)) / 4.0;
-        const double kk = std::sqrt(std::max(g1 * g1 - g2 * g2, 1e-12)), q = kk / (g1 + g2);
-        // S = I_down + I_up = A e^(-k tau) + B e^(-k (D - tau)): decaying exponentials only.
-        const double D = double(std::max(up, 0.0f)) + double(std::max(down, 0.0f));
-        const double tau = std::min(double(std::max(up, 0.0f)), D);
-        const double E = std::exp(-kk * D), det = (1.0 + q) * (1.0 + q) - E * E * (1.0 - q) * (1.0 - q);
-        vec3 out(0.0f);
-        for (int i = 0; i < 3; ++i) {
-            const double Lt = double(top[i]), Lb = double(bottom[i]);
-            const double A = 2.0 * (Lt * (1.0 + q) - Lb * E * (1.0 - q)) / det, B = 2.0 * (Lb * (1.0 + q) - Lt * E * (1.0 - q)) / det;
-            const double U = 0.5 * (A * std::exp(-kk * tau) + B * std::exp(-kk * (D - tau)));
-            const double Delta = q * (A * std::exp(-kk * tau) - B * std::exp(-kk * (D - tau)));
-            out[i] = float(std::max(U + double(v.sky_twostream_phase) * g * Delta * double(view_up), 0.0));
-        }
-        return out;
-    }
-    // variant::sky_twostream > 1: the optical depths straight up (x) and down (y) to the
-    // band's edges, sky_twostream - 1 quadratic steps each at offset lo.
-    vec2 vertical_depths(vec3 p, float alt, long* counter, float footprint, float lo) const {
-        vec2 out(0.0f);
-        const int steps = v.sky_twostream - 1;
-        for (int side = 0; side < 2; ++side) {
-            const vec3 toward = side == 0 ? up_at(p) : -up_at(p);
-            const vec2 seg = cm::cloud_layer_segment(alt, side == 0 ? 1.0f : -1.0f, s.planet_radius, band.x, band.y);
-            const float length = seg.y > seg.x ? seg.y : 0.0f;
-            const float n = float(steps);
-            for (int i = 0; i < steps; ++i) {
-                const float ds = cm::light_march_distance((float(i) + 1.0f) / n, length) - cm::light_march_distance(float(i) / n, length);
-                out[side] += light_extinction(p + toward * cm::light_march_distance((float(i) + lo) / n, length), false, counter, footprint) * ds;
-            }
-        }
-        return out;
-    }
-
     vec2 sky_occlusion(float tau_light, float tau_behind) const {
         const float sine = k.sun_dir.y;
         const vec2 depths = sine >= 0.0f ? vec2(tau_light, tau_behind) : vec2(tau_behind, tau_light);
@@ -440,10 +389,7 @@ struct pixel_program {
                                                  : 0.0f;
                     const float h = cm::height_fraction(alts, s.layer_bottom, s.layer_top);
                     const float far_light = far_shadow_at(dir * e.t, alts);
-                    const vec2 vertical = v.sky_twostream > 1 ? vertical_depths(dir * e.t, alts, light_reads, footprint, lo) : vec2(0.0f);
-                    const vec3 S = (s.albedo * e.sigma_t) * in_scattering(tau_light, tau_behind, e.tau_view, mu, h, far_light, tau_sky,
-                                                                          v.sky_twostream > 1 ? &vertical : nullptr,
-                                                                          glm::dot(dir, up_at(dir * e.t)));
+                    const vec3 S = (s.albedo * e.sigma_t) * in_scattering(tau_light, tau_behind, e.tau_view, mu, h, far_light, tau_sky);
                     if (grad != nullptr) {
                         // This step's weight in the pixel per unit source (add_segment's), times
                         // the sun here over sun_radiance: with the physical sky the sun changes

@@ -347,10 +347,6 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
         return 0;
     }
     const gl_api& gl = st.gl;
-    if (v.sky_twostream > 0) {
-        why = "sky-twostream is a research variant of the CPU reference";
-        return 0;
-    }
     const GLuint program = st.program_for(v, sc.shape, compile_time, pass, sc.sky, why);
     if (program == 0) return 0;
     gl.UseProgram(program);

@@ -165,7 +165,6 @@ void compute_physical_sky(const scene& s, frame_constants& f) {
     f.ground = a.air.ground_albedo / 3.14159265f * (sun_ground * std::fmax(f.sun_dir.y, 0.0f) + below.irradiance);
     f.ambient_top = top.mean_radiance;
     f.ambient_bottom = f.ground;
-    f.ambient_top_flux = top.irradiance / 3.14159265f;
 }
 
 // compute_physical_sky's fields of f, made once per sun direction and scene geometry.
@@ -185,7 +184,6 @@ void physical_sky(const scene& s, frame_constants& f) {
     f.sky_view = sky.sky_view;
     f.ambient_top = sky.ambient_top;
     f.ambient_bottom = sky.ambient_bottom;
-    f.ambient_top_flux = sky.ambient_top_flux;
     f.ground = sky.ground;
 }
 
@@ -439,13 +437,6 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             out.far_steps = value == "far";
             if (value != "capped" && value != "band" && value != "map" && value != "far")
                 return "reach must be capped, far, band or map, not '" + value + "'";
-        } else if (key == "sky-twostream") {
-            if (!parse_int(value, 0, 17, out.sky_twostream))
-                return "sky-twostream must be an integer from 0 to 17, not '" + value + "'";
-        } else if (key == "sky-twostream-flux") {
-            if (!parse_switch(value, out.sky_twostream_flux)) return "sky-twostream-flux must be on or off, not '" + value + "'";
-        } else if (key == "sky-twostream-phase") {
-            out.sky_twostream_phase = std::stof(value);
         } else if (key == "shadows") {
             if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
         } else {
@@ -465,7 +456,6 @@ std::string variant_spec(const variant& v) {
       << ",light-spacing=" << (v.light_quadratic ? "quadratic" : "uniform") << ",light-jitter=" << (v.light_jitter ? "on" : "off")
       << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
       << ",reach=" << (v.long_reach ? "band" : v.far_map ? "map" : v.far_steps ? "far" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
-    if (v.sky_twostream > 0) s << ",sky-twostream=" << v.sky_twostream << ",sky-twostream-flux=" << (v.sky_twostream_flux ? "on" : "off") << ",sky-twostream-phase=" << v.sky_twostream_phase;
     return s.str();
 }
 

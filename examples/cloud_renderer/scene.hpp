@@ -122,12 +122,6 @@ struct variant {
     // the band ends within the cap and nothing changes. Chosen on the selection presets of
     // both fields (docs/lighting_research.md, "The far field toward the sun").
     bool far_steps = true;
-    // Research (CPU reference only): the sky light as the two-stream solution of a slab lit by
-    // the sky above and the ground below (mean radiance at the sample); 0 off, 1 with the
-    // occluded sky light's depths, N > 1: depths from N - 1 quadratic steps straight up and down.
-    int sky_twostream = 0;
-    bool sky_twostream_flux = false;  // the sky above as its irradiance / pi, not its mean radiance
-    float sky_twostream_phase = 0.0f;  // times the phase's mean cosine: U + g Delta (view . up)
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
     bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
     bool sun = true;                 // draw the sun disc (sun_disc_radiance) in the background
@@ -274,7 +268,6 @@ struct frame_constants {
     glm::vec3 sun_dir;               // unit, toward the sun
     glm::vec3 sun_radiance;          // colour * intensity of direct sunlight
     glm::vec3 ambient_top, ambient_bottom;  // isotropic sky light at the layer top / bottom
-    glm::vec3 ambient_top_flux{0.0f};  // research (variant::sky_twostream_flux): the top's irradiance / pi
     glm::vec3 sky_zenith, sky_horizon, ground;
     float sun_angular_radius;        // the sun disc's angular radius (radians)
     float aureole;                   // the glow around the sun: aureole sun_radiance HG(mu, 0.75) in the sky
