@@ -145,7 +145,7 @@ cost=$(bash scripts/shader-cost.sh "$renderer")
   echo
   echo "$convergence"
   echo
-  echo "Why empty-space skipping and texture LOD stay off (the rows \\`skip=on\\` and \\`lod=on\\` above):"
+  echo 'Why empty-space skipping and texture LOD stay off (the rows `skip=on` and `lod=on` above):'
   echo "- Skipping probes the base shape at the end of each block of 4 empty steps. A cloud that"
   echo "  lies wholly between two probes (a chord shorter than the block: small clouds, grazing"
   echo "  rays) is stepped over: against the converged render it loses up to 7.5 dB of the horizon band. A"
