@@ -63,7 +63,8 @@ if(CLOUDMATH_BUILD_TESTS)
       # it and refuses truths traced under two skies.
       "$tool" render --preset ground --sky blue --out x.csv 2>/dev/null; s=$?
       [ $s -eq 2 ] || { echo "bad sky: exit $s, want 2"; exit 1; }
-      mkdir -p "$out/physical/images" "$out/mixed/images"
+      # The report makes DOCS/images itself (here: physical/ has none).
+      mkdir -p "$out/physical" "$out/mixed/images"
       # No --sky: the presets' own sky, the physical one.
       "$tool" render --preset ground --width 8 --height 4 --spp 2 --threads 2 --cache "$cache" --quiet \
         --out "$out/physical/truth_ground.csv" >/dev/null || { echo "physical render failed"; exit 1; }
@@ -73,6 +74,12 @@ if(CLOUDMATH_BUILD_TESTS)
       "$tool" report --presets ground --variant "default=" --data "$out/physical" --docs "$out/physical" --cache "$cache" \
         --quiet >/dev/null || { echo "physical report failed"; exit 1; }
       grep -qF '`--sky physical`' "$out/physical/lighting_truth.md" || { echo "physical report does not name its sky"; exit 1; }
+      [ -f "$out/physical/images/truth_ground.png" ] || { echo "the report did not make its images folder"; exit 1; }
+      # A --docs folder that cannot be made fails before any rendering, with the path.
+      : > "$out/a_file"
+      "$tool" report --presets ground --variant "default=" --data "$out/physical" --docs "$out/a_file/docs" --cache "$cache" \
+        --quiet >/dev/null 2>"$out.err"; s=$?
+      [ $s -eq 1 ] && grep -qF "cannot make $out/a_file/docs/images" "$out.err" || { echo "unmakeable --docs: exit $s"; cat "$out.err"; exit 1; }
       # A truth over a scene that has changed since (its fingerprint differs): the report marks it
       # stale, in its section and in the summary; the truth of the scene as it is, not.
       grep -q "scene that has changed since" "$out/physical/lighting_truth.md" && { echo "a current truth marked stale"; exit 1; }

@@ -25,6 +25,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -708,6 +709,13 @@ int run_report(int argc, char** argv) {
     const std::string data = f.get("--data", "docs/data"), docs = f.get("--docs", "docs");
     const auto threads = static_cast<unsigned>(f.integer("--threads", 0, 0, 1024));
     const bool quiet = f.has("--quiet");
+    // DOCS/images is made here, before any rendering, so that a new --docs folder works and a
+    // folder that cannot be made fails at once, not after minutes of rendering.
+    {
+        std::error_code ec;
+        std::filesystem::create_directories(docs + "/images", ec);
+        if (ec) throw std::runtime_error("cannot make " + docs + "/images: " + ec.message());
+    }
 
     std::vector<truth_image> truths;
     // One sky for a report: the model is rendered under the sky its truths were traced under.
