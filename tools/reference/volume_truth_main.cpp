@@ -83,6 +83,8 @@ const char* const usage_text =
     "           the bit. Without --resume an existing checkpoint is refused, never overwritten.\n"
     "           [--light all|sun|sky] (with the physical sky: the sun alone or the sky alone, the\n"
     "           truth's split by source; the file says which, and report renders the model so)\n"
+    "           [--orders N] (a diagnosis: light scattered at most N times; the file says so,\n"
+    "           report names it and fit-clouds refuses the file)\n"
     "           --phase: a montecarlo phase spec (hg:G, dual_hg:G0,G1,W, cs:G, mie_approx:D,\n"
     "           table:PATH, ...); default the renderer's dual_hg:0.8,-0.25,0.2.\n"
     "  report   the renderer (render_cpu_linear) for each variant against the truth files\n"
@@ -382,7 +384,7 @@ int run_render(int argc, char** argv) {
     const flags f(argc, argv,
                   {"--preset", "--out", "--width", "--height", "--spp", "--seed", "--phase", "--threads", "--cache", "--shape",
                    "--sky", "--light", "--noise-target", "--pilot-spp", "--min-spp", "--max-spp", "--checkpoint",
-                   "--budget-minutes"},
+                   "--budget-minutes", "--orders"},
                   {"--quiet", "--resume"});
     if (!f.has("--preset")) throw usage_error("render needs --preset NAME");
     if (!f.has("--out")) throw usage_error("render needs --out FILE.csv");
@@ -421,6 +423,9 @@ int run_render(int argc, char** argv) {
             throw usage_error("--budget-minutes must be a positive number of minutes, not '" + f.get("--budget-minutes", "") + "'");
         budget_minutes = *m;
     }
+    // --orders N: light scattered at most N times (a diagnosis: --orders 1 with --light sun is
+    // the single scattering the model's direct term stands for); 0, the default, every order.
+    const auto orders = static_cast<unsigned>(f.integer("--orders", 0, 0, 1 << 20));
     mc::run_options options;
     options.seed = static_cast<std::uint64_t>(f.integer("--seed", 1, 0, 1LL << 62));
     options.threads = static_cast<unsigned>(f.integer("--threads", 0, 0, 1024));
@@ -437,14 +442,15 @@ int run_render(int argc, char** argv) {
     const cr::cloud_textures textures = load_textures(f, quiet);
     const vt::cloud_medium medium(s, textures);
     const vt::lighting light = vt::make_cloud_lighting(s);
-    const vt::path_tracer tracer(medium, phase, s.albedo, light);
+    const vt::path_tracer tracer(medium, phase, s.albedo, light, orders);
     const std::vector<vt::camera_ray> rays = vt::make_camera_rays(s, width, height);
     const std::string sampling =
         noise_target ? "adaptive " + std::to_string(*noise_target) + " pilot " + std::to_string(pilot_spp) + " paths " +
                            std::to_string(min_spp) + "-" + std::to_string(max_spp)
                      : "uniform " + std::to_string(spp);
-    const std::map<std::string, std::string> identity =
+    std::map<std::string, std::string> identity =
         run_identity(s, width, height, options, phase.spec(), sampling, vt::scene_fingerprint(medium, light, rays));
+    if (orders > 0) identity.emplace("orders", std::to_string(orders));  // absent: every order (older checkpoints too)
 
     vt::truth_checkpoint c;
     if (resume) {
@@ -519,9 +525,13 @@ int run_render(int argc, char** argv) {
               {"threads", std::to_string(threads)},
               {"runs", std::to_string(c.runs)},
               {"seconds", fixed_1(c.seconds)}};
-    cloudmath::reference::write_text_file_atomically(
-        out, format_csv(t, {"preset", "description", "shape", "sky", "light", "width", "height", "spp", "allocation", "noise floor",
-                            "seed", "phase", "albedo", "scene", "threads", "runs", "seconds"}));
+    std::vector<std::string> meta_order = {"preset", "description", "shape", "sky", "light", "width", "height", "spp", "allocation",
+                                           "noise floor", "seed", "phase", "albedo", "scene", "threads", "runs", "seconds"};
+    if (orders > 0) {
+        t.meta.emplace("orders", std::to_string(orders));
+        meta_order.insert(meta_order.begin() + 5, "orders");
+    }
+    cloudmath::reference::write_text_file_atomically(out, format_csv(t, meta_order));
     std::remove(checkpoint.c_str());
     std::cout << "render " << s.name << ": " << width << "x" << height << ", " << t.meta.at("spp") << " spp ("
               << t.meta.at("allocation") << "), noise floor " << t.meta.at("noise floor") << ", " << t.meta.at("seconds")
@@ -722,6 +732,8 @@ int run_report(int argc, char** argv) {
     std::optional<cr::sky_model> sky;
     // ... and one light (the truth's split by source: all, the sun alone or the sky alone).
     std::optional<cr::light_sources> light;
+    // ... and one order limit (the file's "orders" line; none: every order).
+    std::optional<std::string> orders;
     for (const std::string& n : names) {
         const std::string path = data + "/truth_" + n + ".csv";
         truths.push_back(read_truth(path));
@@ -735,6 +747,12 @@ int run_report(int argc, char** argv) {
             throw usage_error(path + " was traced with the light '" + cr::name(traced_with) + "', the presets before it with '" +
                               cr::name(*light) + "': one report, one light");
         light = traced_with;
+        const auto o = truths.back().meta.find("orders");
+        const std::string traced_orders = o == truths.back().meta.end() ? "all" : o->second;
+        if (orders && *orders != traced_orders)
+            throw usage_error(path + " keeps light scattered " + traced_orders + " times, the presets before it " + *orders +
+                              ": one report, one order limit");
+        orders = traced_orders;
         // Files from before the shape existed were traced over the classic field.
         const auto it = truths.back().meta.find("shape");
         const std::string traced = it == truths.back().meta.end() ? "classic" : it->second;
@@ -752,6 +770,11 @@ int run_report(int argc, char** argv) {
                                                                   : "sky alone** (the sky, the lit ground and the background; no sun on the clouds)")
            << ", in the truth (`cloudmath_volume_truth render --light " << cr::name(*light)
            << "`) and in the model alike: the whole's error split by source.\n\n";
+    if (*orders != "all")
+        md << "Orders: **light scattered at most " << *orders << (*orders == "1" ? " time" : " times")
+           << "** in the truth (`cloudmath_volume_truth render --orders " << *orders
+           << "`); the model is rendered as the variants say (a diagnosis: compare a variant with the same orders, e.g. "
+              "`lighting=octaves,octaves=1` for single scattering).\n\n";
     md << "Generated by `bash scripts/truth.sh"
        << (*sky == cr::sky_model::physical ? " --sky physical" : "")
        << "` (tools/reference/volume_truth_main.cpp; the truth\n"
@@ -1044,6 +1067,9 @@ int run_fit_clouds(int argc, char** argv) {
             throw std::runtime_error(path + " was not traced over the " + std::string(cr::name(shape)) + " field");
         s.sky = traced_sky(t, path);
         s.light = traced_light(t, path);
+        if (t.meta.count("orders") != 0)
+            throw std::runtime_error(path + " was traced with --orders " + t.meta.at("orders") +
+                                     " (a diagnosis, light scattered at most that many times): the model is fitted to every order");
     };
     std::vector<std::pair<cr::scene, truth_image>> fit_data(fit_list.size());
     for (std::size_t i = 0; i < fit_list.size(); ++i) load(fit_list[i], fit_data[i].first, fit_data[i].second);
