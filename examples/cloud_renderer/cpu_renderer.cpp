@@ -232,7 +232,10 @@ struct pixel_program {
             }));
         }
         const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up_at(p)), s.planet_radius, band.x, band.y);
-        const float reach = v.long_reach ? light_long_reach : k.light_march_max;
+        const bool sunward = glm::dot(toward, k.sun_dir) > 0.0f;
+        const float reach = v.long_reach ? light_long_reach
+                            : v.near_reach > 0.0f && sunward ? v.near_reach
+                                                             : k.light_march_max;
         const float length_to_exit = seg.y > seg.x ? std::min(seg.y, reach) : 0.0f;
         float tau = 0.0f;
         // Step i spans [at(i / n), at((i + 1) / n)], its sample at at((i + offset) / n).
@@ -248,11 +251,16 @@ struct pixel_program {
         // variant::far_steps: toward the sun, the rest of the band beyond the capped march in
         // far_step_count uniform steps on the base shape (the near steps keep the detail).
         if (v.far_steps && seg.y > length_to_exit && glm::dot(toward, k.sun_dir) > 0.0f) {
-            const int nf = far_step_count(v.light_steps);
+            const int nf = v.far_step_override > 0 ? v.far_step_override : far_step_count(v.light_steps);
             const float span = (std::min(seg.y, light_long_reach) - length_to_exit) / float(nf);
             for (int j = 0; j < nf; ++j) {
                 const vec3 q = p + toward * (length_to_exit + (float(j) + light_offset) * span);
-                tau += s.extinction * field.coarse_density(q, altitude(q), counter, footprint) * span;
+                const float d = (v.far_steps_full ? cone_extinction(q, counter, footprint)
+                                                  : s.extinction * field.coarse_density(q, altitude(q), counter, footprint)) * span;
+                tau += d;
+                // near-reach (research): the sky light's depth keeps the first light_march_max.
+                if (near != nullptr && v.near_reach > 0.0f && length_to_exit + (float(j) + light_offset) * span < k.light_march_max)
+                    *near += d;
             }
         }
         // variant::far_map: toward the sun, what lies beyond the capped march, from the map

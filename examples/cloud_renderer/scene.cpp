@@ -437,6 +437,17 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             out.far_steps = value == "far";
             if (value != "capped" && value != "band" && value != "map" && value != "far")
                 return "reach must be capped, far, band or map, not '" + value + "'";
+        } else if (key == "far-steps") {
+            if (!parse_int(value, 0, 256, out.far_step_override))
+                return "far-steps must be an integer from 0 to 256, not '" + value + "'";
+        } else if (key == "near-reach") {
+            out.near_reach = std::stof(value);
+            if (!(out.near_reach >= 0.0f && out.near_reach <= light_long_reach))
+                return "near-reach must be 0 to 30000 metres, not '" + value + "'";
+        } else if (key == "far-density") {
+            if (value == "base") out.far_steps_full = false;
+            else if (value == "full") out.far_steps_full = true;
+            else return "far-density must be base or full, not '" + value + "'";
         } else if (key == "shadows") {
             if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
         } else {
@@ -456,6 +467,9 @@ std::string variant_spec(const variant& v) {
       << ",light-spacing=" << (v.light_quadratic ? "quadratic" : "uniform") << ",light-jitter=" << (v.light_jitter ? "on" : "off")
       << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
       << ",reach=" << (v.long_reach ? "band" : v.far_map ? "map" : v.far_steps ? "far" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
+    if (v.far_step_override > 0 || v.far_steps_full || v.near_reach > 0.0f)
+        s << ",far-steps=" << v.far_step_override << ",far-density=" << (v.far_steps_full ? "full" : "base")
+          << ",near-reach=" << v.near_reach;
     return s.str();
 }
 
