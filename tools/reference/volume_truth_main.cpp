@@ -360,11 +360,12 @@ std::string allocation_note(const vt::truth_checkpoint& c) {
     return note + ")";
 }
 
-// The run's identity in a checkpoint and its truth file: a resume must match it.
+// The run's identity in a checkpoint and its truth file: a resume must match it. orders: the
+// --orders limit, 0 for every order (then no "orders" entry, as in checkpoints made before it).
 std::map<std::string, std::string> run_identity(const cr::scene& s, int width, int height, const mc::run_options& options,
                                                 const std::string& phase, const std::string& sampling,
-                                                const std::string& scene_fingerprint) {
-    return {{"preset", s.name},
+                                                const std::string& scene_fingerprint, unsigned orders) {
+    std::map<std::string, std::string> identity = {{"preset", s.name},
             {"shape", cr::name(s.shape)},
             {"sky", cr::name(s.sky)},
             {"light", cr::name(s.light)},
@@ -375,6 +376,8 @@ std::map<std::string, std::string> run_identity(const cr::scene& s, int width, i
             {"albedo", std::to_string(s.albedo)},
             {"sampling", sampling},
             {"scene", scene_fingerprint}};
+    if (orders > 0) identity.emplace("orders", std::to_string(orders));
+    return identity;
 }
 
 // Exit status of a render stopped by its time budget, its checkpoint kept (scripts/truth.sh).
@@ -448,9 +451,8 @@ int run_render(int argc, char** argv) {
         noise_target ? "adaptive " + std::to_string(*noise_target) + " pilot " + std::to_string(pilot_spp) + " paths " +
                            std::to_string(min_spp) + "-" + std::to_string(max_spp)
                      : "uniform " + std::to_string(spp);
-    std::map<std::string, std::string> identity =
-        run_identity(s, width, height, options, phase.spec(), sampling, vt::scene_fingerprint(medium, light, rays));
-    if (orders > 0) identity.emplace("orders", std::to_string(orders));  // absent: every order (older checkpoints too)
+    const std::map<std::string, std::string> identity =
+        run_identity(s, width, height, options, phase.spec(), sampling, vt::scene_fingerprint(medium, light, rays), orders);
 
     vt::truth_checkpoint c;
     if (resume) {
@@ -529,7 +531,7 @@ int run_render(int argc, char** argv) {
                                            "noise floor", "seed", "phase", "albedo", "scene", "threads", "runs", "seconds"};
     if (orders > 0) {
         t.meta.emplace("orders", std::to_string(orders));
-        meta_order.insert(meta_order.begin() + 5, "orders");
+        meta_order.insert(std::find(meta_order.begin(), meta_order.end(), "light") + 1, "orders");  // the light's limit
     }
     cloudmath::reference::write_text_file_atomically(out, format_csv(t, meta_order));
     std::remove(checkpoint.c_str());
