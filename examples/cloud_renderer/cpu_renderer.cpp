@@ -232,8 +232,7 @@ struct pixel_program {
             }));
         }
         const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up_at(p)), s.planet_radius, band.x, band.y);
-        const float cap = v.long_reach_cap > 0.0f ? v.long_reach_cap : light_long_reach;
-        const float reach = v.long_reach ? cap : k.light_march_max;
+        const float reach = v.long_reach ? light_long_reach : k.light_march_max;
         const float length_to_exit = seg.y > seg.x ? std::min(seg.y, reach) : 0.0f;
         float tau = 0.0f;
         // Step i spans [at(i / n), at((i + 1) / n)], its sample at at((i + offset) / n).
@@ -250,7 +249,7 @@ struct pixel_program {
         // far_step_count uniform steps on the base shape (the near steps keep the detail).
         if (v.far_steps && seg.y > length_to_exit && glm::dot(toward, k.sun_dir) > 0.0f) {
             const int nf = far_step_count(v.light_steps);
-            const float span = (std::min(seg.y, cap) - length_to_exit) / float(nf);
+            const float span = (std::min(seg.y, light_long_reach) - length_to_exit) / float(nf);
             for (int j = 0; j < nf; ++j) {
                 const vec3 q = p + toward * (length_to_exit + (float(j) + light_offset) * span);
                 tau += s.extinction * field.coarse_density(q, altitude(q), counter, footprint) * span;

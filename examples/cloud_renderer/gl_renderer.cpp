@@ -346,10 +346,6 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
               "the light or the sky's alone";
         return 0;
     }
-    if (v.long_reach_cap > 0.0f || v.light_steps > 256) {
-        why = "long-reach and more than 256 light steps are research variants of the CPU reference";
-        return 0;
-    }
     const gl_api& gl = st.gl;
     const GLuint program = st.program_for(v, sc.shape, compile_time, pass, sc.sky, why);
     if (program == 0) return 0;

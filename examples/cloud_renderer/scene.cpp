@@ -204,8 +204,7 @@ float display_exposure(const scene& s) { return make_frame_constants(s).exposure
 
 float light_reach(const variant& v, const frame_constants& k) {
     if (v.light == light_mode::cone) return k.cone_far_distance + 0.5f * k.cone_far_length;
-    if (v.light == light_mode::map || v.long_reach || v.far_steps || v.far_map)
-        return v.long_reach_cap > 0.0f ? v.long_reach_cap : light_long_reach;
+    if (v.light == light_mode::map || v.long_reach || v.far_steps || v.far_map) return light_long_reach;
     return k.light_march_max;
 }
 
@@ -399,12 +398,8 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             if (!parse_int(value, 1, 64, out.refine))
                 return "refine must be an integer from 1 to 64, not '" + value + "'";
         } else if (key == "light-steps") {
-            if (!parse_int(value, 1, 2048, out.light_steps))
-                return "light-steps must be an integer from 1 to 2048, not '" + value + "'";
-        } else if (key == "long-reach") {
-            out.long_reach_cap = std::stof(value);
-            if (!(out.long_reach_cap >= 1000.0f && out.long_reach_cap <= 500000.0f))
-                return "long-reach must be 1000 to 500000 metres, not '" + value + "'";
+            if (!parse_int(value, 1, 256, out.light_steps))
+                return "light-steps must be an integer from 1 to 256, not '" + value + "'";
         } else if (key == "integration") {
             if (value == "analytic") out.integration = integration_mode::analytic;
             else if (value == "naive") out.integration = integration_mode::naive;
@@ -461,7 +456,6 @@ std::string variant_spec(const variant& v) {
       << ",light-spacing=" << (v.light_quadratic ? "quadratic" : "uniform") << ",light-jitter=" << (v.light_jitter ? "on" : "off")
       << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
       << ",reach=" << (v.long_reach ? "band" : v.far_map ? "map" : v.far_steps ? "far" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
-    if (v.long_reach_cap > 0.0f) s << ",long-reach=" << v.long_reach_cap;
     return s.str();
 }
 
