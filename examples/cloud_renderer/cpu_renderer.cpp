@@ -1,7 +1,6 @@
 #include "cpu_renderer.hpp"
 
 #include "far_shadow.hpp"
-#include "sun_depth_volume.hpp"
 #include "physical_sky.hpp"
 
 #include "cloud_density.hpp"
@@ -96,7 +95,6 @@ struct pixel_program {
     const cm::diffusion_model* model;  // the diffusion model's fitted numbers
     const haze_table* haze = nullptr;  // the physical sky's aerial perspective (physical_sky.hpp)
     const far_shadow_table* far_field = nullptr;  // ... and its clouds' shadow beyond the light march (far_shadow.hpp)
-    const sun_depth_volume* depth_volume = nullptr;  // variant::far_volume (research)
     std::vector<vec3> shadow_map;  // the Beer shadow map (needs_shadow_map), row j = 0 first
     long shadow_map_reads = 0;     // texture reads of building it (once per frame)
     float map_footprint = 0.0f;    // its texels' width with LOD, else 0
@@ -110,8 +108,7 @@ struct pixel_program {
           band(k.band),
           model(m != nullptr ? m : va.table == diffusion_table::clouds ? &cm::diffusion_models::clouds : &cm::diffusion_models::fitted),
           haze(sc.sky == sky_model::physical ? &physical_haze(sc.camera_altitude, k.sun_dir) : nullptr),
-          far_field(sc.sky == sky_model::physical ? &far_shadow(sc, k.sun_dir, t, light_reach(va, k)) : nullptr),
-          depth_volume(va.far_volume > 0.0f ? &sun_depth(sc, k.sun_dir, t, va.far_volume, va.far_volume_u, va.far_volume_transmittance) : nullptr) {
+          far_field(sc.sky == sky_model::physical ? &far_shadow(sc, k.sun_dir, t, light_reach(va, k)) : nullptr) {
         if (needs_shadow_map(v)) {
             if (v.lod) map_footprint = 2.0f * k.shadow_half_extent / float(shadow_map_size);
             shadow_map.resize(static_cast<std::size_t>(shadow_map_size) * static_cast<std::size_t>(shadow_map_size));
@@ -235,31 +232,8 @@ struct pixel_program {
             }));
         }
         const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up_at(p)), s.planet_radius, band.x, band.y);
-        const bool sunward = glm::dot(toward, k.sun_dir) > 0.0f;
-        const float reach = v.long_reach ? light_long_reach
-                            : v.near_reach > 0.0f && sunward ? v.near_reach
-                            : depth_volume != nullptr && sunward ? 1000.0f
-                                                             : k.light_march_max;
-        float length_to_exit = seg.y > seg.x ? std::min(seg.y, reach) : 0.0f;
-        // variant::far_volume (research): the near march runs on to the volume's next node
-        // slice beyond `reach`, where the volume is read without interpolating along the path.
-        int landing_slice = -1;
-        if (depth_volume != nullptr && sunward && seg.y > length_to_exit) {
-            const vec3 q = p + toward * length_to_exit;
-            const vec2 next = sun_depth_next_slice(*depth_volume, q, altitude(q), toward, s.planet_radius,
-                                                   s.planet_radius + s.camera_altitude);
-            if (next.y >= 0.0f && length_to_exit + next.x < seg.y) {
-                length_to_exit += next.x;
-                landing_slice = int(next.y);
-            } else if (next.y < 0.0f && v.far_volume_turn) {
-                // The path turns before the next slice (a sun below this point's horizon):
-                // the volume's own trilinear value at the near march's end, whose node holds
-                // the whole turning path marched by the sweep (research: far-volume-turn=on).
-                landing_slice = -2;
-            } else {
-                length_to_exit = seg.y;
-            }
-        }
+        const float reach = v.long_reach ? light_long_reach : k.light_march_max;
+        const float length_to_exit = seg.y > seg.x ? std::min(seg.y, reach) : 0.0f;
         float tau = 0.0f;
         // Step i spans [at(i / n), at((i + 1) / n)], its sample at at((i + offset) / n).
         const float nl = float(v.light_steps);
@@ -271,42 +245,14 @@ struct pixel_program {
             tau += light_extinction(p + toward * at((float(i) + light_offset) / nl), i >= light_far_step, counter, footprint) * ds;
         }
         if (near != nullptr) *near = tau;
-        // variant::far_volume (research): the rest toward the sun from the depth volume; the sky
-        // light's depth keeps the first light_march_max (the volume's difference between the
-        // near march's end and there: the same path).
-        if (depth_volume != nullptr && sunward) {
-            if (landing_slice >= 0) {
-                const vec3 q = p + toward * length_to_exit;
-                const auto as_depth = [this](float value) {
-                    return depth_volume->transmittance ? -std::log(std::max(value, 1e-30f)) : value;
-                };
-                const auto depth_at = [&](const vec3& x) { return as_depth(sun_depth_lookup(*depth_volume, x, altitude(x))); };
-                const float rest = as_depth(sun_depth_on_slice(*depth_volume, landing_slice, q));
-                if (near != nullptr) {
-                    const vec3 q6 = p + toward * std::min(seg.y, k.light_march_max);
-                    *near += std::max(rest - depth_at(q6), 0.0f);
-                }
-                tau += rest;
-            } else if (landing_slice == -2) {
-                const vec3 q = p + toward * length_to_exit;
-                const float value = sun_depth_lookup(*depth_volume, q, altitude(q));
-                tau += depth_volume->transmittance ? -std::log(std::max(value, 1e-30f)) : value;
-            }
-            return tau;
-        }
         // variant::far_steps: toward the sun, the rest of the band beyond the capped march in
         // far_step_count uniform steps on the base shape (the near steps keep the detail).
         if (v.far_steps && seg.y > length_to_exit && glm::dot(toward, k.sun_dir) > 0.0f) {
-            const int nf = v.far_step_override > 0 ? v.far_step_override : far_step_count(v.light_steps);
+            const int nf = far_step_count(v.light_steps);
             const float span = (std::min(seg.y, light_long_reach) - length_to_exit) / float(nf);
             for (int j = 0; j < nf; ++j) {
                 const vec3 q = p + toward * (length_to_exit + (float(j) + light_offset) * span);
-                const float d = (v.far_steps_full ? cone_extinction(q, counter, footprint)
-                                                  : s.extinction * field.coarse_density(q, altitude(q), counter, footprint)) * span;
-                tau += d;
-                // near-reach (research): the sky light's depth keeps the first light_march_max.
-                if (near != nullptr && v.near_reach > 0.0f && length_to_exit + (float(j) + light_offset) * span < k.light_march_max)
-                    *near += d;
+                tau += s.extinction * field.coarse_density(q, altitude(q), counter, footprint) * span;
             }
         }
         // variant::far_map: toward the sun, what lies beyond the capped march, from the map

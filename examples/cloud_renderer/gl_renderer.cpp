@@ -347,10 +347,6 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
         return 0;
     }
     const gl_api& gl = st.gl;
-    if (v.far_step_override > 0 || v.far_steps_full || v.near_reach > 0.0f || v.far_volume > 0.0f) {
-        why = "far-steps, far-density, near-reach and far-volume are research variants of the CPU reference";
-        return 0;
-    }
     const GLuint program = st.program_for(v, sc.shape, compile_time, pass, sc.sky, why);
     if (program == 0) return 0;
     gl.UseProgram(program);

@@ -204,7 +204,6 @@ float display_exposure(const scene& s) { return make_frame_constants(s).exposure
 
 float light_reach(const variant& v, const frame_constants& k) {
     if (v.light == light_mode::cone) return k.cone_far_distance + 0.5f * k.cone_far_length;
-    if (v.far_volume > 0.0f && v.light == light_mode::march) return 1e7f;  // the volume reaches the band's exit
     if (v.light == light_mode::map || v.long_reach || v.far_steps || v.far_map) return light_long_reach;
     return k.light_march_max;
 }
@@ -438,31 +437,6 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             out.far_steps = value == "far";
             if (value != "capped" && value != "band" && value != "map" && value != "far")
                 return "reach must be capped, far, band or map, not '" + value + "'";
-        } else if (key == "far-steps") {
-            if (!parse_int(value, 0, 256, out.far_step_override))
-                return "far-steps must be an integer from 0 to 256, not '" + value + "'";
-        } else if (key == "near-reach") {
-            out.near_reach = std::stof(value);
-            if (!(out.near_reach >= 0.0f && out.near_reach <= light_long_reach))
-                return "near-reach must be 0 to 30000 metres, not '" + value + "'";
-        } else if (key == "far-volume") {
-            out.far_volume = std::stof(value);
-            if (!(out.far_volume == 0.0f || (out.far_volume >= 50.0f && out.far_volume <= 5000.0f)))
-                return "far-volume must be 0 or 50 to 5000 metres, not '" + value + "'";
-        } else if (key == "far-volume-u") {
-            out.far_volume_u = std::stof(value);
-            if (!(out.far_volume_u >= 50.0f && out.far_volume_u <= 5000.0f))
-                return "far-volume-u must be 50 to 5000 metres, not '" + value + "'";
-        } else if (key == "far-volume-turn") {
-            if (!parse_switch(value, out.far_volume_turn)) return "far-volume-turn must be on or off, not '" + value + "'";
-        } else if (key == "far-volume-kind") {
-            if (value == "depth") out.far_volume_transmittance = false;
-            else if (value == "transmittance") out.far_volume_transmittance = true;
-            else return "far-volume-kind must be depth or transmittance, not '" + value + "'";
-        } else if (key == "far-density") {
-            if (value == "base") out.far_steps_full = false;
-            else if (value == "full") out.far_steps_full = true;
-            else return "far-density must be base or full, not '" + value + "'";
         } else if (key == "shadows") {
             if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
         } else {
@@ -482,10 +456,6 @@ std::string variant_spec(const variant& v) {
       << ",light-spacing=" << (v.light_quadratic ? "quadratic" : "uniform") << ",light-jitter=" << (v.light_jitter ? "on" : "off")
       << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
       << ",reach=" << (v.long_reach ? "band" : v.far_map ? "map" : v.far_steps ? "far" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
-    if (v.far_step_override > 0 || v.far_steps_full || v.near_reach > 0.0f || v.far_volume > 0.0f)
-        s << ",far-steps=" << v.far_step_override << ",far-density=" << (v.far_steps_full ? "full" : "base")
-          << ",near-reach=" << v.near_reach << ",far-volume=" << v.far_volume
-          << ",far-volume-kind=" << (v.far_volume_transmittance ? "transmittance" : "depth") << ",far-volume-u=" << v.far_volume_u << ",far-volume-turn=" << (v.far_volume_turn ? "on" : "off");
     return s.str();
 }
 

@@ -122,19 +122,6 @@ struct variant {
     // the band ends within the cap and nothing changes. Chosen on the selection presets of
     // both fields (docs/lighting_research.md, "The far field toward the sun").
     bool far_steps = true;
-    // Research (CPU reference only): the far steps' count (0: far_step_count(light_steps)) and
-    // their density (false: the base shape, coarse_density; true: the full density).
-    int far_step_override = 0;
-    bool far_steps_full = false;
-    // Research: the near march's cap (metres; 0: light_march_max).
-    float near_reach = 0.0f;
-    // Research: toward the sun, beyond the near march (near_reach, 1 km if unset), one read of
-    // the precomputed depth volume with nodes this many metres apart (sun_depth_volume.hpp)
-    // instead of the far steps; 0: off.
-    float far_volume = 0.0f;
-    bool far_volume_transmittance = false;  // research: the volume holds transmittances
-    float far_volume_u = 1000.0f;           // research: its nodes' spacing toward the sun
-    bool far_volume_turn = false;           // research: a path that turns before the next slice reads the volume trilinearly
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
     bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
     bool sun = true;                 // draw the sun disc (sun_disc_radiance) in the background
