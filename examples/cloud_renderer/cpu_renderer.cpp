@@ -268,46 +268,13 @@ struct pixel_program {
     // tau_behind and tau_view are used by the diffusion model only; far: the far shadow's
     // transmittance (far_shadow_at), on the sun's light only; tau_sky: the depth toward the sun
     // the occluded sky light uses (sky_depth_toward_sun).
-    // Research (variant::diffuse_top): the diffusion model's terms with its diffuse term (and
-    // the table's coordinates) from the vertical chord through the sample (tau_up to the
-    // layer's top, tau_down to its bottom) scaled by the sun's zenith cosine mu0 there (the
-    // flux through a horizontal top), wherever that is larger than the sun's chord gives: at
-    // a low sun the diffused light reaches a body through the layer's top, not along the
-    // grazing chord. At a high sun the two chords agree and the sun's is kept.
-    cm::detail::diffusion_sample<float> diffusion_terms(float tau_light, float tau_behind, float tau_view, float mu,
-                                                        const vec3& vertical) const {
-        cm::detail::diffusion_sample<float> t =
-            cm::detail::diffusion_sample_terms(tau_light, tau_behind, tau_view, mu, phase_g_mean, s.albedo);
-        if (v.diffuse_top && vertical.z > 0.0f) {
-            const cm::detail::diffusion_sample<float> top =
-                cm::detail::diffusion_sample_terms(vertical.x, vertical.y, tau_view, mu, phase_g_mean, s.albedo);
-            if (vertical.z * top.diffuse > t.diffuse) {
-                t.diffuse = vertical.z * top.diffuse;
-                t.u = top.u;
-            }
-        }
-        return t;
-    }
-
     vec3 in_scattering(float tau_light, float tau_behind, float tau_view, float mu, float h, float far_light,
-                       float tau_sky, const vec3& vertical = vec3(0.0f)) const {
+                       float tau_sky) const {
         const auto phase_fn = [this](float m, float scale) { return phase(m, scale); };
-        float sun = 0.0f;
-        if (v.lighting == lighting_model::diffusion && v.diffuse_top) {
-            namespace L = cm::diffusion_layout;
-            const cm::detail::diffusion_sample<float> t = diffusion_terms(tau_light, tau_behind, tau_view, mu, vertical);
-            float peak = 0.0f;
-            for (int ic = 0; ic < L::peak_c_count; ++ic) {
-                float weight = 0.0f;
-                for (int ia = 0; ia < L::peak_a_count; ++ia) weight += float(model->peak[ia * L::peak_c_count + ic]) * t.beams[ia];
-                peak += weight * phase_fn(t.mu, float(L::peak_c[ic]));
-            }
-            sun = std::max(phase_fn(t.mu, 1.0f) * t.direct + peak + t.diffuse * std::max(cm::diffusion_table_lookup(*model, t.u), 0.0f), 0.0f);
-        } else {
-            sun = v.lighting == lighting_model::diffusion
-                      ? cm::diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, phase_g_mean, s.albedo, *model, phase_fn)
-                      : cm::multiple_scattering_with(tau_light, mu, k.ms_a, k.ms_b, k.ms_c, v.octaves, phase_fn);
-        }
+        float sun = v.lighting == lighting_model::diffusion
+                        ? cm::diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, phase_g_mean, s.albedo,
+                                                        *model, phase_fn)
+                        : cm::multiple_scattering_with(tau_light, mu, k.ms_a, k.ms_b, k.ms_c, v.octaves, phase_fn);
         if (v.powder) sun *= glm::mix(2.0f * cm::powder(tau_light, 2.0f), 1.0f, 0.5f + 0.5f * mu);
         const vec3 sun_light = sun_at_height(k, haze != nullptr, h) * far_light;  // the physical sky's sun by height
         if (!v.occluded_ambient) return sun_light * sun + glm::mix(k.ambient_bottom, k.ambient_top, h);
@@ -348,10 +315,10 @@ struct pixel_program {
 
     // One sample's share of the pixel's gradient (shade_linear's grad): its source is
     // weight * sun_radiance * (diffusion model), linear in the table and peak weights.
-    void add_gradient(float* grad, float weight, float tau_light, float tau_behind, float tau_view, float mu,
-                      const vec3& vertical = vec3(0.0f)) const {
+    void add_gradient(float* grad, float weight, float tau_light, float tau_behind, float tau_view, float mu) const {
         namespace L = cm::diffusion_layout;
-        const cm::detail::diffusion_sample<float> t = diffusion_terms(tau_light, tau_behind, tau_view, mu, vertical);
+        const cm::detail::diffusion_sample<float> t =
+            cm::detail::diffusion_sample_terms(tau_light, tau_behind, tau_view, mu, phase_g_mean, s.albedo);
         cm::detail::diffusion_table_corners(t.u, [&](int index, float w) { grad[index] += weight * t.diffuse * w; });
         for (int ia = 0; ia < L::peak_a_count; ++ia)
             for (int ic = 0; ic < L::peak_c_count; ++ic)
@@ -422,17 +389,7 @@ struct pixel_program {
                                                  : 0.0f;
                     const float h = cm::height_fraction(alts, s.layer_bottom, s.layer_top);
                     const float far_light = far_shadow_at(dir * e.t, alts);
-                    vec3 vertical(0.0f);  // research (variant::diffuse_top): tau up, tau down, mu0
-                    if (v.diffuse_top && v.lighting == lighting_model::diffusion) {
-                        const vec3 up = up_at(dir * e.t);
-                        vertical.z = std::max(glm::dot(up, k.sun_dir), 0.0f);
-                        if (v.diffuse_top_unscaled && vertical.z > 0.0f) vertical.z = 1.0f;
-                        if (vertical.z > 0.0f) {
-                            vertical.x = light_optical_depth(dir * e.t, alts, up, light_mode::march, light_reads, footprint, lo);
-                            vertical.y = light_optical_depth(dir * e.t, alts, -up, light_mode::march, light_reads, footprint, lo);
-                        }
-                    }
-                    const vec3 S = (s.albedo * e.sigma_t) * in_scattering(tau_light, tau_behind, e.tau_view, mu, h, far_light, tau_sky, vertical);
+                    const vec3 S = (s.albedo * e.sigma_t) * in_scattering(tau_light, tau_behind, e.tau_view, mu, h, far_light, tau_sky);
                     if (grad != nullptr) {
                         // This step's weight in the pixel per unit source (add_segment's), times
                         // the sun here over sun_radiance: with the physical sky the sun changes
@@ -443,7 +400,7 @@ struct pixel_program {
                         const float sun_sq = glm::dot(k.sun_radiance, k.sun_radiance);
                         const float ratio = haze == nullptr ? 1.0f : sun_sq > 0.0f ? glm::dot(sun_here, k.sun_radiance) / sun_sq : 0.0f;
                         const float w = e.transmittance * s.albedo * e.sigma_t * cm::integrate_scattering(1.0f, e.sigma_t, e.ds);
-                        add_gradient(grad, w * ratio, tau_light, tau_behind, e.tau_view, mu, vertical);
+                        add_gradient(grad, w * ratio, tau_light, tau_behind, e.tau_view, mu);
                         const vec2 o = v.occluded_ambient ? sky_occlusion(tau_sky, tau_behind) : vec2(1.0f);
                         sky[0] += w * h * o.x;
                         sky[1] += w * (1.0f - h) * o.y;

@@ -437,11 +437,6 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             out.far_steps = value == "far";
             if (value != "capped" && value != "band" && value != "map" && value != "far")
                 return "reach must be capped, far, band or map, not '" + value + "'";
-        } else if (key == "diffuse-top") {
-            out.diffuse_top_unscaled = value == "unscaled";
-            if (!out.diffuse_top_unscaled && !parse_switch(value, out.diffuse_top))
-                return "diffuse-top must be on, off or unscaled, not '" + value + "'";
-            if (out.diffuse_top_unscaled) out.diffuse_top = true;
         } else if (key == "shadows") {
             if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
         } else {
@@ -461,7 +456,6 @@ std::string variant_spec(const variant& v) {
       << ",light-spacing=" << (v.light_quadratic ? "quadratic" : "uniform") << ",light-jitter=" << (v.light_jitter ? "on" : "off")
       << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
       << ",reach=" << (v.long_reach ? "band" : v.far_map ? "map" : v.far_steps ? "far" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
-    if (v.diffuse_top) s << ",diffuse-top=" << (v.diffuse_top_unscaled ? "unscaled" : "on");
     return s.str();
 }
 

@@ -122,10 +122,6 @@ struct variant {
     // the band ends within the cap and nothing changes. Chosen on the selection presets of
     // both fields (docs/lighting_research.md, "The far field toward the sun").
     bool far_steps = true;
-    // Research (CPU reference only): the diffusion model's diffuse term also from the vertical
-    // chord, scaled by the sun's zenith cosine, where that is larger (pixel_program::diffusion_terms).
-    bool diffuse_top = false;
-    bool diffuse_top_unscaled = false;  // research: the vertical route not scaled by mu0 (diffuse-top=unscaled)
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
     bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
     bool sun = true;                 // draw the sun disc (sun_disc_radiance) in the background
