@@ -43,8 +43,10 @@
 //           degrees (docs/atmosphere.md); with Hillaire's LUT alone 1.7-5.5% and 10-11%.
 // Light:    per unit of the sun's illuminance above the air: radiance in 1/sr, to be multiplied
 //           by the sun's illuminance (lux per channel gives cd/m^2; docs/atmosphere.md).
-// GLSL twin: cloudmath/glsl/atmosphere.glsl (the LUT bakers and lookups, atmosphere_inscatter
-//           and atmosphere_sky_radiance are C++ only: a shader samples its own textures).
+// GLSL twin: cloudmath/glsl/atmosphere.glsl (the LUT bakers and lookups; atmosphere_inscatter
+//           and atmosphere_sky_radiance read the multiple-scattering table through a function
+//           the shader defines, CM_ATMOSPHERE_TABLE, within 1e-4 relative of these in
+//           docs/glsl_parity.md; the refined LUT and the ground irradiance LUT are C++ only).
 #ifndef CLOUDMATH_ATMOSPHERE_HPP
 #define CLOUDMATH_ATMOSPHERE_HPP
 

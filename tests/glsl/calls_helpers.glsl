@@ -10,6 +10,10 @@ float cm_test_extinction(vec3 p, int i) {
     return cm_height_fog_density(p.y, 0.01, 1e-3) * (1.0 + 0.1 * float(i));
 }
 
+// The multiple-scattering table of cm_atmosphere_inscatter and cm_atmosphere_sky_radiance:
+// made up, smooth in the texel and distinct per part (a renderer reads its textures here).
+vec3 cm_test_atmosphere_table(int part, int x, int y) { return vec3(0.3, 0.45, 0.8) * (1.0 + 0.01 * float(x + y + part)); }
+
 // cm_diffusion_chord_fluence's fluence plus its flux (an out parameter).
 float cm_test_chord_fluence(float x, float y, float exp_neg_x, float kappa) {
     float flux;

@@ -32,6 +32,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -63,10 +64,16 @@ float cm_test_extinction(vec3 p, int i);
 #define CM_MS_PHASE cm_test_phase
 #define CM_DIFFUSION_PHASE cm_test_phase
 #define CM_CONE_EXTINCTION cm_test_extinction
+vec3 cm_test_atmosphere_table(int part, int x, int y);
+#define CM_ATMOSPHERE_TABLE cm_test_atmosphere_table
 )";
 // The extinction hook uses core.glsl's accurate sin and cos: the built-ins may be 2^-11 off
 // (SwiftShader's are), which would test the platform's trigonometry, not the cone sampling.
 const char* const glsl_after = R"(
+vec3 cm_test_atmosphere_table(int part, int x, int y) {
+    float p = float(part), fx = float(x), fy = float(y);
+    return vec3(0.3, 0.45, 0.8) * ((1.0 + 0.07 * fx + 0.05 * fy) / (1.0 + 0.1 * p)) + vec3(0.002 * p, 0.001 * fx, 0.0005 * fy);
+}
 float cm_test_phase(float mu, float scale) { return cm_phase_hg_dual(mu, 0.8 * scale, -0.5 * scale, 0.5); }
 float cm_test_extinction(vec3 p, int i) {
     return 0.01 * (1.0 + 0.5 * cmi_sin_cos(0.01 * p.x).x * cmi_sin_cos(0.013 * p.z).y) + 0.001 * float(i);
@@ -94,6 +101,49 @@ vec4 cm_test_beer_shadow_march(float start, float scale, float depth) {
     return vec4(texel.x, texel.y * 1000.0, cm_beer_shadow_optical_depth(texel, depth), cm_beer_shadow_transmittance(texel, depth));
 }
 )";
+// The multiple-scattering table of the sky's cases: every part smooth in (x, y) and distinct.
+vec3 cpp_test_atmosphere_table(int part, int x, int y) {
+    const float p = float(part), fx = float(x), fy = float(y);
+    return vec3(0.3f, 0.45f, 0.8f) * ((1.0f + 0.07f * fx + 0.05f * fy) / (1.0f + 0.1f * p)) + vec3(0.002f * p, 0.001f * fx, 0.0005f * fy);
+}
+// The same table as atmosphere_multiple_scattering_table's vectors: width x height texels per
+// part, parts 1 (psi), 2 (with vertical moments) or 3 (with the sun-azimuth moments and the
+// aerosol field), and the ground irradiance's first ground_width texels (5 or 1; none where 0).
+struct cpp_test_sky_table {
+    std::vector<vec3> psi, vertical, along, aerosol, ground, ground1;  // ground: 5 texels, ground1: its first
+    cm::atmosphere_multiple_scattering_table<float> view(int width, int height, int parts, int ground_width) const {
+        cm::atmosphere_multiple_scattering_table<float> t;
+        t.width = width;
+        t.height = height;
+        if (parts >= 1) t.texels = &psi;
+        if (parts >= 2) t.vertical_moments = &vertical;
+        if (parts >= 3) {
+            t.sun_azimuth_moments = &along;
+            t.aerosol_field = &aerosol;
+        }
+        if (ground_width > 0) t.ground_irradiance = ground_width == 1 ? &ground1 : &ground;
+        return t;
+    }
+};
+cpp_test_sky_table make_cpp_test_sky_table(int width, int height, int ground_width) {
+    cpp_test_sky_table t;
+    const auto part = [&](int p) {
+        std::vector<vec3> v;
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x) v.push_back(cpp_test_atmosphere_table(p, x, y));
+        return v;
+    };
+    t.psi = part(0);
+    t.vertical = part(1);
+    t.along = part(2);
+    for (int j = 0; j < cm::atmosphere_aerosol_field_nodes; ++j) {
+        const std::vector<vec3> node = part(4 + j);
+        t.aerosol.insert(t.aerosol.end(), node.begin(), node.end());
+    }
+    for (int x = 0; x < ground_width; ++x) t.ground.push_back(cpp_test_atmosphere_table(3, x, 0));
+    t.ground1.push_back(cpp_test_atmosphere_table(3, 0, 0));
+    return t;
+}
 float cpp_test_phase(float mu, float scale) { return cm::phase_hg_dual(mu, 0.8f * scale, -0.5f * scale, 0.5f); }
 float cpp_test_extinction(const vec3& p, int i) {
     return 0.01f * (1.0f + 0.5f * std::sin(0.01f * p.x) * std::cos(0.013f * p.z)) + 0.001f * float(i);
@@ -854,6 +904,49 @@ std::vector<parity_case> make_cases() {
              "vec4(cm_atmosphere_multiple_scattering_lut_altitude_mu(cm_earth_atmosphere(), a.xy, b.xy) * vec2(1e-4, 1.0), 0.0, 0.0)",
              [earth](vec4 a, vec4 b) { return vec4(cm::atmosphere_multiple_scattering_lut_altitude_mu(earth, vec2(a), vec2(b)) * vec2(1e-4f, 1.0f), 0.0f, 0.0f); },
              texels, 2, 1.0f, 1e-4});
+        // The sky and the aerial perspective with the test's table (cm_test_atmosphere_table,
+        // 8 x 6 texels, 5 ground texels): a = (view direction, camera altitude), b = (sun
+        // direction, distance). Views up, down (the ground), along the horizon toward and away
+        // from the sun and a few degrees off it; suns at the zenith, low, at the horizon and
+        // below it (twilight, night); cameras on the ground, in the air, at the top of the air
+        // and above it; distances from none to beyond the air. 12 view and 12 sun steps. The sun
+        // on the horizon is off the horizontal views' plane: seen from the ground along a level
+        // view exactly away from it, every step's sun ray grazes the ground at the camera (its
+        // transmittance jumps between 0 and 1 by one rounding; HLSL's compiler rounds otherwise).
+        const auto unit = [](float x, float y, float z) { return glm::normalize(vec3(x, y, z)); };
+        const std::vector<vec3> sky_views = {unit(0, 1, 0), unit(0, -1, 0), unit(1, 0, 0), unit(-1, 0, 0), unit(0.3f, 0.035f, 0.95f),
+                                             unit(0.9f, -0.09f, 0.4f), unit(-0.5f, 0.17f, -0.85f)};
+        const std::vector<vec3> sky_suns = {unit(0, 1, 0), unit(0.87f, 0.5f, 0), unit(1, 0.035f, 0), unit(0.8f, 0, 0.6f), unit(1, -0.035f, 0),
+                                            unit(0, -1, 0)};
+        const std::shared_ptr<const cpp_test_sky_table> sky_table = std::make_shared<cpp_test_sky_table>(make_cpp_test_sky_table(8, 6, 5));
+        std::vector<std::pair<vec4, vec4>> sky_rays, segments;
+        for (const vec3& v : sky_views)
+            for (const vec3& sun : sky_suns)
+                for (float h : {0.0f, 1500.0f, 60000.0f, 70000.0f}) {
+                    sky_rays.push_back({vec4(v, h), vec4(sun, 0.0f)});
+                    if (h != 70000.0f)
+                        for (float d : {0.0f, 2000.0f, 1e9f}) segments.push_back({vec4(v, h), vec4(sun, d)});
+                }
+        for (int parts : {0, 1, 2, 3}) {
+            const std::string table = "CmAtmosphereTable(8, 6, " + std::to_string(parts) + ", 5)";
+            add({"cm_atmosphere_inscatter",
+                 "vec4(cm_atmosphere_inscatter(cm_earth_atmosphere(), " + table + ", a.w, a.xyz, b.xyz, b.w, 12, 12).radiance * 100.0, "
+                 "cm_atmosphere_inscatter(cm_earth_atmosphere(), " + table + ", a.w, a.xyz, b.xyz, b.w, 12, 12).transmittance.z)",
+                 [earth, sky_table, parts](vec4 a, vec4 b) {
+                     const cm::atmosphere_segment<float> s =
+                         cm::atmosphere_inscatter(earth, sky_table->view(8, 6, parts, 5), a.w, vec3(a), vec3(b), b.w, 12, 12);
+                     return vec4(s.radiance * 100.0f, s.transmittance.z); },
+                 segments, 4, 1e-2f, 1e-4});
+        }
+        for (const auto& [parts, ground] : std::vector<std::pair<int, int>>{{3, 5}, {3, 0}, {2, 1}, {0, 5}}) {
+            const std::string table = "CmAtmosphereTable(8, 6, " + std::to_string(parts) + ", " + std::to_string(ground) + ")";
+            add({"cm_atmosphere_sky_radiance",
+                 "vec4(cm_atmosphere_sky_radiance(cm_earth_atmosphere(), " + table + ", a.w, a.xyz, b.xyz, 12, 12) * 100.0, 0.0)",
+                 [earth, sky_table, parts = parts, ground = ground](vec4 a, vec4 b) {
+                     return vec4(cm::atmosphere_sky_radiance(earth, sky_table->view(8, 6, parts, ground), a.w, vec3(a), vec3(b), 12, 12) * 100.0f,
+                                 0.0f); },
+                 sky_rays, 3, 1e-2f, 1e-4});
+        }
         std::vector<std::pair<vec4, vec4>> cameras;
         for (float n : {1.4f, 2.8f, 16.0f})
             for (float t : {1.0f / 1000.0f, 1.0f / 100.0f, 1.0f})

@@ -33,6 +33,7 @@ export const HOOKS = {
   CM_CONE_EXTINCTION: { fn: 'cm_cone_extinction', ret: 'float', params: [['vec3', 'p'], ['int', 'i']] },
   CM_MS_PHASE: { fn: 'cm_ms_phase', ret: 'float', params: [['float', 'mu'], ['float', 'scale']] },
   CM_DIFFUSION_PHASE: { fn: 'cm_diffusion_phase', ret: 'float', params: [['float', 'mu'], ['float', 'scale']] },
+  CM_ATMOSPHERE_TABLE: { fn: 'cm_atmosphere_table', ret: 'vec3', params: [['int', 'part'], ['int', 'x'], ['int', 'y']] },
 };
 
 const FILE_MARK = '#pragma cm_file';

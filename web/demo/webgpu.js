@@ -8,12 +8,15 @@ import { wgslSources } from '../dist/index.js';
 import { cloudsWgsl } from './clouds_wgsl.js';
 
 // One WGSL module (WGSL has no #include; module-scope declarations may come in any order):
-// cloudmath.wgsl, the whole library without hooks; each *_hooks.wgsl, the functions that call
-// the user's hooks (cm_cone_extinction, cm_ms_phase, cm_diffusion_phase); clouds.wgsl, which
-// defines them.
+// cloudmath.wgsl, the whole library without hooks; the *_hooks.wgsl files whose hooks
+// clouds.wgsl defines (cm_cone_extinction, cm_ms_phase, cm_diffusion_phase; each file's header
+// names its hooks: "//   fn cm_x(..."), the functions that call them; clouds.wgsl.
+const hooksOf = (text) => [...text.matchAll(/^\/\/ {3}fn (cm_\w+)\(/gm)].map((m) => m[1]);
+const definesHooks = (text) => hooksOf(text).every((fn) => new RegExp(`^fn ${fn}\\(`, 'm').test(cloudsWgsl));
 export const cloudsWgslParts = [
   ['cloudmath.wgsl', wgslSources['cloudmath.wgsl']],
-  ...Object.keys(wgslSources).filter((f) => f.endsWith('_hooks.wgsl')).sort().map((f) => [f, wgslSources[f]]),
+  ...Object.keys(wgslSources).filter((f) => f.endsWith('_hooks.wgsl') && definesHooks(wgslSources[f])).sort()
+    .map((f) => [f, wgslSources[f]]),
   ['clouds.wgsl', cloudsWgsl],
 ];
 

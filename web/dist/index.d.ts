@@ -56,6 +56,7 @@ export declare const modules: Readonly<Record<ModuleName, string>>;
 /** The file name of each WGSL twin, as a key of `wgslSources`. */
 export type WgslSourceName =
   | "atmosphere.wgsl"
+  | "atmosphere_hooks.wgsl"
   | "cloudmath.wgsl"
   | "cone_sampling.wgsl"
   | "cone_sampling_hooks.wgsl"
@@ -79,6 +80,7 @@ export type WgslSourceName =
 /** The name of each WGSL module, as an argument of `wgsl()`. */
 export type WgslModuleName =
   | "atmosphere"
+  | "atmosphere_hooks"
   | "cloudmath"
   | "cone_sampling"
   | "cone_sampling_hooks"

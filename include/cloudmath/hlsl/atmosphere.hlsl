@@ -8,10 +8,13 @@
 // (CmAtmosphere, Earth's from cm_earth_atmosphere()), its extinction at an altitude, the
 // optical depth and transmittance along a ray by quadrature, the transmittance LUT's
 // parametrisation (Bruneton 2017) both ways, the scattering coefficients, the sun's illuminance,
-// Hillaire 2020's multiple scattering and its LUT's parametrisation, and EV100 exposure.
+// Hillaire 2020's multiple scattering and its LUT's parametrisation, the sky's radiance and the
+// aerial perspective (with CM_ATMOSPHERE_TABLE, below), and EV100 exposure.
 // Use: CmAtmosphere air = cm_earth_atmosphere();
 //      vec3 T_sun = cm_atmosphere_transmittance(air, altitude, sun_dir.y, 64);
 //      vec3 T_lut = texture(u_transmittance_lut, cm_atmosphere_transmittance_lut_uv(air, altitude, mu, vec2(256.0, 64.0))).rgb;
+//      // with #define CM_ATMOSPHERE_TABLE my_table before the include (the section below):
+//      vec3 sky = sun_lux * cm_atmosphere_sky_radiance(air, CmAtmosphereTable(32, 32, 3, 64), altitude, view_dir, sun_dir, 32, 32);
 // Units: metres, 1/m; channels 680, 550, 440 nm.
 #ifndef CM_ATMOSPHERE_HLSL
 #define CM_ATMOSPHERE_HLSL
@@ -227,6 +230,204 @@ float2 cm_atmosphere_multiple_scattering_lut_altitude_mu(CmAtmosphere air, float
     float m = 2.0 * x_mu - 1.0;
     return float2(x_h * (air.top_radius - air.bottom_radius), m * abs(m));
 }
+
+// ---------------------------------------------------------------------------------------
+// The sky and the aerial perspective (atmosphere_inscatter, atmosphere_sky_radiance): the
+// march of atmosphere.hpp step for step, reading the multiple-scattering table through a
+// function you define, so that the texels come from your own textures:
+//   vec3 my_table(int part, int x, int y);   // declared before the include, defined anywhere
+//   #define CM_ATMOSPHERE_TABLE my_table
+//   #include "cloudmath/hlsl/atmosphere.hlsl"
+//   vec3 my_table(int part, int x, int y) {  // e.g. the parts stacked in one RGB32F texture
+//       return part == CM_ATMOSPHERE_TABLE_GROUND ? texelFetch(u_ground, ivec2(x, 0), 0).rgb
+//                                                 : texelFetch(u_table, ivec2(x, y + part * 32), 0).rgb;
+//   }
+// It returns texel (x, y) of `part` (row y = 0 first, as atmosphere_sky_luts stores them):
+// CM_ATMOSPHERE_TABLE_PSI the LUT's Psi_ms, _VERTICAL its vertical moments, _ALONG its
+// sun-azimuth moments, _AEROSOL + j (j = 0 .. CM_ATMOSPHERE_AEROSOL_NODES - 1) the aerosol
+// field's node j, and _GROUND the ground irradiance (x its column, y = 0). The library
+// interpolates them itself, exactly as the C++ (detail::lut_bilinear, clamp to edge), so a
+// shader and the CPU give the same sky to float rounding, whatever the texture filtering.
+#define CM_ATMOSPHERE_TABLE_PSI 0
+#define CM_ATMOSPHERE_TABLE_VERTICAL 1
+#define CM_ATMOSPHERE_TABLE_ALONG 2
+#define CM_ATMOSPHERE_TABLE_GROUND 3
+#define CM_ATMOSPHERE_TABLE_AEROSOL 4
+#define CM_ATMOSPHERE_AEROSOL_NODES 17
+
+// atmosphere_multiple_scattering_table (atmosphere.hpp): which parts of the table a shader has
+// and their sizes. parts 0: no multiple scattering (the single-scattering sky); 1: Psi_ms alone
+// (Hillaire's LUT, an isotropic field); 2: with the vertical moments; 3: with the sun-azimuth
+// moments and the aerosol field as well (atmosphere_make_sky_luts). width and height (>= 2)
+// are the LUT's; ground_width the ground irradiance's texels (0: the ground below the horizon
+// reflects the sun alone).
+struct CmAtmosphereTable {
+    int width;
+    int height;
+    int parts;
+    int ground_width;
+};
+// CmAtmosphereTable(...) of the GLSL: HLSL has no struct constructors.
+CmAtmosphereTable cm_make_CmAtmosphereTable(int width, int height, int parts, int ground_width) {
+    CmAtmosphereTable r;
+    r.width = width;
+    r.height = height;
+    r.parts = parts;
+    r.ground_width = ground_width;
+    return r;
+}
+
+// What a view ray gathers (atmosphere_segment): the transmittance to the segment's end and the
+// light scattered into it per unit sun illuminance (1/sr).
+struct CmAtmosphereSegment {
+    float3 transmittance;
+    float3 radiance;
+};
+// CmAtmosphereSegment(...) of the GLSL: HLSL has no struct constructors.
+CmAtmosphereSegment cm_make_CmAtmosphereSegment(float3 transmittance, float3 radiance) {
+    CmAtmosphereSegment r;
+    r.transmittance = transmittance;
+    r.radiance = radiance;
+    return r;
+}
+
+// floor(x) as an int clamped to [lo, hi]; NaN gives lo (core.hpp's floor_to_int).
+int cmi_floor_to_int(float x, int lo, int hi) {
+    if (!(x > float(lo))) return lo;
+    if (x >= float(hi)) return hi;
+    return int(floor(x));
+}
+
+// The length of a ray in the air: to the ground where it meets it, else to the top.
+float cmi_atmosphere_ray_length(CmAtmosphere air, float altitude, float cos_zenith) {
+    if (cm_atmosphere_ray_hits_ground(air, altitude, cos_zenith)) return cm_ray_sphere_intersect_altitude(altitude, cos_zenith, air.bottom_radius, 0.0).x;
+    return cm_atmosphere_distance_to_top(air, altitude, cos_zenith);
+}
+
+// The Lambertian ground's radiance per unit sun illuminance under a sun of zenith cosine mu_s.
+float3 cmi_atmosphere_lit_ground(CmAtmosphere air, float mu_s, int sun_steps) {
+    return cm_atmosphere_transmittance(air, 0.0, mu_s, sun_steps) * (max(mu_s, 0.0) * air.ground_albedo * CM_INV_PI);
+}
+
+// The square of the cosine of the azimuth between directions of zenith cosines mu and mu_s
+// whose dot product is nu; 1/2 (no azimuth) when either is vertical.
+float cmi_atmosphere_cos2_azimuth(float mu, float mu_s, float nu) {
+    float den = (1.0 - mu * mu) * (1.0 - mu_s * mu_s);
+    if (!(den > 1e-8)) return 0.5;
+    float c = nu - mu * mu_s;
+    return clamp(c * c / den, 0.0, 1.0);
+}
+
+#ifdef CM_ATMOSPHERE_TABLE
+// Part `part` of a width x height table at uv, bilinear with clamp to edge (GL_LINEAR).
+float3 cmi_atmosphere_table_bilinear(int part, int w, int h, float2 uv) {
+    float x = uv.x * float(w) - 0.5;
+    float y = uv.y * float(h) - 0.5;
+    int x0 = cmi_floor_to_int(x, 0, w - 2);
+    int y0 = cmi_floor_to_int(y, 0, h - 2);
+    float fx = cm_saturate(x - float(x0));
+    float fy = cm_saturate(y - float(y0));
+    float3 bottom = CM_ATMOSPHERE_TABLE(part, x0, y0) * (1.0 - fx) + CM_ATMOSPHERE_TABLE(part, x0 + 1, y0) * fx;
+    float3 upper = CM_ATMOSPHERE_TABLE(part, x0, y0 + 1) * (1.0 - fx) + CM_ATMOSPHERE_TABLE(part, x0 + 1, y0 + 1) * fx;
+    return bottom * (1.0 - fy) + upper * fy;
+}
+
+// The sky's irradiance on the ground for the sun's zenith cosine mu_s there: the ground
+// part's w texels read linearly by the LUT's column coordinate.
+float3 cmi_atmosphere_ground_irradiance_at(CmAtmosphere air, int w, float mu_s) {
+    if (w < 2)
+        return w == 1 ? CM_ATMOSPHERE_TABLE(CM_ATMOSPHERE_TABLE_GROUND, 0, 0) : float3(0.0, 0.0, 0.0);
+    float x = cm_atmosphere_multiple_scattering_lut_uv(air, 0.0, mu_s, float2(float(w), 1.0)).x * float(w) - 0.5;
+    int x0 = cmi_floor_to_int(x, 0, w - 2);
+    float fx = cm_saturate(x - float(x0));
+    return CM_ATMOSPHERE_TABLE(CM_ATMOSPHERE_TABLE_GROUND, x0, 0) * (1.0 - fx) + CM_ATMOSPHERE_TABLE(CM_ATMOSPHERE_TABLE_GROUND, x0 + 1, 0) * fx;
+}
+
+// What the table's field scatters into a ray of zenith cosine cos_view_zenith at (altitude,
+// cos_sun_zenith); cos2_azimuth: the squared cosine of the view's azimuth from the sun's
+// (atmosphere.hpp's detail::atmosphere_table_source).
+float3 cmi_atmosphere_table_source(CmAtmosphere air, CmAtmosphereTable ms, float altitude, float cos_sun_zenith, float cos_view_zenith, float cos2_azimuth) {
+    float2 uv = cm_atmosphere_multiple_scattering_lut_uv(air, altitude, cos_sun_zenith, float2(float(ms.width), float(ms.height)));
+    float3 psi = cmi_atmosphere_table_bilinear(CM_ATMOSPHERE_TABLE_PSI, ms.width, ms.height, uv);
+    if (ms.parts < 2) return cm_atmosphere_scattering_coefficient(air, altitude) * psi;
+    float3 b = cmi_atmosphere_table_bilinear(CM_ATMOSPHERE_TABLE_VERTICAL, ms.width, ms.height, uv);
+    if (ms.parts < 3) return cm_atmosphere_multiple_scattering_source(air, altitude, psi, b, cos_view_zenith);
+    float h = max(altitude, 0.0);
+    float mu2 = clamp(cos_view_zenith * cos_view_zenith, 0.0, 1.0);
+    float c2 = clamp(cos2_azimuth, 0.0, 1.0);
+    float3 along = cmi_atmosphere_table_bilinear(CM_ATMOSPHERE_TABLE_ALONG, ms.width, ms.height, uv);
+    float3 horizontal = along * c2 + (psi - b - along) * (1.0 - c2);
+    float3 rayleigh = air.rayleigh_scattering * exp(-h / air.rayleigh_scale_height) * (0.75 * (psi + horizontal * (1.0 - mu2) + b * mu2));
+    float3 aerosol = psi;
+    // With the sun below this point's horizon the field is lit from one side of the sky only:
+    // isotropic there (atmosphere.hpp says why).
+    if (cos_sun_zenith > 0.0) {
+        float m = clamp(cos_view_zenith, -1.0, 1.0);
+        float x = m < 0.0 ? -sqrt(-m) : sqrt(m);
+        float fj = (x + 1.0) * 0.5 * float(CM_ATMOSPHERE_AEROSOL_NODES - 1);
+        int j0 = cmi_floor_to_int(fj, 0, CM_ATMOSPHERE_AEROSOL_NODES - 2);
+        float fr = cm_saturate(fj - float(j0));
+        aerosol = cmi_atmosphere_table_bilinear(CM_ATMOSPHERE_TABLE_AEROSOL + j0, ms.width, ms.height, uv) * (1.0 - fr) + cmi_atmosphere_table_bilinear(CM_ATMOSPHERE_TABLE_AEROSOL + j0 + 1, ms.width, ms.height, uv) * fr;
+    }
+    return rayleigh + aerosol * (air.mie_scattering * exp(-h / air.mie_scale_height));
+}
+
+// The light the air scatters into the view ray between the camera (at `altitude`) and
+// `distance` metres along it, or the end of the air or the ground if nearer, with the
+// transmittance over the same stretch (atmosphere_inscatter: its steps t_i = D (i/steps)^2,
+// the sun's single scattering and the table's field per step). Directions are unit vectors in
+// the camera's frame with +y up. Per unit sun illuminance. Cost per step: one sun
+// transmittance of sun_steps steps and, with ms.parts 3, 20 table reads of 4 texels.
+CmAtmosphereSegment cm_atmosphere_inscatter(CmAtmosphere air, CmAtmosphereTable ms, float altitude, float3 view_dir, float3 sun_dir, float distance, int steps, int sun_steps) {
+    int n = max(steps, 1);
+    float h = clamp(altitude, 0.0, air.top_radius - air.bottom_radius);
+    float r = air.bottom_radius + h;
+    float mu = clamp(view_dir.y, -1.0, 1.0);
+    float mu_s = clamp(sun_dir.y, -1.0, 1.0);
+    float nu = clamp(dot(view_dir, sun_dir), -1.0, 1.0);
+    float D = clamp(distance, 0.0, cmi_atmosphere_ray_length(air, h, mu));
+    bool use_ms = ms.parts > 0 && ms.width >= 2 && ms.height >= 2;
+    float cos2_azimuth = cmi_atmosphere_cos2_azimuth(mu, mu_s, nu);
+    CmAtmosphereSegment out_segment = cm_make_CmAtmosphereSegment(float3(1.0, 1.0, 1.0), float3(0.0, 0.0, 0.0));
+    for (int i = 0; i < n; ++i) {
+        float x0 = float(i) / float(n);
+        float x1 = float(i + 1) / float(n);
+        float t0 = D * x0 * x0;
+        float t1 = D * x1 * x1;
+        float ds = t1 - t0;
+        float t = 0.5 * (t0 + t1);
+        float hy = cm_altitude_along_ray(h, mu, air.bottom_radius, t);
+        float mu_sy = clamp((r * mu_s + t * nu) / (air.bottom_radius + hy), -1.0, 1.0);
+        float3 sigma_t = cm_atmosphere_extinction(air, hy);
+        float3 source = cm_atmosphere_scattering(air, hy, nu) * cm_atmosphere_transmittance(air, hy, mu_sy, sun_steps);
+        if (use_ms)
+            source += cmi_atmosphere_table_source(air, ms, hy, mu_sy, clamp((r * mu + t) / (air.bottom_radius + hy), -1.0, 1.0), cos2_azimuth);
+        float3 step_t = cm_beer_lambert(sigma_t * ds);
+        float3 integral = cm_one_minus_exp_neg_over_x(sigma_t * ds) * ds;
+        out_segment.radiance += out_segment.transmittance * source * integral;
+        out_segment.transmittance *= step_t;
+    }
+    return out_segment;
+}
+
+// The sky's radiance along view_dir per unit sun illuminance (1/sr; the sun's disc excluded):
+// cm_atmosphere_inscatter to the end of the air and, for rays that meet the ground, the
+// Lambertian ground seen through the air, lit by the sun and (ms.ground_width > 0) the sky
+// (atmosphere_sky_radiance). Accuracy as the C++ (atmosphere.hpp's header); parity with it in
+// docs/glsl_parity.md.
+float3 cm_atmosphere_sky_radiance(CmAtmosphere air, CmAtmosphereTable ms, float altitude, float3 view_dir, float3 sun_dir, int steps, int sun_steps) {
+    CmAtmosphereSegment seg = cm_atmosphere_inscatter(air, ms, altitude, view_dir, sun_dir, 3.0e38, steps, sun_steps);
+    float h = clamp(altitude, 0.0, air.top_radius - air.bottom_radius);
+    float mu = clamp(view_dir.y, -1.0, 1.0);
+    if (!cm_atmosphere_ray_hits_ground(air, h, mu)) return seg.radiance;
+    float t = cmi_atmosphere_ray_length(air, h, mu);
+    float mu_sg = clamp(((air.bottom_radius + h) * sun_dir.y + t * dot(view_dir, sun_dir)) / air.bottom_radius, -1.0, 1.0);
+    float3 ground = cmi_atmosphere_lit_ground(air, mu_sg, sun_steps);
+    if (ms.ground_width > 0)
+        ground += cmi_atmosphere_ground_irradiance_at(air, ms.ground_width, mu_sg) * (air.ground_albedo * CM_INV_PI);
+    return seg.radiance + seg.transmittance * ground;
+}
+#endif // CM_ATMOSPHERE_TABLE
 
 // EV100 of a camera (f-number, shutter seconds, ISO), of an average luminance, and the exposure.
 float cm_ev100_from_camera(float aperture, float shutter_time, float iso) {

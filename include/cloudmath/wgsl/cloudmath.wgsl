@@ -1338,10 +1338,13 @@ fn cm_texture_lod(footprint: f32, texel_size: f32) -> f32 {
 // (CmAtmosphere, Earth's from cm_earth_atmosphere()), its extinction at an altitude, the
 // optical depth and transmittance along a ray by quadrature, the transmittance LUT's
 // parametrisation (Bruneton 2017) both ways, the scattering coefficients, the sun's illuminance,
-// Hillaire 2020's multiple scattering and its LUT's parametrisation, and EV100 exposure.
+// Hillaire 2020's multiple scattering and its LUT's parametrisation, the sky's radiance and the
+// aerial perspective (with CM_ATMOSPHERE_TABLE, below), and EV100 exposure.
 // Use: CmAtmosphere air = cm_earth_atmosphere();
 //      vec3 T_sun = cm_atmosphere_transmittance(air, altitude, sun_dir.y, 64);
 //      vec3 T_lut = texture(u_transmittance_lut, cm_atmosphere_transmittance_lut_uv(air, altitude, mu, vec2(256.0, 64.0))).rgb;
+//      // with #define CM_ATMOSPHERE_TABLE my_table before the include (the section below):
+//      vec3 sky = sun_lux * cm_atmosphere_sky_radiance(air, CmAtmosphereTable(32, 32, 3, 64), altitude, view_dir, sun_dir, 32, 32);
 // Units: metres, 1/m; channels 680, 550, 440 nm.
 
 // atmosphere_parameters (atmosphere.hpp), field for field.
@@ -1537,6 +1540,77 @@ fn cm_atmosphere_multiple_scattering_lut_altitude_mu(air: CmAtmosphere, uv: vec2
     let x_h: f32 = cm_saturate((uv.y - 0.5 / size.y) / (1.0 - 1.0 / size.y));
     let m: f32 = 2.0 * x_mu - 1.0;
     return vec2f(x_h * (air.top_radius - air.bottom_radius), m * abs(m));
+}
+
+// ---------------------------------------------------------------------------------------
+// The sky and the aerial perspective (atmosphere_inscatter, atmosphere_sky_radiance): the
+// march of atmosphere.hpp step for step, reading the multiple-scattering table through a
+// function you define, so that the texels come from your own textures:
+//   vec3 my_table(int part, int x, int y);   // declared before the include, defined anywhere
+//   #define CM_ATMOSPHERE_TABLE my_table
+//   #include "cloudmath/glsl/atmosphere.glsl"
+//   vec3 my_table(int part, int x, int y) {  // e.g. the parts stacked in one RGB32F texture
+//       return part == CM_ATMOSPHERE_TABLE_GROUND ? texelFetch(u_ground, ivec2(x, 0), 0).rgb
+//                                                 : texelFetch(u_table, ivec2(x, y + part * 32), 0).rgb;
+//   }
+// It returns texel (x, y) of `part` (row y = 0 first, as atmosphere_sky_luts stores them):
+// CM_ATMOSPHERE_TABLE_PSI the LUT's Psi_ms, _VERTICAL its vertical moments, _ALONG its
+// sun-azimuth moments, _AEROSOL + j (j = 0 .. CM_ATMOSPHERE_AEROSOL_NODES - 1) the aerosol
+// field's node j, and _GROUND the ground irradiance (x its column, y = 0). The library
+// interpolates them itself, exactly as the C++ (detail::lut_bilinear, clamp to edge), so a
+// shader and the CPU give the same sky to float rounding, whatever the texture filtering.
+const CM_ATMOSPHERE_TABLE_PSI = 0;
+const CM_ATMOSPHERE_TABLE_VERTICAL = 1;
+const CM_ATMOSPHERE_TABLE_ALONG = 2;
+const CM_ATMOSPHERE_TABLE_GROUND = 3;
+const CM_ATMOSPHERE_TABLE_AEROSOL = 4;
+const CM_ATMOSPHERE_AEROSOL_NODES = 17;
+
+// atmosphere_multiple_scattering_table (atmosphere.hpp): which parts of the table a shader has
+// and their sizes. parts 0: no multiple scattering (the single-scattering sky); 1: Psi_ms alone
+// (Hillaire's LUT, an isotropic field); 2: with the vertical moments; 3: with the sun-azimuth
+// moments and the aerosol field as well (atmosphere_make_sky_luts). width and height (>= 2)
+// are the LUT's; ground_width the ground irradiance's texels (0: the ground below the horizon
+// reflects the sun alone).
+struct CmAtmosphereTable {
+    width: i32,
+    height: i32,
+    parts: i32,
+    ground_width: i32,
+}
+
+// What a view ray gathers (atmosphere_segment): the transmittance to the segment's end and the
+// light scattered into it per unit sun illuminance (1/sr).
+struct CmAtmosphereSegment {
+    transmittance: vec3f,
+    radiance: vec3f,
+}
+
+// floor(x) as an int clamped to [lo, hi]; NaN gives lo (core.hpp's floor_to_int).
+fn cmi_floor_to_int(x: f32, lo: i32, hi: i32) -> i32 {
+    if (!(x > f32(lo))) { return lo; }
+    if (x >= f32(hi)) { return hi; }
+    return i32(floor(x));
+}
+
+// The length of a ray in the air: to the ground where it meets it, else to the top.
+fn cmi_atmosphere_ray_length(air: CmAtmosphere, altitude: f32, cos_zenith: f32) -> f32 {
+    if (cm_atmosphere_ray_hits_ground(air, altitude, cos_zenith)) { return cm_ray_sphere_intersect_altitude(altitude, cos_zenith, air.bottom_radius, 0.0).x; }
+    return cm_atmosphere_distance_to_top(air, altitude, cos_zenith);
+}
+
+// The Lambertian ground's radiance per unit sun illuminance under a sun of zenith cosine mu_s.
+fn cmi_atmosphere_lit_ground(air: CmAtmosphere, mu_s: f32, sun_steps: i32) -> vec3f {
+    return cm_atmosphere_transmittance(air, 0.0, mu_s, sun_steps) * (max(mu_s, 0.0) * air.ground_albedo * CM_INV_PI);
+}
+
+// The square of the cosine of the azimuth between directions of zenith cosines mu and mu_s
+// whose dot product is nu; 1/2 (no azimuth) when either is vertical.
+fn cmi_atmosphere_cos2_azimuth(mu: f32, mu_s: f32, nu: f32) -> f32 {
+    let den: f32 = (1.0 - mu * mu) * (1.0 - mu_s * mu_s);
+    if (!(den > 1e-8)) { return 0.5; }
+    let c: f32 = nu - mu * mu_s;
+    return clamp(c * c / den, 0.0, 1.0);
 }
 
 // EV100 of a camera (f-number, shutter seconds, ISO), of an average luminance, and the exposure.
