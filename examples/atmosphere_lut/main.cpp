@@ -52,7 +52,10 @@ const char* const usage =
     "  W, H: 2..4096 (default 256 x 64; multiple scattering 32 x 32; sky view 64 x 64); N: steps per ray 1..1024\n"
     "  (default 64; multiple scattering 20; sky view 32); R: timed runs 1..100 (default 5)\n"
     "  A: the sky view's altitude in metres, 0..100000 (default 2); E: its sun's elevation in degrees, -90..90 (default 6)\n"
-    "  --print-shader: print the compute shader and exit\n";
+    "  --print-shader: print the compute shader and exit\n"
+    "       cloudmath_atmosphere_lut --write-table FILE | --check-table FILE\n"
+    "  the refined table the sky view reads (32 x 32, parts stacked, no GPU needed), written as raw little-endian\n"
+    "  float32 RGB (the web demo's web/demo/sky_table.bin), or checked against FILE (exit 1 when it differs)\n";
 
 enum class lut_kind { transmittance, multiple_scattering, sky_view };
 
@@ -141,6 +144,77 @@ std::vector<glm::vec3> cpu_sky_view(const cloudmath::atmosphere_parameters<float
     return out;
 }
 
+// The refined table as the sky view's shader reads it: atmosphere_make_sky_luts' parts stacked
+// (part p at rows p h .. p h + h - 1; part CM_ATMOSPHERE_TABLE_GROUND's block left 0, the
+// ground irradiance having a texture of its own), row-major, row 0 first.
+std::vector<glm::vec3> stacked_table(const cloudmath::atmosphere_sky_luts<float>& luts) {
+    const std::size_t block = std::size_t(luts.width) * std::size_t(luts.height);
+    std::vector<glm::vec3> stacked(block * std::size_t(table_parts), glm::vec3(0.0f));
+    const auto put = [&](int part, const glm::vec3* from) {
+        std::copy(from, from + block, stacked.begin() + std::ptrdiff_t(block * std::size_t(part)));
+    };
+    put(0, luts.texels.data());
+    put(1, luts.vertical_moments.data());
+    put(2, luts.sun_azimuth_moments.data());
+    for (int j = 0; j < cloudmath::atmosphere_aerosol_field_nodes; ++j) put(4 + j, luts.aerosol_field.data() + block * std::size_t(j));
+    return stacked;
+}
+
+// --write-table / --check-table: the stacked table of Earth's air (the renderer's physical_air:
+// atmosphere_make_sky_luts' defaults at 32 x 32) as raw little-endian float32 RGB. Exit status
+// 0 written or equal (within 1e-5 of each part's largest value: another compiler may round
+// otherwise), 1 when it differs or cannot be read or written.
+int table_file(const std::string& path, bool check) {
+    const auto air = cloudmath::earth_atmosphere<float>();
+    const std::vector<glm::vec3> table = stacked_table(cloudmath::atmosphere_make_sky_luts(air, table_size, table_size));
+    std::vector<float> values;
+    for (const glm::vec3& v : table) values.insert(values.end(), {v.x, v.y, v.z});
+    static_assert(sizeof(float) == 4, "float32 expected");
+    const std::size_t bytes = values.size() * sizeof(float);
+    if (!check) {
+        const std::string temporary = path + ".tmp";
+        std::FILE* f = std::fopen(temporary.c_str(), "wb");
+        const bool ok = f != nullptr && std::fwrite(values.data(), 1, bytes, f) == bytes;
+        if (f != nullptr && std::fclose(f) != 0) f = nullptr;
+        if (!ok || f == nullptr || std::rename(temporary.c_str(), path.c_str()) != 0) {
+            std::remove(temporary.c_str());
+            std::fprintf(stderr, "cloudmath_atmosphere_lut: cannot write %s\n", path.c_str());
+            return 1;
+        }
+        std::printf("wrote %s: %zu bytes, %d parts of %d x %d RGB float32 texels\n", path.c_str(), bytes, table_parts, table_size, table_size);
+        return 0;
+    }
+    std::vector<float> stored(values.size() + 1);
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    if (f == nullptr) {
+        std::fprintf(stderr, "cloudmath_atmosphere_lut: cannot read %s\n", path.c_str());
+        return 1;
+    }
+    const std::size_t got = std::fread(stored.data(), 1, stored.size() * sizeof(float), f);
+    std::fclose(f);
+    if (got != bytes) {
+        std::fprintf(stderr, "cloudmath_atmosphere_lut: %s holds %zu bytes, not the table's %zu; regenerate it with --write-table\n",
+                     path.c_str(), got, bytes);
+        return 1;
+    }
+    const std::size_t per_part = values.size() / std::size_t(table_parts);
+    double worst = 0.0;
+    for (std::size_t p = 0; p < std::size_t(table_parts); ++p) {
+        float peak = 0.0f;
+        for (std::size_t i = p * per_part; i < (p + 1) * per_part; ++i) peak = std::max(peak, std::fabs(values[i]));
+        for (std::size_t i = p * per_part; i < (p + 1) * per_part; ++i) {
+            const double d = std::fabs(double(stored[i]) - double(values[i])) / std::max(double(peak), 1e-30);
+            worst = std::isfinite(stored[i]) ? std::max(worst, d) : std::numeric_limits<double>::infinity();
+        }
+    }
+    std::printf("%s against the table: largest difference %.3g of a part's largest value\n", path.c_str(), worst);
+    if (worst > 1e-5) {
+        std::fprintf(stderr, "cloudmath_atmosphere_lut: %s is stale; regenerate it with --write-table\n", path.c_str());
+        return 1;
+    }
+    return 0;
+}
+
 // A float RGB texture of width x height texels, sampled with texelFetch only.
 GLuint upload(cloudmath_egl::gl_functions& gl, const std::vector<glm::vec3>& texels, int width, int height) {
     GLuint t = 0;
@@ -157,7 +231,8 @@ GLuint upload(cloudmath_egl::gl_functions& gl, const std::vector<glm::vec3>& tex
 int main(int argc, char** argv) {
     int width = -1, height = -1, steps = -1, runs = 5, altitude_m = 2, sun_elevation_deg = 6;
     lut_kind kind = lut_kind::transmittance;
-    bool print_shader = false;
+    bool print_shader = false, check_table = false;
+    std::string table_path;  // --write-table / --check-table
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--help" || a == "-h") {
@@ -166,6 +241,11 @@ int main(int argc, char** argv) {
         }
         if (a == "--print-shader") {  // the compute shader as compiled (for static cost counts)
             print_shader = true;
+            continue;
+        }
+        if ((a == "--write-table" || a == "--check-table") && i + 1 < argc && table_path.empty()) {
+            table_path = argv[++i];
+            check_table = a == "--check-table";
             continue;
         }
         if (a == "--lut" && i + 1 < argc) {
@@ -185,6 +265,13 @@ int main(int argc, char** argv) {
             return 2;
         }
         ++i;
+    }
+    if (!table_path.empty()) {
+        if (argc != 3) {
+            std::fprintf(stderr, "cloudmath_atmosphere_lut: --write-table and --check-table take no other argument\n%s", usage);
+            return 2;
+        }
+        return table_file(table_path, check_table);
     }
     if (width < 0) width = kind == lut_kind::multiple_scattering ? 32 : kind == lut_kind::sky_view ? 64 : 256;
     if (height < 0) height = kind == lut_kind::multiple_scattering ? 32 : 64;
@@ -228,13 +315,7 @@ int main(int argc, char** argv) {
         luts = cloudmath::atmosphere_make_sky_luts(air, table_size, table_size);
         luts.ground_irradiance = cloudmath::atmosphere_ground_irradiance_lut(air, luts.table(), ground_size);
         table_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        const std::size_t block = std::size_t(table_size) * std::size_t(table_size);
-        std::vector<glm::vec3> stacked(block * std::size_t(table_parts), glm::vec3(0.0f));
-        const auto put = [&](int part, const glm::vec3* from) { std::copy(from, from + block, stacked.begin() + std::ptrdiff_t(block * std::size_t(part))); };
-        put(0, luts.texels.data());
-        put(1, luts.vertical_moments.data());
-        put(2, luts.sun_azimuth_moments.data());
-        for (int j = 0; j < cloudmath::atmosphere_aerosol_field_nodes; ++j) put(4 + j, luts.aerosol_field.data() + block * std::size_t(j));
+        const std::vector<glm::vec3> stacked = stacked_table(luts);
         gl.ActiveTexture(GL_TEXTURE1);
         table_texture = upload(gl, stacked, table_size, table_size * table_parts);
         gl.ActiveTexture(GL_TEXTURE2);
@@ -294,7 +375,8 @@ int main(int argc, char** argv) {
         for (int c = 0; c < 3; ++c) {
             const double d = std::fabs(double(texels[4 * i + std::size_t(c)]) - double(cpu[i][c]));
             worst = std::max(worst, kind == lut_kind::sky_view ? d / std::max(std::fabs(double(cpu[i][c])), 1e-3 * peak) : d);
-            if (!std::isfinite(texels[4 * i + std::size_t(c)])) worst = std::numeric_limits<double>::infinity();
+            // A NaN on either side fails (std::max would keep the old worst).
+            if (!std::isfinite(texels[4 * i + std::size_t(c)]) || !std::isfinite(cpu[i][c])) worst = std::numeric_limits<double>::infinity();
         }
 
     const char* renderer = reinterpret_cast<const char*>(gl.GetString(GL_RENDERER));

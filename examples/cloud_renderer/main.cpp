@@ -539,6 +539,35 @@ std::vector<std::string> output_files(const options& o) {
 
 }  // namespace
 
+namespace {
+// --print-sky: the frame constants that describe the sky and the sun (make_frame_constants),
+// as JSON with 9 significant digits: what the web demo's physical sky (web/demo/physical_sky.js)
+// is checked against.
+std::string sky_json(const scene& sc) {
+    const frame_constants f = make_frame_constants(sc);
+    std::string out = "{\"preset\": \"" + sc.name + "\", \"sky\": \"" + name(sc.sky) + "\"";
+    const auto number = [](double x) {
+        char b[32];
+        std::snprintf(b, sizeof b, "%.9g", x);
+        return std::string(b);
+    };
+    const auto vec = [&](const glm::vec3& v) { return "[" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + "]"; };
+    const auto field = [&](const char* key, const std::string& value) { out += std::string(", \"") + key + "\": " + value; };
+    field("sun_radiance", vec(f.sun_radiance));
+    std::string heights = "[";
+    for (std::size_t i = 0; i < std::size(f.sun_by_height); ++i) heights += (i ? ", " : "") + vec(f.sun_by_height[i]);
+    field("sun_by_height", heights + "]");
+    field("sky_zenith", vec(f.sky_zenith));
+    field("sky_horizon", vec(f.sky_horizon));
+    field("ground", vec(f.ground));
+    field("ambient_top", vec(f.ambient_top));
+    field("ambient_bottom", vec(f.ambient_bottom));
+    field("ev100", number(double(f.ev100)));
+    field("exposure", number(double(f.exposure)));
+    return out + "}\n";
+}
+}  // namespace
+
 int main(int argc, char** argv) {
     options o;
     const std::string error = parse_options(argc, argv, o);
@@ -560,6 +589,7 @@ int main(int argc, char** argv) {
                         double(s.coverage), double(s.cloud_type));
         return 0;
     case run_mode::dump_shader: std::printf("%s", fragment_shader_source(o.var, o.sc.shape, o.compile_time, static_cast<clouds_pass>(o.pass), o.sc.sky).c_str()); return 0;
+    case run_mode::print_sky: std::printf("%s", sky_json(o.sc).c_str()); return 0;
     case run_mode::headless: return run_headless(o);
     case run_mode::cpu: return run_cpu(o);
     case run_mode::compare: return run_compare(o);

@@ -38,6 +38,8 @@ const char* usage_text() {
            "                      against 1024 view steps and 128-step light marches of the same\n"
            "                      lighting model, PSNR of the image and of the horizon band\n"
            "  --list-presets      print the scene presets\n"
+           "  --print-sky         print the frame's sky and sun (JSON: the sun by height, the sky's\n"
+           "                      zenith and horizon, the ground, the sky light, EV100) for the scene\n"
            "  --dump-shader       print the fragment shader as compiled for the variant and\n"
            "                      --pass (one program per pass, as the renderer compiles them)\n"
            "options:\n"
@@ -127,6 +129,7 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
         else if (a == "--convergence") err = set_mode(run_mode::convergence, a);
         else if (a == "--list-presets") err = set_mode(run_mode::list_presets, a);
         else if (a == "--dump-shader") err = set_mode(run_mode::dump_shader, a);
+        else if (a == "--print-sky") err = set_mode(run_mode::print_sky, a);
         else if (a == "--help" || a == "-h") err = set_mode(run_mode::help, a);
         else if (a == "--compile-time") o.compile_time = true;
         else if (a == "--run-time") o.compile_time = false;

@@ -8,7 +8,7 @@
 
 namespace cloud_renderer {
 
-enum class run_mode { window, headless, cpu, compare, bench, convergence, list_presets, dump_shader, help };
+enum class run_mode { window, headless, cpu, compare, bench, convergence, list_presets, dump_shader, print_sky, help };
 
 struct options {
     run_mode mode = run_mode::window;

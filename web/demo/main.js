@@ -7,7 +7,8 @@ import { cases, defaultBudget, floor } from './parity.js';
 import { scenePresets, variants, msPresets, frameConstants, phaseMeanCosine } from './scene.js';
 import { cloudsFrag } from './clouds_frag.js';
 import { imageStats, compareImages, shiftImage } from './image.js';
-import { initWebGPU, createClouds, renderClouds } from './webgpu.js';
+import { initWebGPU, createClouds, renderClouds, setPhysicalTables } from './webgpu.js';
+import { createPhysicalSky, bakePhysicalSky, hazeSize, hazeDistance } from './physical_sky.js';
 
 const demo = (window.cloudmathDemo = { ready: false, error: null, parity: [], image: null, frames: [],
   webgpu: { available: false, reason: 'not tried yet', adapter: null, frameMs: null, frames: [], image: null, comparison: null, busy: false } });
@@ -18,7 +19,7 @@ const status = (text) => { document.getElementById('status').textContent = text;
 // constants) and of all its uniforms (those and its uniform lines).
 const cloudsFragSwitches = [...cloudsFrag.matchAll(/^CR_PARAM\(\w+,\s*(\w+)\)/gm)].map((m) => m[1]);
 const cloudsFragUniforms = new Set(cloudsFragSwitches);
-for (const m of cloudsFrag.matchAll(/^uniform\s+\w+\s+([^;]+);/gm)) for (const n of m[1].split(',')) cloudsFragUniforms.add(n.trim());
+for (const m of cloudsFrag.matchAll(/^uniform\s+\w+\s+([^;]+);/gm)) for (const n of m[1].split(',')) cloudsFragUniforms.add(n.trim().replace(/\[\d+\]$/, ''));
 
 const canvas = document.getElementById('view');
 const gl = canvas.getContext('webgl2', { antialias: false, preserveDrawingBuffer: true });
@@ -177,9 +178,12 @@ function bakeTextures(keepTexels) {
 // switches (CR_PARAM) compiled in as constants, so the compiler keeps only the variant's own
 // paths; a program is compiled the first time its permutation is drawn.
 let clouds = null, textures = null, target = null;
+const physicalSky = { sky: null, baked: null, key: null };  // the physical sky's baker and its last tables
 const cloudPrograms = new Map();
 function useClouds(values) {
-  const constants = cloudsFragSwitches.map((name) => `const int ${name} = ${Math.trunc(values[name] ?? 0)};\n`).join('');
+  // The physical sky is a permutation as well (the desktop host's #define CR_PHYSICAL_SKY).
+  const constants = (values.u_physical_sky ? '#define CR_PHYSICAL_SKY 1\n' : '') +
+    cloudsFragSwitches.map((name) => `const int ${name} = ${Math.trunc(values[name] ?? 0)};\n`).join('');
   if (!cloudPrograms.has(constants))
     cloudPrograms.set(constants, program(header + '#define CR_PARAM(type, name)\n' + constants + resolve(cloudsFrag), 'clouds.frag'));
   clouds = cloudPrograms.get(constants);
@@ -202,6 +206,18 @@ function cloudUniforms(state) {
   s.sunElevation = state.sunElevation;
   s.coverage = state.coverage;
   const f = frameConstants(s);
+  // The physical sky (state.sky): its tables baked on the GPU for this scene and sun (kept
+  // until either changes), the sky's values from them; the exposure from EV100.
+  let physical = null;
+  if (state.sky === 'physical') {
+    const key = JSON.stringify([s.name, s.sunElevation]);
+    if (!physicalSky.baked || physicalSky.key !== key) {
+      physicalSky.baked = bakePhysicalSky(gl, physicalSky.sky, s, f.sunDir);
+      physicalSky.key = key;
+      demo.sky = physicalSky.baked;
+    }
+    physical = physicalSky.baked;
+  }
   const v = variants[state.variant];
   const [msA, msB, msC, msN] = msPresets[state.ms];
   return {
@@ -224,6 +240,13 @@ function cloudUniforms(state) {
     u_ms_a: msA, u_ms_b: msB, u_ms_c: msC,
     u_cone_step: f.coneStep, u_cone_spread: f.coneSpread, u_cone_far_distance: f.coneFarDistance, u_cone_far_length: f.coneFarLength,
     u_light_march_max: f.lightMarchMax, u_min_transmittance: f.minTransmittance, u_march_near_distance: f.marchNearDistance,
+    ...(physical ? {
+      u_physical_sky: 1,  // the permutation: clouds.frag's CR_PHYSICAL_SKY (useClouds), clouds.wgsl's override
+      u_sun_radiance: physical.sunRadiance, u_sun_by_height: physical.sunByHeight.flat(), u_sky_zenith: physical.skyZenith,
+      u_sky_horizon: physical.skyHorizon, u_ground: physical.ground, u_ambient_top: physical.ambientTop,
+      u_ambient_bottom: physical.ambientBottom, u_aureole: 0, u_exposure: physical.exposure,
+      u_haze_table_size: hazeSize, u_haze_table_distance: hazeDistance, u_far_shadow_size: [2, 2], u_far_shadow_range: [0, 1, 0, 1],
+    } : {}),
   };
 }
 
@@ -237,12 +260,18 @@ function render(values) {
     active.set(info.name, info.type);
   }
   for (const [name, v] of Object.entries(values)) {
+    if (name === 'u_physical_sky') continue;  // compiled in (useClouds)
+    if (active.has(name + '[0]') && active.get(name + '[0]') === gl.FLOAT_VEC3) {  // u_sun_by_height[8]
+      gl.uniform3fv(gl.getUniformLocation(clouds, name + '[0]'), v);
+      continue;
+    }
     const type = active.get(name), at = gl.getUniformLocation(clouds, name);
     if (type === undefined) { if (!cloudsFragUniforms.has(name)) throw new Error(`clouds.frag declares no uniform ${name}`); continue; }
     if (type === gl.INT) gl.uniform1i(at, v);
     else if (type === gl.FLOAT) gl.uniform1f(at, v);
     else if (type === gl.FLOAT_VEC2) gl.uniform2fv(at, v);
     else if (type === gl.FLOAT_VEC3) gl.uniform3fv(at, v);
+    else if (type === gl.FLOAT_VEC4) gl.uniform4fv(at, v);
     else throw new Error(`clouds.frag: uniform ${name} has type 0x${type.toString(16)}, which render() does not set`);
   }
   // u_shadow_map, u_weather_wide and u_curl get units of their own (a 1 x 1 texture: shadows
@@ -250,6 +279,9 @@ function render(values) {
   const units = [['u_base', gl.TEXTURE_3D, textures.base], ['u_detail', gl.TEXTURE_3D, textures.detail], ['u_weather', gl.TEXTURE_2D, textures.weather],
                  ['u_shadow_map', gl.TEXTURE_2D, textures.noShadow], ['u_weather_wide', gl.TEXTURE_2D, textures.noShadow],
                  ['u_curl', gl.TEXTURE_2D, textures.noShadow]];
+  if (values.u_physical_sky)
+    units.push(['u_haze_table', gl.TEXTURE_2D, physicalSky.sky.haze], ['u_sky_view', gl.TEXTURE_2D, physicalSky.sky.skyView],
+               ['u_far_shadow', gl.TEXTURE_2D, physicalSky.sky.farShadow]);
   units.forEach(([name, kind, tex], i) => { gl.activeTexture(gl.TEXTURE0 + i); gl.bindTexture(kind, tex); gl.uniform1i(gl.getUniformLocation(clouds, name), i); });
 
   gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
@@ -293,14 +325,36 @@ async function setupWebGPU() {
   w.reason = null;
 }
 
+// The physical sky's baker, made the first time the physical sky is drawn (the artistic sky
+// needs neither the table nor its program): the refined multiple-scattering table
+// (web/demo/sky_table.bin) and the bake program (physical_sky.js).
+async function loadPhysicalSky() {
+  if (physicalSky.sky) return;
+  status('the physical sky: its table...');
+  const response = await fetch('sky_table.bin');
+  if (!response.ok) throw new Error(`sky_table.bin: HTTP ${response.status}`);
+  const skyLibrary = resolve('#include "cloudmath/glsl/atmosphere.glsl"\n#include "cloudmath/glsl/density.glsl"\n');
+  physicalSky.sky = createPhysicalSky(gl, header, skyLibrary, program, await response.arrayBuffer());
+}
+
+// The physical sky's tables for WebGPU: the bake a frame was drawn with (its job's), uploaded
+// once per bake, right before that frame (frames run one at a time: a frame in flight keeps
+// the tables it was encoded with).
+function uploadPhysicalTables(values, bake) {
+  if (!values.u_physical_sky || !gpuClouds || gpuClouds.physicalBake === bake) return;
+  setPhysicalTables(gpuClouds, bake.tables);
+  gpuClouds.physicalBake = bake;
+}
+
 function drawWebGPU(values, glPixels) {
   const w = demo.webgpu;
   if (!gpuClouds) return Promise.resolve();
-  const job = { values, glPixels };
+  const job = { values, glPixels, bake: physicalSky.baked };
   if (w.busy) { gpuNext = job; return gpuDone; }
   w.busy = true;
   gpuDone = (async () => {
     for (let j = job; j; j = gpuNext, gpuNext = null) {
+      uploadPhysicalTables(j.values, j.bake);
       const r = await renderClouds(gpuClouds, j.values);
       w.frames.push(r.ms);
       w.frameMs = r.ms;
@@ -348,7 +402,12 @@ async function main() {
   textures = bakeTextures(!!navigator.gpu);  // keeps the texels for WebGPU
   gl.finish();
   demo.bakeMs = performance.now() - t0;
-  const state = { scene: params.get('scene') || 'cumulus', variant: params.get('variant') || 'default', ms: params.get('ms') || 'production' };
+  const state = { scene: params.get('scene') || 'cumulus', variant: params.get('variant') || 'default', ms: params.get('ms') || 'production',
+                  sky: params.get('sky') || 'physical' };  // the desktop renderer's default sky
+  if (!['artistic', 'physical'].includes(state.sky)) throw new Error(`unknown sky ${state.sky} (artistic or physical)`);
+  // The physical sky's baker: the refined multiple-scattering table (web/demo/sky_table.bin) and
+  // its program (physical_sky.js).
+  if (state.sky === 'physical') await loadPhysicalSky();
   const preset = () => scenePresets.find((x) => x.name === state.scene);
   state.sunElevation = Number(params.get('sun') ?? preset().sunElevation);
   state.coverage = Number(params.get('coverage') ?? preset().coverage);
@@ -362,6 +421,7 @@ async function main() {
     document.getElementById('sunValue').textContent = `${state.sunElevation} deg`;
     document.getElementById('coverageValue').textContent = state.coverage.toFixed(2);
     const values = cloudUniforms(state);
+    demo.exposure = values.u_exposure;
     const r = render(values);
     lastFrame = { values, pixels: r.pixels };
     demo.image = r.stats;
@@ -374,6 +434,13 @@ async function main() {
     state.scene = e.target.value; state.sunElevation = preset().sunElevation; state.coverage = preset().coverage; draw(); };
   fillSelect('variant', Object.keys(variants), state.variant).onchange = (e) => { state.variant = e.target.value; draw(); };
   fillSelect('ms', Object.keys(msPresets), state.ms).onchange = (e) => { state.ms = e.target.value; draw(); };
+  fillSelect('sky', ['artistic', 'physical'], state.sky).onchange = async (e) => {
+    try {
+      if (e.target.value === 'physical') await loadPhysicalSky();
+      state.sky = e.target.value;
+      draw();
+    } catch (err) { demo.error = String(err && err.message || err); status('error: ' + demo.error); }
+  };
   sun.oninput = () => { state.sunElevation = Number(sun.value); draw(); };
   coverage.oninput = () => { state.coverage = Number(coverage.value); draw(); };
   render(cloudUniforms(state));  // warm-up: the driver finishes compiling at the first draw
@@ -384,6 +451,7 @@ async function main() {
   try {
     await setupWebGPU();
     if (gpuClouds) {
+      uploadPhysicalTables(lastFrame.values, physicalSky.baked);
       const warm = await renderClouds(gpuClouds, lastFrame.values);  // warm-up, as for WebGL2
       demo.webgpu.warmUpMs = warm.ms;
       await drawWebGPU(lastFrame.values, lastFrame.pixels);

@@ -1,5 +1,6 @@
 // The example renderer's scenes, lighting variants and frame constants (examples/cloud_renderer/
-// scene.hpp and scene.cpp), in JavaScript: the same numbers as the desktop renderer's uniforms.
+// scene.hpp and scene.cpp), in JavaScript: the same numbers as the desktop renderer's uniforms
+// under the artistic sky and the classic density field (the physical sky's: physical_sky.js).
 // Frame: camera at the origin, +y up, -z north, +x east, metres.
 
 import { mieParams } from './parity.js';

@@ -24,19 +24,24 @@ export const cloudsWgslParts = [
 const layoutOf = { i32: [4, 4], u32: [4, 4], f32: [4, 4], vec2f: [8, 8], vec2i: [8, 8], vec2u: [8, 8],
   vec3f: [16, 12], vec3i: [16, 12], vec3u: [16, 12], vec4f: [16, 16], vec4i: [16, 16], vec4u: [16, 16] };
 
-// Members of `struct name { ... }` in WGSL source, with their offsets: [{ name, type, offset }], size.
+// Members of `struct name { ... }` in WGSL source, with their offsets: [{ name, type, offset,
+// count, stride }] (count and stride for an array<T, N> member: N elements, each at a multiple
+// of 16 bytes, as the uniform address space lays arrays out), size.
 export function structLayout(source, name) {
   const m = source.match(new RegExp(`struct\\s+${name}\\s*\\{([\\s\\S]*?)\\n\\}`));
   if (!m) throw new Error(`struct ${name} not found in clouds.wgsl`);
   const body = m[1].replace(/\/\/.*$/gm, '');
   const members = [];
   let offset = 0, maxAlign = 4;
-  for (const [, member, type] of body.matchAll(/(\w+)\s*:\s*(\w+)\s*,?/g)) {
-    if (!layoutOf[type]) throw new Error(`struct ${name}: member ${member} has type ${type}, not a scalar or vector`);
-    const [align, size] = layoutOf[type];
+  for (const [, member, arrayOf, count, plain] of body.matchAll(/(\w+)\s*:\s*(?:array<\s*(\w+)\s*,\s*(\d+)\s*>|(\w+))\s*,?/g)) {
+    const type = arrayOf || plain;
+    if (!layoutOf[type]) throw new Error(`struct ${name}: member ${member} has type ${type}, not a scalar, a vector or an array of them`);
+    const [elementAlign, elementSize] = layoutOf[type];
+    const align = arrayOf ? Math.max(elementAlign, 16) : elementAlign;
+    const stride = arrayOf ? Math.ceil(elementSize / align) * align : 0;
     offset = Math.ceil(offset / align) * align;
-    members.push({ name: member, type, offset });
-    offset += size;
+    members.push({ name: member, type, offset, count: arrayOf ? Number(count) : 1, stride });
+    offset += arrayOf ? stride * Number(count) : elementSize;
     maxAlign = Math.max(maxAlign, align);
   }
   return { members, size: Math.ceil(offset / maxAlign) * maxAlign };
@@ -94,6 +99,7 @@ export async function createClouds(gpu, canvas, texels, present2d = false) {
     { binding: 0, visibility: F, buffer: { type: 'uniform' } },
     tex(1, '3d'), smp(2), tex(3, '3d'), smp(4), tex(5, '2d'), smp(6), tex(7, '2d'), smp(8), tex(9, '2d'), smp(10),
     tex(11, '2d', 'unfilterable-float'),
+    tex(12, '2d', 'unfilterable-float'), tex(13, '2d', 'unfilterable-float'), tex(14, '2d', 'unfilterable-float'),
   ] });
   // One pipeline per permutation (clouds.wgsl's override constants), made the first time its
   // permutation is drawn (pipelineFor).
@@ -116,7 +122,8 @@ export async function createClouds(gpu, canvas, texels, present2d = false) {
   const sampler = device.createSampler({ magFilter: 'linear', minFilter: 'linear', mipmapFilter: 'nearest',
     addressModeU: 'repeat', addressModeV: 'repeat', addressModeW: 'repeat' });
   const uniformBuffer = device.createBuffer({ size: layout.size, usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST });
-  const bindGroup = device.createBindGroup({ layout: bindGroupLayout, entries: [
+  // The physical sky's tables (setPhysicalTables): 1 x 1 stand-ins until a physical frame.
+  const entries = (tables) => [
     { binding: 0, resource: { buffer: uniformBuffer } },
     { binding: 1, resource: base.createView() }, { binding: 2, resource: sampler },
     { binding: 3, resource: detail.createView() }, { binding: 4, resource: sampler },
@@ -124,7 +131,10 @@ export async function createClouds(gpu, canvas, texels, present2d = false) {
     { binding: 7, resource: none.createView() }, { binding: 8, resource: sampler },
     { binding: 9, resource: none.createView() }, { binding: 10, resource: sampler },
     { binding: 11, resource: noShadow.createView() },
-  ] });
+    { binding: 12, resource: (tables?.haze || noShadow).createView() }, { binding: 13, resource: (tables?.skyView || noShadow).createView() },
+    { binding: 14, resource: (tables?.farShadow || noShadow).createView() },
+  ];
+  const bindGroup = device.createBindGroup({ layout: bindGroupLayout, entries: entries(null) });
 
   const { width, height } = canvas;
   const color = device.createTexture({ size: [width, height], format: 'rgba8unorm',
@@ -145,7 +155,24 @@ export async function createClouds(gpu, canvas, texels, present2d = false) {
   const scopeError = await device.popErrorScope();
   if (scopeError) throw new Error(`WebGPU validation: ${scopeError.message}`);
   return { gpu, module, pipelineLayout, overrides, pipelines: new Map(), bindGroup, uniformBuffer, layout, color, depth, readBuffer,
-    bytesPerRow, context, context2d, width, height, errors, warnings: messages };
+    bytesPerRow, context, context2d, width, height, errors, warnings: messages,
+    rebind: (tables) => device.createBindGroup({ layout: bindGroupLayout, entries: entries(tables) }) };
+}
+
+// The physical sky's tables for the frames that follow, as the WebGL2 bake read them back:
+// { haze, skyView, farShadow }, each { width, height, data: Float32Array of RGBA texels, row 0
+// first } (WebGL2's rows run bottom-up in the image, which is texel row 0 in both APIs).
+export function setPhysicalTables(c, tables) {
+  const { device } = c.gpu;
+  const make = ({ width, height, data }) => {
+    const t = device.createTexture({ size: [width, height], format: 'rgba32float', usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST });
+    device.queue.writeTexture({ texture: t }, data, { bytesPerRow: width * 16 }, [width, height]);
+    return t;
+  };
+  for (const t of c.physicalTextures || []) t.destroy();
+  const made = { haze: make(tables.haze), skyView: make(tables.skyView), farShadow: make(tables.farShadow) };
+  c.physicalTextures = Object.values(made);
+  c.bindGroup = c.rebind(made);
 }
 
 // Packs { u_name: number | number[] } into the uniform struct; a member without a value is 0
@@ -160,8 +187,10 @@ export function packUniforms(layout, values) {
     if (v === undefined) continue;
     const xs = Array.isArray(v) || ArrayBuffer.isView(v) ? [...v] : [v];
     const kind = m.type.startsWith('vec') ? m.type.at(-1) : m.type[0];
+    const perElement = m.type.startsWith('vec') ? Number(m.type[3]) : 1;
+    if (xs.length > perElement * m.count) throw new Error(`clouds.wgsl's CrUniforms member ${m.name} takes ${perElement * m.count} values, not ${xs.length}`);
     xs.forEach((x, k) => {
-      const at = m.offset + 4 * k;
+      const at = m.offset + (m.count > 1 ? m.stride * Math.floor(k / perElement) + 4 * (k % perElement) : 4 * k);
       if (kind === 'f') dv.setFloat32(at, x, true);
       else if (kind === 'i') dv.setInt32(at, x, true);
       else dv.setUint32(at, x, true);

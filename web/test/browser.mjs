@@ -20,6 +20,10 @@ const arg = (name, fallback) => { const i = process.argv.indexOf(name); return i
 const executablePath = arg('--chromium', '/usr/bin/chromium');
 const screenshot = arg('--screenshot', null);
 const markdown = arg('--markdown', null);
+// The desktop renderer's sky for the horizon preset under the physical sky
+// (cloudmath_cloud_renderer --preset horizon --sky physical --print-sky): what the page's
+// physical sky, baked on the GPU from the same table, must give.
+const skyReference = arg('--sky-reference', null);
 
 // A static file server for web/ (what any static server does).
 const types = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.json': 'application/json', '.css': 'text/css' };
@@ -81,7 +85,8 @@ try {
   // fixed-point weights), so the bounds leave room: PSNR >= 45 dB is an RMS difference of at
   // most 1.4 levels of 255 (every pixel one level off is 48.1 dB), and no channel off by more
   // than 16 levels. They are tight enough to fail: measured, a 5 % exposure change gives
-  // 39.9 dB (largest difference 3), the image shifted by one pixel 41.5 dB (largest 62).
+  // 39.9 dB under the artistic sky (largest difference 3) and 41.9 dB under the physical one,
+  // the image shifted by one pixel 41.5 and 43.6 dB (largest 62 and 45).
   const psnrText = (c) => (c.psnrDb === Infinity ? 'inf' : c.psnrDb.toFixed(1));
   const sameImage = (c) => !!c && c.psnrDb >= 45 && c.maxAbsDiff <= 16 && c.alphaMaxAbsDiff <= 16;
   const comparisonText = (c) => c ? `PSNR ${psnrText(c)} dB, mean |diff| ${c.meanAbsDiff.toFixed(3)}, max ${c.maxAbsDiff} ` +
@@ -110,12 +115,14 @@ try {
   if (screenshot) { await page.screenshot({ path: screenshot, fullPage: true }); console.log(`screenshot: ${screenshot}`); }
   const parity = demo.parity, renderer = demo.renderer, firstFrame = demo.frames[0];
   const gpuFrame = demo.webgpu.frameMs, gpuAdapter = demo.webgpu.adapter, firstComparison = demo.webgpu.comparison;
+  const firstBake = demo.sky?.ms;
+  check(Number.isFinite(firstBake), `the default sky is the physical one, its tables baked (${firstBake?.toFixed(0)} ms)`);
 
-  // The thresholds can fail: a WebGPU frame with one lighting uniform changed (exposure 1 ->
-  // 1.05), and the WebGL2 image against itself moved by one pixel.
+  // The thresholds can fail: a WebGPU frame with one lighting uniform changed (the exposure 5 %
+  // higher), and the WebGL2 image against itself moved by one pixel.
   if (demo.webgpu.available) {
-    const perturbed = await page.evaluate(() => window.cloudmathDemoTools.perturbed({ u_exposure: 1.05 }));
-    check(!sameImage(perturbed.comparison), `WebGPU with u_exposure 1.05 fails the comparison: ${comparisonText(perturbed.comparison)}`);
+    const perturbed = await page.evaluate((e) => window.cloudmathDemoTools.perturbed({ u_exposure: e }), demo.exposure * 1.05);
+    check(!sameImage(perturbed.comparison), `WebGPU with the exposure 5 % higher fails the comparison: ${comparisonText(perturbed.comparison)}`);
     const shifted = await page.evaluate(() => window.cloudmathDemoTools.shifted(1));
     check(!sameImage(shifted), `WebGL2 image shifted by one pixel fails the comparison: ${comparisonText(shifted)}`);
   }
@@ -137,6 +144,41 @@ try {
   imageOk(demo.image, 'horizon, sun 12 deg, coverage 0.4');
   webgpuOk(demo, 'horizon, sun 12 deg, coverage 0.4');
 
+  // The artistic sky (?sky=artistic), the physical sky being the default.
+  demo = await load('?scene=cumulus&sky=artistic');
+  check(!demo.error, `cumulus under the artistic sky loads${demo.error ? ': ' + demo.error : ''}`);
+  check(demo.exposure === 1, `the artistic sky's exposure is the scene's (${demo.exposure})`);
+  imageOk(demo.image, 'cumulus, artistic sky');
+  webgpuOk(demo, 'cumulus, artistic sky');
+
+  // The physical sky: the tables baked on the GPU by cloudmath's GLSL twins from
+  // web/demo/sky_table.bin (WebGPU reads the same texels), the sky's values read back, against the
+  // desktop renderer's CPU-made values for the same preset. Float rounding differs (the GPU's
+  // march, JavaScript's double reduction): 1e-3 of each value, or of its vector's largest part.
+  demo = await load('?scene=horizon&sky=physical');
+  check(!demo.error, `horizon under the physical sky loads${demo.error ? ': ' + demo.error : ''}`);
+  imageOk(demo.image, 'horizon, physical sky');
+  webgpuOk(demo, 'horizon, physical sky');
+  if (skyReference) {
+    const want = JSON.parse(await readFile(skyReference, 'utf8'));
+    const got = demo.sky || {};
+    const pairs = [['sun_radiance', got.sunRadiance], ['sky_zenith', got.skyZenith], ['sky_horizon', got.skyHorizon], ['ground', got.ground],
+      ['ambient_top', got.ambientTop], ['ambient_bottom', got.ambientBottom], ...want.sun_by_height.map((_, i) => [`sun_by_height[${i}]`, got.sunByHeight?.[i]])];
+    let worst = 0, worstAt = '';
+    for (const [key, g] of pairs) {
+      const w = key.startsWith('sun_by_height') ? want.sun_by_height[Number(key.slice(14, -1))] : want[key];
+      const scale = Math.max(...w.map(Math.abs));
+      w.forEach((x, k) => {
+        const e = g && Number.isFinite(g[k]) ? Math.abs(g[k] - x) / Math.max(Math.abs(x), 1e-3 * scale, 1e-30) : Infinity;
+        if (e > worst) { worst = e; worstAt = `${key}[${k}]: ${g && g[k]} vs ${x}`; }
+      });
+    }
+    const evError = Math.abs((got.ev100 ?? NaN) - want.ev100);
+    check(worst <= 1e-3, `physical sky's values against the desktop renderer's: largest relative difference ${worst.toExponential(2)} <= 1e-3 (${worstAt})`);
+    check(evError <= 1e-3, `physical sky's EV100 ${got.ev100?.toFixed(4)} against the desktop's ${want.ev100.toFixed(4)}`);
+    console.log(`physical sky baked in ${got.ms?.toFixed(0)} ms (2 sky-view tables 64 x 64, the aerial-perspective table 256 x 32, 19 values)`);
+  }
+
   // The three.js snippet of web/README.md, run as written with three.js from npm.
   await page.goto(`${base}/demo/three.html`, { waitUntil: 'commit' });
   await page.waitForFunction(() => window.threeDemo && (window.threeDemo.ready || window.threeDemo.error), null, { timeout: 120000, polling: 250 });
@@ -155,8 +197,9 @@ try {
       `Each cm_ function runs in a GLSL ES 3.00 fragment shader (highp) into an RGBA32F target; the reference is an ` +
       `independent JavaScript double-precision formula on the same float-rounded inputs (web/demo/parity.js). ` +
       `Error: |GPU - JS| / max(|JS|, 1e-30).\n\n| function | values | max error | budget | NaN/Inf |\n|---|---|---|---|---|\n` +
-      rows.join('\n') + `\n\nCloud frame (cumulus preset, default variant, 320 x 180, 64 view steps, base volume 64^3): ` +
-      `${firstFrame.toFixed(0)} ms on this software renderer. The same frame from clouds.wgsl (the WGSL port, with ` +
+      rows.join('\n') + `\n\nCloud frame (cumulus preset, default variant, physical sky, 320 x 180, 64 view steps, base volume 64^3): ` +
+      `${firstFrame.toFixed(0)} ms on this software renderer; the physical sky's tables (two 64 x 64 sky views, the 256 x 32 ` +
+      `aerial-perspective table and 19 sun and sky values, web/demo/physical_sky.js) baked in ${firstBake?.toFixed(0)} ms, once per scene and sun. The same frame from clouds.wgsl (the WGSL port, with ` +
       `cloudmath's generated WGSL library) on WebGPU (${gpuAdapter}): ${gpuFrame?.toFixed(0)} ms; against the WebGL2 image ` +
       `${comparisonText(firstComparison)}. The three.js snippet of web/README.md runs as written ` +
       `(three.js r${threeRevision}, GLSL3 ShaderMaterial, no shader errors).\n\n![the demo page](images/web_demo.png)\n`);

@@ -27,6 +27,9 @@
 //   cm_ functions carry their type suffix (cm_aerial_perspective_v3v3v3,
 //   cm_integrate_scattering_v3ff), in/out values are passed as pointers (&acc.luminance, &light_index).
 // - Globals set per pixel are var<private>.
+// - clouds.frag's #ifdef CR_PHYSICAL_SKY sections are branches on the override u_physical_sky
+//   (folded per pipeline); their three tables are bound in both skies (1 x 1 stand-ins when the
+//   sky is artistic), read with textureLoad only.
 
 // The permutation (clouds.frag's CR_PARAM lines): pipeline-overridable constants, one pipeline
 // per variant and density field, so the compiler folds every switch (values in scene.hpp's
@@ -57,6 +60,9 @@ override u_jitter: i32;
 override u_sun_disc: i32;
 override u_haze: i32;
 override u_dither: i32;
+// clouds.frag's #define CR_PHYSICAL_SKY (the host's sky_model::physical): 1 the physical sky's
+// tables and sun by height, 0 the artistic sky.
+override u_physical_sky: i32;
 
 struct CrUniforms {
     // The scene (scene.hpp's `scene` and `frame_constants`).
@@ -84,6 +90,12 @@ struct CrUniforms {
     u_shadow_origin: vec3f, u_shadow_right: vec3f, u_shadow_up: vec3f,
     u_shadow_half_extent: f32,
     u_update_offset: vec2u,
+    // The physical sky (clouds.frag's CR_PHYSICAL_SKY uniforms; unused with u_physical_sky 0).
+    u_haze_table_size: vec3f,  // n_d, n_az, n_el
+    u_haze_table_distance: f32,
+    u_far_shadow_size: vec2f,  // n_alt, n_mu
+    u_far_shadow_range: vec4f,  // alt_lo, alt_hi, mu_lo, mu_hi
+    u_sun_by_height: array<vec3f, 8>,  // the sun on the clouds by height in the layer
 }
 
 @group(0) @binding(0) var<uniform> U: CrUniforms;
@@ -98,6 +110,10 @@ struct CrUniforms {
 @group(0) @binding(9) var u_curl: texture_2d<f32>;
 @group(0) @binding(10) var u_curl_sampler: sampler;
 @group(0) @binding(11) var u_shadow_map: texture_2d<f32>;  // RGBA32F, textureLoad only
+// The physical sky's tables (RGBA32F, textureLoad only): aerial perspective, sky view, far shadow.
+@group(0) @binding(12) var u_haze_table: texture_2d<f32>;
+@group(0) @binding(13) var u_sky_view: texture_2d<f32>;
+@group(0) @binding(14) var u_far_shadow: texture_2d<f32>;
 
 struct CrOutput {
     @location(0) out_color: vec4f,
@@ -108,6 +124,30 @@ struct CrOutput {
 fn cm_cone_extinction(p: vec3f, i: i32) -> f32 { return cr_cone_extinction(p, i); }
 fn cm_ms_phase(mu: f32, scale: f32) -> f32 { return cr_phase(mu, scale); }
 fn cm_diffusion_phase(mu: f32, scale: f32) -> f32 { return cr_phase(mu, scale); }
+
+fn cr_up(p: vec3f) -> vec3f { return normalize(vec3f(p.x, p.y + (U.u_planet_radius + U.u_cam_altitude), p.z)); }
+
+fn cr_sun_at(h: f32) -> vec3f {
+    if (u_physical_sky == 0) { return U.u_sun_radiance; }
+    let x = cm_saturate(h) * 7.0;
+    let i = min(i32(x), 6);
+    return mix(U.u_sun_by_height[i], U.u_sun_by_height[i + 1], x - f32(i));
+}
+
+fn cr_far_shadow(p: vec3f, altitude: f32) -> f32 {
+    if (u_physical_sky == 0) { return 1.0; }
+    let size = vec2i(U.u_far_shadow_size + 0.5);
+    let c = vec2f(cm_saturate((altitude - U.u_far_shadow_range.x) / (U.u_far_shadow_range.y - U.u_far_shadow_range.x)),
+                  cm_saturate((dot(U.u_sun_dir, cr_up(p)) - U.u_far_shadow_range.z) / (U.u_far_shadow_range.w - U.u_far_shadow_range.z))) *
+            vec2f(size - 1);
+    let i = clamp(vec2i(c), vec2i(0), size - 2);
+    let f = clamp(c - vec2f(i), vec2f(0.0), vec2f(1.0));
+    let lower = mix(textureLoad(u_far_shadow, i, 0).r, textureLoad(u_far_shadow, i + vec2i(1, 0), 0).r, f.x);
+    let upper = mix(textureLoad(u_far_shadow, i + vec2i(0, 1), 0).r, textureLoad(u_far_shadow, i + vec2i(1, 1), 0).r, f.x);
+    return mix(lower, upper, f.y);
+}
+
+fn cr_sky_depth_toward_sun(whole: f32, near: f32) -> f32 { return select(whole, near, u_physical_sky != 0); }
 
 const CR_SKIP_BLOCK = 4;
 const CR_LIGHT_FAR_STEP = 3;
@@ -196,6 +236,8 @@ fn cr_light_distance(u: f32, length: f32) -> f32 { return select(u * length, cm_
 
 fn cr_on_map(uvd: vec3f) -> bool { return uvd.x >= 0.0 && uvd.x <= 1.0 && uvd.y >= 0.0 && uvd.y <= 1.0; }
 
+var<private> cr_light_near_tau: f32 = 0.0;
+
 fn cr_light_optical_depth(p: vec3f, altitude: f32, toward: vec3f, mode_in: i32, light_offset: f32) -> f32 {
     var mode = mode_in;
     if (mode == 2) {
@@ -203,7 +245,8 @@ fn cr_light_optical_depth(p: vec3f, altitude: f32, toward: vec3f, mode_in: i32, 
         if (cr_on_map(uvd)) {
             let texel = cr_shadow_lookup(uvd.xy);
             let before = cm_beer_shadow_optical_depth(texel, uvd.z);
-            return select(max(texel.z - before, 0.0), before, dot(toward, U.u_sun_dir) > 0.0);
+            cr_light_near_tau = select(max(texel.z - before, 0.0), before, dot(toward, U.u_sun_dir) > 0.0);
+            return cr_light_near_tau;
         }
         mode = 0;
     }
@@ -211,11 +254,11 @@ fn cr_light_optical_depth(p: vec3f, altitude: f32, toward: vec3f, mode_in: i32, 
         let cone = CmConeLightConfig(u_cone_samples, U.u_cone_step, U.u_cone_spread,
                                      U.u_cone_far_distance, U.u_cone_far_length);
         cr_far_index = u_cone_samples - 1;
-        return cm_cone_optical_depth(p, toward, cone);
+        cr_light_near_tau = cm_cone_optical_depth(p, toward, cone);
+        return cr_light_near_tau;
     }
     cr_far_index = CR_LIGHT_FAR_STEP;
-    let up = normalize(vec3f(p.x, p.y + (U.u_planet_radius + U.u_cam_altitude), p.z));
-    let seg = cm_cloud_layer_segment(altitude, dot(toward, up), U.u_planet_radius, cr_band.x, cr_band.y);
+    let seg = cm_cloud_layer_segment(altitude, dot(toward, cr_up(p)), U.u_planet_radius, cr_band.x, cr_band.y);
     let reach = select(U.u_light_march_max, CR_LIGHT_LONG_REACH, u_long_reach == 1);
     let length_to_exit = select(0.0, min(seg.y, reach), seg.y > seg.x);
     let n = f32(u_light_steps);
@@ -224,6 +267,7 @@ fn cr_light_optical_depth(p: vec3f, altitude: f32, toward: vec3f, mode_in: i32, 
         let ds = cr_light_distance((f32(i) + 1.0) / n, length_to_exit) - cr_light_distance(f32(i) / n, length_to_exit);
         tau += cr_cone_extinction(p + toward * cr_light_distance((f32(i) + light_offset) / n, length_to_exit), i) * ds;
     }
+    cr_light_near_tau = tau;
     if (u_long_reach == 3 && seg.y > length_to_exit && dot(toward, U.u_sun_dir) > 0.0) {
         let nf = cr_far_steps(u_light_steps);
         let span = (min(seg.y, CR_LIGHT_LONG_REACH) - length_to_exit) / f32(nf);
@@ -240,7 +284,7 @@ fn cr_light_optical_depth(p: vec3f, altitude: f32, toward: vec3f, mode_in: i32, 
     return tau;
 }
 
-fn cr_in_scattering(tau_light: f32, tau_behind: f32, tau_view: f32, mu: f32, h: f32) -> vec3f {
+fn cr_in_scattering(tau_light: f32, tau_behind: f32, tau_view: f32, mu: f32, h: f32, far: f32, tau_sky: f32) -> vec3f {
     var sun: f32;
     if (u_lighting == 1) {
         sun = cm_diffusion_scattering_with(tau_light, tau_behind, tau_view, mu, U.u_phase_mean_cosine, U.u_albedo,
@@ -254,17 +298,16 @@ fn cr_in_scattering(tau_light: f32, tau_behind: f32, tau_view: f32, mu: f32, h: 
     if (u_powder != 0) {
         sun *= mix(2.0 * cm_powder(tau_light, 2.0), 1.0, 0.5 + 0.5 * mu);
     }
-    if (u_occluded_ambient == 0) { return U.u_sun_radiance * sun + mix(U.u_ambient_bottom, U.u_ambient_top, h); }
-    let depths = select(vec2<f32>(tau_behind, tau_light), vec2<f32>(tau_light, tau_behind), U.u_sun_dir.y >= 0.0) * abs(U.u_sun_dir.y);
-    return U.u_sun_radiance * sun + mix(U.u_ambient_bottom * cm_diffuse_transmittance(depths.y, U.u_phase_mean_cosine),
+    if (u_occluded_ambient == 0) { return cr_sun_at(h) * (sun * far) + mix(U.u_ambient_bottom, U.u_ambient_top, h); }
+    let depths = select(vec2<f32>(tau_behind, tau_sky), vec2<f32>(tau_sky, tau_behind), U.u_sun_dir.y >= 0.0) * abs(U.u_sun_dir.y);
+    return cr_sun_at(h) * (sun * far) + mix(U.u_ambient_bottom * cm_diffuse_transmittance(depths.y, U.u_phase_mean_cosine),
                                         U.u_ambient_top * cm_diffuse_transmittance(depths.x, U.u_phase_mean_cosine), h);
 }
 
 fn cr_shadow_texel(ij: vec2f) -> vec3f {
     let ab = ((ij + 0.5) / f32(CR_SHADOW_MAP_SIZE) * 2.0 - 1.0) * U.u_shadow_half_extent;
     let p0 = U.u_shadow_origin + U.u_shadow_right * ab.x + U.u_shadow_up * ab.y;
-    let up0 = normalize(vec3f(p0.x, p0.y + (U.u_planet_radius + U.u_cam_altitude), p0.z));
-    let seg = cm_cloud_layer_segment(cr_altitude(p0), -dot(U.u_sun_dir, up0), U.u_planet_radius, cr_band.x, cr_band.y);
+    let seg = cm_cloud_layer_segment(cr_altitude(p0), -dot(U.u_sun_dir, cr_up(p0)), U.u_planet_radius, cr_band.x, cr_band.y);
     var acc = cm_beer_shadow_accumulator();
     if (seg.y > seg.x) {
         let ds = (seg.y - seg.x) / f32(CR_SHADOW_MAP_STEPS);
@@ -283,6 +326,39 @@ fn cr_ground_shadow(g: vec3f) -> f32 {
     return mix(CR_GROUND_SKY_SHARE, 1.0, cm_beer_shadow_transmittance(cr_shadow_lookup(uvd.xy), uvd.z));
 }
 
+fn cr_sky_coordinates(dir: vec3f) -> vec2f {
+    let mu = clamp(dir.y, -1.0, 1.0);
+    let h = length(dir.xz);
+    let hs = length(U.u_sun_dir.xz);
+    var cos_phi = 1.0;
+    if (h > 1e-6 && hs > 1e-6) { cos_phi = clamp(dot(dir.xz, U.u_sun_dir.xz) / (h * hs), -1.0, 1.0); }
+    return vec2f(acos(cos_phi) / CM_PI, 0.5 + 0.5 * sign(mu) * sqrt(abs(mu)));
+}
+
+fn cr_haze_node(d: i32, az: i32, el: i32, size: vec3i) -> vec3f { return textureLoad(u_haze_table, vec2i(d + size.x * az, el), 0).rgb; }
+fn cr_haze(dir: vec3f, distance: f32) -> vec3f {
+    let size = vec3i(U.u_haze_table_size + 0.5);
+    let c = cr_sky_coordinates(dir) * vec2f(size.yz - 1);
+    let d = sqrt(clamp(distance / U.u_haze_table_distance, 0.0, 1.0)) * f32(size.x - 1);
+    let i0 = clamp(vec3i(vec3f(d, c)), vec3i(0), size - 2);
+    let f = clamp(vec3f(d, c) - vec3f(i0), vec3f(0.0), vec3f(1.0));
+    let r00 = mix(cr_haze_node(i0.x, i0.y, i0.z, size), cr_haze_node(i0.x + 1, i0.y, i0.z, size), f.x);
+    let r10 = mix(cr_haze_node(i0.x, i0.y + 1, i0.z, size), cr_haze_node(i0.x + 1, i0.y + 1, i0.z, size), f.x);
+    let r01 = mix(cr_haze_node(i0.x, i0.y, i0.z + 1, size), cr_haze_node(i0.x + 1, i0.y, i0.z + 1, size), f.x);
+    let r11 = mix(cr_haze_node(i0.x, i0.y + 1, i0.z + 1, size), cr_haze_node(i0.x + 1, i0.y + 1, i0.z + 1, size), f.x);
+    return mix(mix(r00, r10, f.y), mix(r01, r11, f.y), f.z);
+}
+
+fn cr_sky_view(dir: vec3f) -> vec3f {
+    let size = vec2i(textureDimensions(u_sky_view));
+    let c = cr_sky_coordinates(dir) * vec2f(size - 1);
+    let i0 = clamp(vec2i(c), vec2i(0), size - 2);
+    let f = clamp(c - vec2f(i0), vec2f(0.0), vec2f(1.0));
+    let lower = mix(textureLoad(u_sky_view, i0, 0).rgb, textureLoad(u_sky_view, i0 + vec2i(1, 0), 0).rgb, f.x);
+    let upper = mix(textureLoad(u_sky_view, i0 + vec2i(0, 1), 0).rgb, textureLoad(u_sky_view, i0 + vec2i(1, 1), 0).rgb, f.x);
+    return mix(lower, upper, f.y);
+}
+
 fn cr_background(dir: vec3f) -> vec3f {
     let ground = cm_ray_sphere_intersect_altitude(U.u_cam_altitude, dir.y, U.u_planet_radius, 0.0);
     if (ground.x >= 0.0 && ground.y > ground.x) {
@@ -290,8 +366,13 @@ fn cr_background(dir: vec3f) -> vec3f {
         return U.u_ground;
     }
     let mu = dot(dir, U.u_sun_dir);
-    var sky = mix(U.u_sky_horizon, U.u_sky_zenith, sqrt(cm_saturate(dir.y)));
-    sky += U.u_sun_radiance * (U.u_aureole * cm_phase_hg(mu, 0.75));
+    var sky: vec3f;
+    if (u_physical_sky != 0) {
+        sky = cr_sky_view(dir);
+    } else {
+        sky = mix(U.u_sky_horizon, U.u_sky_zenith, sqrt(cm_saturate(dir.y)));
+        sky += U.u_sun_radiance * (U.u_aureole * cm_phase_hg(mu, 0.75));
+    }
     if (u_sun_disc != 0) { sky += U.u_sun_radiance * cm_sun_disc_radiance(1.0, mu, U.u_sun_angular_radius, 0.6); }
     return sky;
 }
@@ -317,10 +398,11 @@ fn cr_light_samples(luminance: ptr<function, vec3f>, count: i32, dir: vec3f, mu:
             *light_index += 1u;
         }
         let tau_light = cr_light_optical_depth(dir * q.t, alts, U.u_sun_dir, u_light_mode, lo);
+        let tau_sky = cr_sky_depth_toward_sun(tau_light, cr_light_near_tau);
         var tau_behind = 0.0;
         if (u_lighting != 0) { tau_behind = cr_light_optical_depth(dir * q.t, alts, -U.u_sun_dir, u_behind_mode, lo); }
         let h = cm_height_fraction(alts, U.u_layer_bottom, U.u_layer_top);
-        let S = (U.u_albedo * q.sigma_t) * cr_in_scattering(tau_light, tau_behind, q.tau_view, mu, h);
+        let S = (U.u_albedo * q.sigma_t) * cr_in_scattering(tau_light, tau_behind, q.tau_view, mu, h, cr_far_shadow(dir * q.t, alts), tau_sky);
         if (u_integration == 0) {
             *luminance += vec3f(q.transmittance) * cm_integrate_scattering_v3ff(S, q.sigma_t, q.ds);
         } else {
@@ -472,7 +554,11 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
         if (opacity > 0.0) { cloud_depth = depth_sum / opacity; }
         if (u_haze != 0 && opacity > 0.0) {
             let tau_air = cm_air_optical_depth(U.u_cam_altitude, dir.y, depth_sum / opacity);
-            acc.luminance = cm_aerial_perspective_v3v3v3(acc.luminance, U.u_sky_horizon * opacity, tau_air);
+            if (u_physical_sky != 0) {
+                acc.luminance = acc.luminance * exp(-tau_air) + cr_haze(dir, depth_sum / opacity) * opacity;
+            } else {
+                acc.luminance = cm_aerial_perspective_v3v3v3(acc.luminance, U.u_sky_horizon * opacity, tau_air);
+            }
         }
     }
     let alpha = 1.0 - (acc.transmittance.r + acc.transmittance.g + acc.transmittance.b) / 3.0;
