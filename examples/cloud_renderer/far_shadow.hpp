@@ -19,6 +19,8 @@
 // light march reaches the band's end (1). Lookup bilinear and clamped, as clouds.frag's
 // cr_far_shadow reads the R32F image (x altitude, y cosine) with texelFetch.
 // What it leaves out: the correlation between the near and far paths (the table is a mean).
+// The GPU form: clouds.frag's pass 4 (cr_far_shadow_texel, gl_renderer::far_shadow_gpu), the same
+// nodes, starts and steps; the web demo draws its table with it.
 #ifndef CLOUD_RENDERER_FAR_SHADOW_HPP
 #define CLOUD_RENDERER_FAR_SHADOW_HPP
 

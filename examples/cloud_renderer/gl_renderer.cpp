@@ -449,6 +449,10 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
         u.i1("u_far_shadow", 7);
         u.v2("u_far_shadow_size", glm::vec2(float(f.n_alt), float(f.n_mu)));
         gl.Uniform4f(u.loc("u_far_shadow_range"), f.alt_lo, f.alt_hi, f.mu_lo, f.mu_hi);
+        // What pass 4 (the table on the GPU) needs beyond its range: the march's end and the
+        // field's period (far_shadow.cpp's make_table).
+        u.f1("u_far_shadow_reach", f.reach);
+        u.f1("u_far_shadow_period", sc.shape == cloud_shape::classic ? sc.weather_tile : sc.weather_wide_tile);
         const sky_view_table& sv = *k.sky_view;
         bind_float_table(gl, 8, st.sky_view, st.sky_view_uploaded, &sv, GL_RGB32F, GL_RGB, sv.n_az, sv.n_el, sv.texels.data());
         u.i1("u_sky_view", 8);
@@ -733,6 +737,49 @@ bool gl_renderer::render_temporal(const scene& sc, const variant& v, bool compil
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     why = s_->gl_errors("temporal read back");
     return why.empty();
+}
+
+bool gl_renderer::far_shadow_gpu(const scene& sc, const variant& v, std::vector<float>& out, std::string& why) {
+    if (sc.sky != sky_model::physical) {
+        why = "the far shadow is the physical sky's";
+        return false;
+    }
+    state& st = *s_;
+    const gl_api& gl = st.gl;
+    const frame_constants k = make_frame_constants(sc);
+    const far_shadow_table& f = far_shadow(sc, k.sun_dir, st.cpu_textures, light_reach(v, k));
+    const GLuint program = bind_clouds(st, sc, v, true, f.n_alt, f.n_mu, clouds_pass::far_shadow, glm::uvec2(0), why);
+    if (program == 0) return false;
+    GLuint tex = 0, fbo = 0;
+    gl.ActiveTexture(GL_TEXTURE9);  // make_target binds to the active unit: not one the pass reads
+    gl.GenTextures(1, &tex);
+    make_target(gl, tex, GL_RGBA32F, GL_RGBA, f.n_alt, f.n_mu);
+    gl.GenFramebuffers(1, &fbo);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+    bool ok = gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    std::vector<float> rgba(static_cast<std::size_t>(f.n_alt * f.n_mu) * 4u);
+    if (ok) {
+        const GLenum one = GL_COLOR_ATTACHMENT0;
+        gl.DrawBuffers(1, &one);
+        gl.Viewport(0, 0, f.n_alt, f.n_mu);
+        use_pass(gl, program, clouds_pass::far_shadow, true);
+        gl.BindVertexArray(st.vao);
+        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+        gl.ReadPixels(0, 0, f.n_alt, f.n_mu, GL_RGBA, GL_FLOAT, rgba.data());
+    } else {
+        why = "the far shadow's float target is not supported (framebuffer incomplete)";
+    }
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl.DeleteFramebuffers(1, &fbo);
+    gl.DeleteTextures(1, &tex);
+    if (!ok) return false;
+    why = st.gl_errors("the far shadow's pass");
+    if (!why.empty()) return false;
+    out.resize(static_cast<std::size_t>(f.n_alt * f.n_mu));
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = rgba[4 * i];
+    return true;
 }
 
 bool gl_renderer::render(const scene& sc, const variant& v, bool compile_time, int width, int height, image& out,

@@ -11,12 +11,13 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace cloud_renderer {
 
 // clouds.frag's passes (its u_pass): a full frame, the temporal scheme's shading pass, the
 // Beer shadow map, the temporal scheme's background.
-enum class clouds_pass { frame = 0, temporal_shading = 1, shadow_map = 2, background = 3 };
+enum class clouds_pass { frame = 0, temporal_shading = 1, shadow_map = 2, background = 3, far_shadow = 4 };
 
 // The fragment shader for a variant, as compiled: #version, `#define CR_PHYSICAL_SKY 1` for the
 // physical sky (its aerial-perspective table), the permutation block (the variant, the shape and
@@ -77,6 +78,13 @@ public:
     bool render_temporal(const scene& s, const variant& v, bool compile_time, int width, int height, image& out,
                          frame_timing* timing, std::string& why);
     void reset_temporal();
+
+    // The physical sky's far shadow drawn on the GPU (clouds.frag's pass 4): the table of
+    // far_shadow() for the scene and variant, node for node (the same range; n_alt x n_mu
+    // values, row-major, row: the sun's cosine), in `out`. The frame still reads the CPU's
+    // table; this is the GPU form, checked against it (test_cloud_renderer) and the one the web
+    // demo draws. False and `why` without the physical sky or on a GL error.
+    bool far_shadow_gpu(const scene& s, const variant& v, std::vector<float>& out, std::string& why);
 
     struct state;
 

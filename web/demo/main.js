@@ -8,7 +8,7 @@ import { scenePresets, variants, msPresets, frameConstants, phaseMeanCosine } fr
 import { cloudsFrag } from './clouds_frag.js';
 import { imageStats, compareImages, shiftImage } from './image.js';
 import { initWebGPU, createClouds, renderClouds, setPhysicalTables } from './webgpu.js';
-import { createPhysicalSky, bakePhysicalSky, hazeSize, hazeDistance } from './physical_sky.js';
+import { createPhysicalSky, bakePhysicalSky, farShadowParams, farShadowSize, hazeSize, hazeDistance } from './physical_sky.js';
 
 const demo = (window.cloudmathDemo = { ready: false, error: null, parity: [], image: null, frames: [],
   webgpu: { available: false, reason: 'not tried yet', adapter: null, frameMs: null, frames: [], image: null, comparison: null, busy: false } });
@@ -178,7 +178,9 @@ function bakeTextures(keepTexels) {
 // switches (CR_PARAM) compiled in as constants, so the compiler keeps only the variant's own
 // paths; a program is compiled the first time its permutation is drawn.
 let clouds = null, textures = null, target = null;
-const physicalSky = { sky: null, baked: null, key: null };  // the physical sky's baker and its last tables
+// The physical sky's baker, its last bake (key: scene and sun), its last far shadow (key: the
+// bake's, the coverage and the reach) and the tables WebGPU reads (a new object when either changes).
+const physicalSky = { sky: null, baked: null, key: null, farKey: null, farShadowMs: null, tables: null };
 const cloudPrograms = new Map();
 function useClouds(values) {
   // The physical sky is a permutation as well (the desktop host's #define CR_PHYSICAL_SKY).
@@ -245,12 +247,14 @@ function cloudUniforms(state) {
       u_sun_radiance: physical.sunRadiance, u_sun_by_height: physical.sunByHeight.flat(), u_sky_zenith: physical.skyZenith,
       u_sky_horizon: physical.skyHorizon, u_ground: physical.ground, u_ambient_top: physical.ambientTop,
       u_ambient_bottom: physical.ambientBottom, u_aureole: 0, u_exposure: physical.exposure,
-      u_haze_table_size: hazeSize, u_haze_table_distance: hazeDistance, u_far_shadow_size: [2, 2], u_far_shadow_range: [0, 1, 0, 1],
+      u_haze_table_size: hazeSize, u_haze_table_distance: hazeDistance, ...farShadowParams(s, physical.band, v, f),
     } : {}),
   };
 }
 
-function render(values) {
+// Makes clouds.frag's program for `values` current with every uniform set and the textures
+// bound (the physical sky's far shadow: farShadow, the table or, while it is drawn, a stand-in).
+function bindClouds(values, farShadow) {
   useClouds(values);
   gl.useProgram(clouds);
   // Each value by the type the program declares (a uniform the compiler dropped is skipped).
@@ -281,8 +285,36 @@ function render(values) {
                  ['u_curl', gl.TEXTURE_2D, textures.noShadow]];
   if (values.u_physical_sky)
     units.push(['u_haze_table', gl.TEXTURE_2D, physicalSky.sky.haze], ['u_sky_view', gl.TEXTURE_2D, physicalSky.sky.skyView],
-               ['u_far_shadow', gl.TEXTURE_2D, physicalSky.sky.farShadow]);
+               ['u_far_shadow', gl.TEXTURE_2D, farShadow]);
   units.forEach(([name, kind, tex], i) => { gl.activeTexture(gl.TEXTURE0 + i); gl.bindTexture(kind, tex); gl.uniform1i(gl.getUniformLocation(clouds, name), i); });
+}
+
+// The far shadow for the physical sky's `values` (clouds.frag's pass 4 into the 16 x 48 table,
+// read back for WebGPU), drawn again when the scene, sun, coverage or light reach change.
+function ensureFarShadow(values) {
+  const key = JSON.stringify([physicalSky.key, values.u_coverage, values.u_far_shadow_reach]);
+  if (physicalSky.farKey === key) return;
+  const t0 = performance.now();
+  bindClouds({ ...values, u_pass: 4 }, physicalSky.sky.farShadow);
+  const fbo = gl.createFramebuffer();
+  gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
+  gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, physicalSky.sky.farTable, 0);
+  gl.viewport(0, 0, ...farShadowSize);
+  drawTriangle();
+  const data = new Float32Array(farShadowSize[0] * farShadowSize[1] * 4);
+  gl.readPixels(0, 0, ...farShadowSize, gl.RGBA, gl.FLOAT, data);
+  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  gl.deleteFramebuffer(fbo);
+  physicalSky.farKey = key;
+  physicalSky.farShadowMs = performance.now() - t0;
+  demo.farShadow = { ms: physicalSky.farShadowMs, table: Array.from(data.filter((_, i) => i % 4 === 0)) };
+  const b = physicalSky.baked.tables;
+  physicalSky.tables = { haze: b.haze, skyView: b.skyView, farShadow: { width: farShadowSize[0], height: farShadowSize[1], data } };
+}
+
+function render(values) {
+  if (values.u_physical_sky) ensureFarShadow(values);
+  bindClouds(values, values.u_physical_sky ? physicalSky.sky.farTable : null);
 
   gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
   gl.viewport(0, 0, canvas.width, canvas.height);
@@ -340,21 +372,21 @@ async function loadPhysicalSky() {
 // The physical sky's tables for WebGPU: the bake a frame was drawn with (its job's), uploaded
 // once per bake, right before that frame (frames run one at a time: a frame in flight keeps
 // the tables it was encoded with).
-function uploadPhysicalTables(values, bake) {
-  if (!values.u_physical_sky || !gpuClouds || gpuClouds.physicalBake === bake) return;
-  setPhysicalTables(gpuClouds, bake.tables);
-  gpuClouds.physicalBake = bake;
+function uploadPhysicalTables(values, tables) {
+  if (!values.u_physical_sky || !gpuClouds || gpuClouds.physicalTables === tables) return;
+  setPhysicalTables(gpuClouds, tables);
+  gpuClouds.physicalTables = tables;
 }
 
 function drawWebGPU(values, glPixels) {
   const w = demo.webgpu;
   if (!gpuClouds) return Promise.resolve();
-  const job = { values, glPixels, bake: physicalSky.baked };
+  const job = { values, glPixels, tables: physicalSky.tables };
   if (w.busy) { gpuNext = job; return gpuDone; }
   w.busy = true;
   gpuDone = (async () => {
     for (let j = job; j; j = gpuNext, gpuNext = null) {
-      uploadPhysicalTables(j.values, j.bake);
+      uploadPhysicalTables(j.values, j.tables);
       const r = await renderClouds(gpuClouds, j.values);
       w.frames.push(r.ms);
       w.frameMs = r.ms;
@@ -451,7 +483,7 @@ async function main() {
   try {
     await setupWebGPU();
     if (gpuClouds) {
-      uploadPhysicalTables(lastFrame.values, physicalSky.baked);
+      uploadPhysicalTables(lastFrame.values, physicalSky.tables);
       const warm = await renderClouds(gpuClouds, lastFrame.values);  // warm-up, as for WebGL2
       demo.webgpu.warmUpMs = warm.ms;
       await drawWebGPU(lastFrame.values, lastFrame.pixels);

@@ -13,9 +13,10 @@
 // irradiance (physical_sky.cpp's upper_hemisphere), the ground and the EV100 exposure.
 // The table, made once per atmosphere on the CPU (1.4 s), is web/demo/sky_table.bin:
 // `cloudmath_atmosphere_lut --write-table web/demo/sky_table.bin` (ctest web.sky_table_fresh).
-// Not here: the far shadow toward a low sun (far_shadow.hpp marches the clouds on the CPU): the
-// demo's table is 1 everywhere, so at a low sun the far field's shade is missing. The tables
-// are read back for WebGPU too (clouds.wgsl's u_physical_sky reads the same texels).
+// The far shadow toward a low sun (far_shadow.hpp, which the desktop marches on the CPU) is
+// drawn by clouds.frag itself (its pass 4, farShadowParams below give its range) over the
+// demo's own noise textures. The tables are read back for WebGPU too (clouds.wgsl's
+// u_physical_sky reads the same texels).
 
 export const sunLux = 128000;  // physical_sky.hpp's sun_lux: a white 128 klux sun
 export const skyViewSize = [64, 64];  // physical_sky.hpp's sky_view_table: n_az, n_el
@@ -23,6 +24,7 @@ export const hazeSize = [16, 16, 32];  // ... haze_table: n_d, n_az, n_el
 export const hazeDistance = 160000;  // ... its max_distance (m)
 const tableSize = 32, tableParts = 21;  // the table's layout (cloudmath_atmosphere_lut --write-table)
 const sunHeights = 8;  // scene.hpp's sun_heights
+export const farShadowSize = [16, 48];  // far_shadow.hpp's far_shadow_table: n_alt, n_mu
 
 // One fragment shader for every table (u_kind), one texel per fragment.
 function bakeSource(header, library) {
@@ -70,6 +72,8 @@ void main() {
     o = vec4(cm_atmosphere_sun_illuminance(air, u_altitude, u_sun.y, vec3(lux)), 1.0);
   } else if (p.x == ${sunHeights + 2}) {  // the zenith
     o = vec4(lux * cm_atmosphere_sky_radiance(air, table, u_altitude, vec3(0.0, 1.0, 0.0), u_sun, 32, 32), 1.0);
+  } else if (p.x == ${sunHeights + 11}) {  // the type's band (scene.cpp's cloud_band, classic field): the far shadow's range
+    o = vec4(cm_height_range_for_type(u_cloud_type) * (u_layer_top - u_layer_bottom) + u_layer_bottom, 0.0, 1.0);
   } else {  // the horizon 2 degrees up at azimuth 45 (p.x - ${sunHeights + 3}) degrees
     float az = float(p.x - ${sunHeights + 3}) * 45.0 * CM_PI / 180.0, e = 2.0 * CM_PI / 180.0;
     o = vec4(lux * cm_atmosphere_sky_radiance(air, table, u_altitude, vec3(cos(az) * cos(e), sin(e), sin(az) * cos(e)), u_sun, 32, 32), 1.0);
@@ -132,14 +136,16 @@ export function createPhysicalSky(gl, header, library, compile, tableBytes) {
     for (const k of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, k, gl.NEAREST);
     return t;
   };
-  // The far shadow's stand-in: 2 x 2 texels of 1 (no shade beyond the light march).
+  // The far shadow's stand-in while its table is drawn (clouds.frag's pass 4 binds one but
+  // does not read it): 2 x 2 texels of 1.
   const farShadow = gl.createTexture();
   gl.bindTexture(gl.TEXTURE_2D, farShadow);
   gl.texImage2D(gl.TEXTURE_2D, 0, gl.R32F, 2, 2, 0, gl.RED, gl.FLOAT, new Float32Array([1, 1, 1, 1]));
   for (const k of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, k, gl.NEAREST);
   const sky = { table, program, farShadow, cache: new Map(),
     skyView: floatTexture(...skyViewSize), skyTop: floatTexture(...skyViewSize),
-    haze: floatTexture(hazeSize[0] * hazeSize[1], hazeSize[2]), values: floatTexture(sunHeights + 11, 1) };
+    haze: floatTexture(hazeSize[0] * hazeSize[1], hazeSize[2]), values: floatTexture(sunHeights + 12, 1),
+    farTable: floatTexture(...farShadowSize) };
   return sky;
 }
 
@@ -177,7 +183,7 @@ export function bakePhysicalSky(gl, sky, s, sunDir) {
   const below = draw(sky.skyView, ...skyViewSize, 0, [...skyViewSize, 0], camera, sunAtZero, true);
   const above = draw(sky.skyTop, ...skyViewSize, 0, [...skyViewSize, 0], s.layerTop, sunAtZero, true);
   const haze = draw(sky.haze, hazeSize[0] * hazeSize[1], hazeSize[2], 1, hazeSize, camera, sunAtZero, true);
-  const v = draw(sky.values, sunHeights + 11, 1, 2, [0, 0, 0], camera, sunDir, true);
+  const v = draw(sky.values, sunHeights + 12, 1, 2, [0, 0, 0], camera, sunDir, true);
   gl.bindFramebuffer(gl.FRAMEBUFFER, null);
   gl.deleteFramebuffer(fbo);
   const texel = (i) => [v[4 * i], v[4 * i + 1], v[4 * i + 2]];
@@ -192,10 +198,24 @@ export function bakePhysicalSky(gl, sky, s, sunDir) {
   const ev100 = Math.log2(Math.max(0.5 * (luminance(skyZenith) + luminance(skyHorizon)), 1e-3) * 100 / 12.5);
   return {
     sunRadiance: texel(sunHeights), sunByHeight, skyZenith, skyHorizon, ground, ambientTop: top.mean, ambientBottom: ground,
+    band: texel(sunHeights + 11).slice(0, 2),
     ev100, exposure: 1 / (1.2 * Math.pow(2, ev100)), ms: performance.now() - t0,
-    // The tables as read back, for WebGPU (webgpu.js's setPhysicalTables).
+    // The tables as read back, for WebGPU (webgpu.js's setPhysicalTables, with the far shadow's).
     tables: { haze: { width: hazeSize[0] * hazeSize[1], height: hazeSize[2], data: haze },
-              skyView: { width: skyViewSize[0], height: skyViewSize[1], data: below },
-              farShadow: { width: 2, height: 2, data: new Float32Array(16).fill(1) } },
+              skyView: { width: skyViewSize[0], height: skyViewSize[1], data: below } },
   };
+}
+
+// The far shadow's table (far_shadow.cpp's make_table): its range for the scene s, the band
+// (the bake's), the variant v (scene.js's variants) and frame constants f (scene.js's
+// frameConstants): the march's end (scene.cpp's light_reach), the sun's zenith cosines from
+// where every path from the band's top meets the ground to where the march reaches the band's
+// end, and the field's period (the classic field's weather tile).
+export function farShadowParams(s, band, v, f) {
+  const reach = v.light === 0 ? f.coneFarDistance + 0.5 * f.coneFarLength : v.light === 2 || v.reach !== 0 ? 30000 : f.lightMarchMax;
+  const R = s.planetRadius, top = R + band[1];
+  const muLo = -Math.sqrt(Math.max(1 - (R / top) * (R / top), 0));
+  const muHi = Math.min((band[1] - band[0]) / Math.max(reach, 1), 1);
+  return { u_far_shadow_size: farShadowSize, u_far_shadow_range: [band[0], band[1], muLo, muHi], u_far_shadow_reach: reach,
+           u_far_shadow_period: s.weatherTile };
 }

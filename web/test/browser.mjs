@@ -159,6 +159,13 @@ try {
   check(!demo.error, `horizon under the physical sky loads${demo.error ? ': ' + demo.error : ''}`);
   imageOk(demo.image, 'horizon, physical sky');
   webgpuOk(demo, 'horizon, physical sky');
+  // The far shadow toward the low sun, drawn by clouds.frag's pass 4 over the page's noise:
+  // every node in [0, 1], some wholly shaded (paths that meet the ground), some partly.
+  const far = demo.farShadow?.table || [];
+  check(far.length === 16 * 48 && far.every((x) => Number.isFinite(x) && x >= 0 && x <= 1) && far.some((x) => x === 0) &&
+    far.filter((x) => x > 0.05 && x < 0.95).length > 20,
+    `horizon, physical sky: the far shadow's 768 nodes in [0, 1], ${far.filter((x) => x === 0).length} in the planet's shadow, ` +
+    `${far.filter((x) => x > 0.05 && x < 0.95).length} partly shaded (> 20), drawn in ${demo.farShadow?.ms?.toFixed(0)} ms`);
   if (skyReference) {
     const want = JSON.parse(await readFile(skyReference, 'utf8'));
     const got = demo.sky || {};

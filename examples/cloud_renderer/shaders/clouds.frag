@@ -92,9 +92,12 @@ uniform sampler2D u_sky_view;
 uniform sampler2D u_far_shadow;
 uniform vec2 u_far_shadow_size;   // n_alt, n_mu
 uniform vec4 u_far_shadow_range;  // alt_lo, alt_hi, mu_lo, mu_hi
+uniform float u_far_shadow_reach;   // pass 4: where the light march ends (far_shadow_table::reach)
+uniform float u_far_shadow_period;  // pass 4: the field's horizontal period (the weather map's tile)
 #endif
 
-// The passes (u_pass): 0 a full frame. 1 the shading pass of the temporal scheme
+// The passes (u_pass): 4 (the physical sky only) the far shadow's table: output pixel (a, m) is
+// node (a, m) (cr_far_shadow_texel). 0 a full frame. 1 the shading pass of the temporal scheme
 // (temporal_resolve.frag), one pixel of every 4 x 4 block: the output pixel (i, j) shades the
 // image's pixel (4 i, 4 j) + u_update_offset (u_resolution stays the full image's size) and
 // writes the cloud layer's own linear radiance and opacity and the cloud's depth, for the
@@ -356,6 +359,58 @@ vec3 cr_shadow_texel(vec2 ij) {
     return cm_beer_shadow_texel(acc);
 }
 
+#ifdef CR_PHYSICAL_SKY
+// Node (a, m) of the far shadow's table (pass 4): far_shadow.cpp's node_mean, step for step.
+// The mean over 12 x 12 stratified starts across the field's period of the transmittance of
+// the sun's path beyond the light march (its stretches in the band after u_far_shadow_reach,
+// 400 m steps, stopped past optical depth 9.2), 0 where the path meets the ground.
+float cr_far_shadow_texel(ivec2 node) {
+    ivec2 size = ivec2(u_far_shadow_size + 0.5);
+    float lo = u_far_shadow_range.x, hi = u_far_shadow_range.y;
+    float alt = lo + (hi - lo) * float(node.x) / float(size.x - 1);
+    float mu = u_far_shadow_range.z + (u_far_shadow_range.w - u_far_shadow_range.z) * float(node.y) / float(size.y - 1);
+    uint seed = uint(node.y * size.x + node.x) * 7919u;
+    float R = u_planet_radius, r0 = u_planet_radius + u_cam_altitude;
+    vec2 ground = cm_ray_sphere_intersect_altitude(alt, mu, R, 0.0);
+    if (ground.x >= 0.0 && ground.y > ground.x) return 0.0;
+    vec2 seg = cm_cloud_layer_segment(alt, mu, R, lo, hi);
+    float start = seg.y > seg.x ? min(seg.y, u_far_shadow_reach) : 0.0;
+    float end = cm_ray_sphere_intersect_altitude(alt, mu, R, hi).y;
+    if (!(end > start)) return 1.0;
+    vec2 dip = cm_ray_sphere_intersect_altitude(alt, mu, R, lo);
+    bool dips = dip.x > 0.0 && dip.y > dip.x;
+    vec2 stretches[2] = vec2[2](vec2(start, dips ? min(dip.x, end) : end), vec2(dips ? max(dip.y, start) : end, end));
+    float sin_mu = sqrt(max(1.0 - mu * mu, 0.0));
+    const int n = 12;  // far_shadow.hpp's far_shadow_grid
+    float sum = 0.0;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            uint h = cm_noise_hash(seed + uint(j * n + i));
+            float x = u_far_shadow_period * ((float(i) + cm_sample_jitter(h, 0u, 0u)) / float(n) - 0.5);
+            float z = u_far_shadow_period * ((float(j) + cm_sample_jitter(h, 0u, 1u)) / float(n) - 0.5);
+            float jitter = cm_sample_jitter(h, 0u, 2u);
+            vec3 up = normalize(vec3(x, r0, z));
+            vec3 p = up * (R + alt) - vec3(0.0, r0, 0.0);
+            vec3 across = u_sun_dir - up * dot(u_sun_dir, up);
+            across = length(across) > 1e-6 ? normalize(across) : normalize(cross(up, vec3(0.0, 0.0, 1.0)));
+            vec3 d = up * mu + across * sin_mu;
+            float tau = 0.0;
+            for (int k = 0; k < 2; ++k) {
+                float len = stretches[k].y - stretches[k].x;
+                if (!(len > 0.0) || tau > 9.2) continue;
+                int steps = max(1, int(ceil(len / 400.0)));  // far_shadow.hpp's far_shadow_step
+                float ds = len / float(steps);
+                for (int m = 0; m < steps && tau <= 9.2; ++m) {
+                    vec3 q = p + d * (stretches[k].x + (float(m) + jitter) * ds);
+                    tau += u_extinction * cr_density(q, cr_altitude(q)) * ds;
+                }
+            }
+            sum += exp(-tau);
+        }
+    return sum / float(n * n);
+}
+#endif
+
 // What the shadow map leaves of the ground's light at ground point g: the sky's share plus
 // the sun's times the clouds' transmittance (1 outside the map).
 float cr_ground_shadow(vec3 g) {
@@ -477,6 +532,14 @@ void main() {
         out_depth = 0.0;
         return;
     }
+#ifdef CR_PHYSICAL_SKY
+    if (u_pass == 4) {
+        cr_footprint = 0.0;  // the full field, as far_shadow.cpp's density
+        out_color = vec4(cr_far_shadow_texel(ivec2(gl_FragCoord.xy)), 0.0, 0.0, 0.0);
+        out_depth = 0.0;
+        return;
+    }
+#endif
 
     // The view stretch: from where the ray enters the layer, at most u_max_distance. The
     // march covers the part of it inside the cloud type's altitude band (no density outside).

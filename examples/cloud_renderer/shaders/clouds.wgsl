@@ -95,6 +95,8 @@ struct CrUniforms {
     u_haze_table_distance: f32,
     u_far_shadow_size: vec2f,  // n_alt, n_mu
     u_far_shadow_range: vec4f,  // alt_lo, alt_hi, mu_lo, mu_hi
+    u_far_shadow_reach: f32,  // clouds.frag's pass 4 only (the table's drawing), which WebGPU takes from WebGL2
+    u_far_shadow_period: f32,
     u_sun_by_height: array<vec3f, 8>,  // the sun on the clouds by height in the layer
 }
 
