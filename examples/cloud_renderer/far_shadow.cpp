@@ -72,16 +72,7 @@ float node_mean(const scene& s, const vec3& sun_dir, const cloud_density& field,
 }
 
 far_shadow_table make_table(const scene& s, const vec3& sun_dir, const cloud_textures& textures, float reach) {
-    far_shadow_table t;
-    const glm::vec2 band = cloud_band(s);
-    t.alt_lo = band.x;
-    t.alt_hi = band.y;
-    t.reach = reach;
-    // Below mu_lo a path from the band's top meets the ground; above mu_hi a straight path
-    // from the band's bottom to its top (curvature only shortens it) is within the reach.
-    const float R = s.planet_radius, top = R + t.alt_hi;
-    t.mu_lo = -std::sqrt(std::max(1.0f - (R / top) * (R / top), 0.0f));
-    t.mu_hi = std::min((t.alt_hi - t.alt_lo) / std::max(reach, 1.0f), 1.0f);
+    far_shadow_table t = far_shadow_nodes(s, reach);
     t.texels.assign(static_cast<std::size_t>(t.n_alt * t.n_mu), 1.0f);
     const cloud_density field(s, textures);
     const float period = s.shape == cloud_shape::classic ? s.weather_tile : s.weather_wide_tile;
@@ -104,6 +95,20 @@ far_shadow_table make_table(const scene& s, const vec3& sun_dir, const cloud_tex
 }
 
 }  // namespace
+
+far_shadow_table far_shadow_nodes(const scene& s, float reach) {
+    far_shadow_table t;
+    const glm::vec2 band = cloud_band(s);
+    t.alt_lo = band.x;
+    t.alt_hi = band.y;
+    t.reach = reach;
+    // Below mu_lo a path from the band's top meets the ground; above mu_hi a straight path
+    // from the band's bottom to its top (curvature only shortens it) is within the reach.
+    const float R = s.planet_radius, top = R + t.alt_hi;
+    t.mu_lo = -std::sqrt(std::max(1.0f - (R / top) * (R / top), 0.0f));
+    t.mu_hi = std::min((t.alt_hi - t.alt_lo) / std::max(reach, 1.0f), 1.0f);
+    return t;
+}
 
 const far_shadow_table& far_shadow(const scene& s, const glm::vec3& sun, const cloud_textures& t, float reach) {
     // Everything the table depends on: geometry, sun, the field's parameters and textures.

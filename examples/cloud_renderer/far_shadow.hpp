@@ -19,8 +19,9 @@
 // light march reaches the band's end (1). Lookup bilinear and clamped, as clouds.frag's
 // cr_far_shadow reads the R32F image (x altitude, y cosine) with texelFetch.
 // What it leaves out: the correlation between the near and far paths (the table is a mean).
-// The GPU form: clouds.frag's pass 4 (cr_far_shadow_texel, gl_renderer::far_shadow_gpu), the same
-// nodes, starts and steps; the web demo draws its table with it.
+// The GPU form: clouds.frag's pass 4 (cr_far_shadow_texel), the same nodes, starts and steps,
+// which the GL renderer and the web demo draw (gl_renderer.cpp's ensure_far_shadow); the CPU
+// renderer reads far_shadow()'s table.
 #ifndef CLOUD_RENDERER_FAR_SHADOW_HPP
 #define CLOUD_RENDERER_FAR_SHADOW_HPP
 
@@ -45,6 +46,10 @@ struct far_shadow_table {
 // the stratified grid over the field's period).
 inline constexpr float far_shadow_step = 400.0f;
 inline constexpr int far_shadow_grid = 12;
+
+// The table's nodes for scene s with the light march ending at `reach`: its size and range,
+// texels empty (what far_shadow fills on the CPU, clouds.frag's pass 4 on the GPU).
+far_shadow_table far_shadow_nodes(const scene& s, float reach);
 
 // The table for scene s (its band, geometry and density field) and the sun in direction
 // sun_dir (frame_constants::sun_dir), with the light march ending at `reach` (light_reach);

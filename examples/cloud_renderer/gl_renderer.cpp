@@ -111,9 +111,12 @@ struct gl_renderer::state {
     const void* haze_uploaded = nullptr;  // the table `haze` holds
     GLuint sky_view = 0;             // ... its sky-view table at the camera
     const void* sky_view_uploaded = nullptr;  // the table `sky_view` holds
-    GLuint far_shadow = 0;           // ... and its clouds' shadow beyond the light march (far_shadow.hpp)
-    const void* far_shadow_uploaded = nullptr;  // the table `far_shadow` holds
-    cloud_textures cpu_textures;     // the uploaded textures' bytes: the far shadow marches the field on the CPU
+    // ... and its clouds' shadow beyond the light march (far_shadow.hpp): an RGBA32F n_alt x n_mu
+    // target that clouds.frag's pass 4 draws (ensure_far_shadow), its framebuffer, a 1 x 1
+    // stand-in bound while it is drawn, and what it was drawn for (empty: not yet).
+    GLuint far_shadow = 0, far_shadow_fbo = 0, far_shadow_stand_in = 0;
+    std::vector<float> far_shadow_key;
+    float textures_uploaded = 0.0f;  // upload_textures' count: the far shadow's field changes with them
     GLuint shadow_fbo = 0, shadow_map = 0;  // the Beer shadow map (clouds.frag's pass 2)
     int target_w = 0, target_h = 0;
     std::map<std::string, GLuint> programs;  // "" for the run-time program, else the variant spec
@@ -170,6 +173,8 @@ struct gl_renderer::state {
         if (shadow_map) gl.DeleteTextures(1, &shadow_map);
         if (haze) gl.DeleteTextures(1, &haze);
         if (far_shadow) gl.DeleteTextures(1, &far_shadow);
+        if (far_shadow_stand_in) gl.DeleteTextures(1, &far_shadow_stand_in);
+        if (far_shadow_fbo) gl.DeleteFramebuffers(1, &far_shadow_fbo);
         if (sky_view) gl.DeleteTextures(1, &sky_view);
         if (shadow_fbo) gl.DeleteFramebuffers(1, &shadow_fbo);
         if (fbo) gl.DeleteFramebuffers(1, &fbo);
@@ -286,8 +291,7 @@ bool gl_renderer::upload_textures(const cloud_textures& t, std::string& why) {
     upload(GL_TEXTURE_2D, s_->textures[2], GL_RGB8, GL_RGB, t.weather_size, t.weather, t.weather_mips);
     upload(GL_TEXTURE_2D, s_->textures[3], GL_RGB8, GL_RGB, t.weather_wide_size, t.weather_wide, t.weather_wide_mips);
     upload(GL_TEXTURE_2D, s_->textures[4], GL_RGB8, GL_RGB, t.curl_size, t.curl, no_mips);
-    s_->cpu_textures = t;
-    s_->far_shadow_uploaded = nullptr;
+    s_->textures_uploaded += 1.0f;
     why = s_->gl_errors("texture upload");
     return why.empty();
 }
@@ -332,6 +336,58 @@ void bind_float_table(const gl_api& gl, int unit, GLuint& tex, const void*& uplo
     uploaded = table;
 }
 
+GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bool compile_time, int width, int height,
+                   clouds_pass pass, glm::uvec2 offset, std::string& why);
+void use_pass(const gl_api& gl, GLuint program, clouds_pass pass, bool compile_time);
+
+// Draws the physical sky's far shadow for the scene and variant (clouds.frag's pass 4 into
+// st.far_shadow, far_shadow_nodes' size and range) unless it holds that table already: what
+// far_shadow() keys its CPU table by, the uploaded textures for their bytes. 0.3-0.6 s on
+// llvmpipe, once per scene, sun and reach; outside the frame's timing. The CPU renderer keeps
+// its own table (far_shadow()), which this one matches to test_cloud_renderer's bounds.
+bool ensure_far_shadow(gl_renderer::state& st, const scene& sc, const variant& v, std::string& why) {
+    const gl_api& gl = st.gl;
+    const frame_constants k = make_frame_constants(sc);
+    const float reach = light_reach(v, k);
+    const std::vector<float> key{sc.camera_altitude, sc.planet_radius, sc.layer_bottom, sc.layer_top, k.sun_dir.x, k.sun_dir.y,
+                                 k.sun_dir.z, sc.coverage, sc.cloud_type, sc.extinction, sc.base_tile, sc.detail_tile,
+                                 sc.weather_tile, sc.shape == cloud_shape::classic ? 0.0f : 1.0f, sc.weather_wide_tile,
+                                 sc.curl_tile, sc.curl_strength, sc.type_spread, sc.top_rounding, sc.density_scale,
+                                 reach, st.textures_uploaded};  // not the wind: a mean over the field's period
+    if (st.far_shadow != 0 && key == st.far_shadow_key) return true;
+    const far_shadow_table f = far_shadow_nodes(sc, reach);
+    if (st.far_shadow == 0) {
+        gl.ActiveTexture(GL_TEXTURE7);  // make_target binds to the active unit: the table's own
+        gl.GenTextures(1, &st.far_shadow_stand_in);
+        make_target(gl, st.far_shadow_stand_in, GL_RGBA32F, GL_RGBA, 1, 1);
+        gl.GenTextures(1, &st.far_shadow);
+        make_target(gl, st.far_shadow, GL_RGBA32F, GL_RGBA, f.n_alt, f.n_mu);
+        gl.GenFramebuffers(1, &st.far_shadow_fbo);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, st.far_shadow_fbo);
+        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, st.far_shadow, 0);
+        const bool complete = gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+        if (!complete) {
+            why = "the far shadow's float target is not supported (framebuffer incomplete)";
+            return false;
+        }
+    }
+    const GLuint program = bind_clouds(st, sc, v, true, f.n_alt, f.n_mu, clouds_pass::far_shadow, glm::uvec2(0), why);
+    if (program == 0) return false;
+    const GLenum one = GL_COLOR_ATTACHMENT0;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, st.far_shadow_fbo);
+    gl.DrawBuffers(1, &one);
+    gl.Viewport(0, 0, f.n_alt, f.n_mu);
+    use_pass(gl, program, clouds_pass::far_shadow, true);
+    gl.BindVertexArray(st.vao);
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    why = st.gl_errors("the far shadow's pass");
+    if (!why.empty()) return false;
+    st.far_shadow_key = key;
+    return true;
+}
+
 // Makes the clouds program of the variant's pass current with every uniform of the scene set
 // and the cloud textures bound; 0 on failure. clouds_pass::temporal_shading shades pixel
 // 4 (i, j) + offset. The run-time uber-shader is one program for every pass: use_pass sets its
@@ -347,6 +403,9 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
         return 0;
     }
     const gl_api& gl = st.gl;
+    // The physical sky's far shadow, drawn on the GPU when what it depends on changes (pass 4
+    // binds its own program through this function: it draws no far shadow itself).
+    if (sc.sky == sky_model::physical && pass != clouds_pass::far_shadow && !ensure_far_shadow(st, sc, v, why)) return 0;
     const GLuint program = st.program_for(v, sc.shape, compile_time, pass, sc.sky, why);
     if (program == 0) return 0;
     gl.UseProgram(program);
@@ -443,9 +502,11 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
         u.v3("u_haze_table_size", glm::vec3(float(t.n_d), float(t.n_az), float(t.n_el)));
         u.f1("u_haze_table_distance", t.max_distance);
         for (int i = 0; i < sun_heights; ++i) u.v3(("u_sun_by_height[" + std::to_string(i) + "]").c_str(), k.sun_by_height[i]);
-        // The far shadow on unit 7 and the sky-view table on unit 8, read as the haze table is.
-        const far_shadow_table& f = far_shadow(sc, k.sun_dir, st.cpu_textures, light_reach(v, k));
-        bind_float_table(gl, 7, st.far_shadow, st.far_shadow_uploaded, &f, GL_R32F, GL_RED, f.n_alt, f.n_mu, f.texels.data());
+        // The far shadow on unit 7 (drawn by pass 4, ensure_far_shadow; while pass 4 draws it, a
+        // stand-in) and the sky-view table on unit 8, read as the haze table is.
+        const far_shadow_table f = far_shadow_nodes(sc, light_reach(v, k));
+        gl.ActiveTexture(GL_TEXTURE7);
+        gl.BindTexture(GL_TEXTURE_2D, pass == clouds_pass::far_shadow ? st.far_shadow_stand_in : st.far_shadow);
         u.i1("u_far_shadow", 7);
         u.v2("u_far_shadow_size", glm::vec2(float(f.n_alt), float(f.n_mu)));
         gl.Uniform4f(u.loc("u_far_shadow_range"), f.alt_lo, f.alt_hi, f.mu_lo, f.mu_hi);
@@ -745,37 +806,14 @@ bool gl_renderer::far_shadow_gpu(const scene& sc, const variant& v, std::vector<
         return false;
     }
     state& st = *s_;
-    const gl_api& gl = st.gl;
-    const frame_constants k = make_frame_constants(sc);
-    const far_shadow_table& f = far_shadow(sc, k.sun_dir, st.cpu_textures, light_reach(v, k));
-    const GLuint program = bind_clouds(st, sc, v, true, f.n_alt, f.n_mu, clouds_pass::far_shadow, glm::uvec2(0), why);
-    if (program == 0) return false;
-    GLuint tex = 0, fbo = 0;
-    gl.ActiveTexture(GL_TEXTURE9);  // make_target binds to the active unit: not one the pass reads
-    gl.GenTextures(1, &tex);
-    make_target(gl, tex, GL_RGBA32F, GL_RGBA, f.n_alt, f.n_mu);
-    gl.GenFramebuffers(1, &fbo);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
-    bool ok = gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    if (!ensure_far_shadow(st, sc, v, why)) return false;
+    const far_shadow_table f = far_shadow_nodes(sc, light_reach(v, make_frame_constants(sc)));
     std::vector<float> rgba(static_cast<std::size_t>(f.n_alt * f.n_mu) * 4u);
-    if (ok) {
-        const GLenum one = GL_COLOR_ATTACHMENT0;
-        gl.DrawBuffers(1, &one);
-        gl.Viewport(0, 0, f.n_alt, f.n_mu);
-        use_pass(gl, program, clouds_pass::far_shadow, true);
-        gl.BindVertexArray(st.vao);
-        gl.DrawArrays(GL_TRIANGLES, 0, 3);
-        gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
-        gl.ReadPixels(0, 0, f.n_alt, f.n_mu, GL_RGBA, GL_FLOAT, rgba.data());
-    } else {
-        why = "the far shadow's float target is not supported (framebuffer incomplete)";
-    }
-    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-    gl.DeleteFramebuffers(1, &fbo);
-    gl.DeleteTextures(1, &tex);
-    if (!ok) return false;
-    why = st.gl_errors("the far shadow's pass");
+    st.gl.BindFramebuffer(GL_FRAMEBUFFER, st.far_shadow_fbo);
+    st.gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    st.gl.ReadPixels(0, 0, f.n_alt, f.n_mu, GL_RGBA, GL_FLOAT, rgba.data());
+    st.gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    why = st.gl_errors("reading the far shadow back");
     if (!why.empty()) return false;
     out.resize(static_cast<std::size_t>(f.n_alt * f.n_mu));
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = rgba[4 * i];

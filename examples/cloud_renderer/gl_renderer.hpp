@@ -79,11 +79,10 @@ public:
                          frame_timing* timing, std::string& why);
     void reset_temporal();
 
-    // The physical sky's far shadow drawn on the GPU (clouds.frag's pass 4): the table of
-    // far_shadow() for the scene and variant, node for node (the same range; n_alt x n_mu
-    // values, row-major, row: the sun's cosine), in `out`. The frame still reads the CPU's
-    // table; this is the GPU form, checked against it (test_cloud_renderer) and the one the web
-    // demo draws. False and `why` without the physical sky or on a GL error.
+    // The physical sky's far shadow as the frame reads it, drawn on the GPU (clouds.frag's pass
+    // 4): the nodes of far_shadow() for the scene and variant (the same range; n_alt x n_mu
+    // values, row-major, row: the sun's cosine), in `out`, for a test against the CPU's table.
+    // False and `why` without the physical sky or on a GL error.
     bool far_shadow_gpu(const scene& s, const variant& v, std::vector<float>& out, std::string& why);
 
     struct state;
