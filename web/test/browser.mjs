@@ -115,7 +115,7 @@ try {
   if (screenshot) { await page.screenshot({ path: screenshot, fullPage: true }); console.log(`screenshot: ${screenshot}`); }
   const parity = demo.parity, renderer = demo.renderer, firstFrame = demo.frames[0];
   const gpuFrame = demo.webgpu.frameMs, gpuAdapter = demo.webgpu.adapter, firstComparison = demo.webgpu.comparison;
-  const firstBake = demo.sky?.ms;
+  const firstBake = demo.sky?.ms, firstFar = demo.farShadow?.ms;
   check(Number.isFinite(firstBake), `the default sky is the physical one, its tables baked (${firstBake?.toFixed(0)} ms)`);
 
   // The thresholds can fail: a WebGPU frame with one lighting uniform changed (the exposure 5 %
@@ -206,7 +206,8 @@ try {
       `Error: |GPU - JS| / max(|JS|, 1e-30).\n\n| function | values | max error | budget | NaN/Inf |\n|---|---|---|---|---|\n` +
       rows.join('\n') + `\n\nCloud frame (cumulus preset, default variant, physical sky, 320 x 180, 64 view steps, base volume 64^3): ` +
       `${firstFrame.toFixed(0)} ms on this software renderer; the physical sky's tables (two 64 x 64 sky views, the 256 x 32 ` +
-      `aerial-perspective table and 19 sun and sky values, web/demo/physical_sky.js) baked in ${firstBake?.toFixed(0)} ms, once per scene and sun. The same frame from clouds.wgsl (the WGSL port, with ` +
+      `aerial-perspective table and 19 sun and sky values, web/demo/physical_sky.js) baked in ${firstBake?.toFixed(0)} ms, once per scene and sun, ` +
+      `and its far shadow (16 x 48 nodes, clouds.frag's pass 4) drawn in ${firstFar?.toFixed(0)} ms. The same frame from clouds.wgsl (the WGSL port, with ` +
       `cloudmath's generated WGSL library) on WebGPU (${gpuAdapter}): ${gpuFrame?.toFixed(0)} ms; against the WebGL2 image ` +
       `${comparisonText(firstComparison)}. The three.js snippet of web/README.md runs as written ` +
       `(three.js r${threeRevision}, GLSL3 ShaderMaterial, no shader errors).\n\n![the demo page](images/web_demo.png)\n`);
