@@ -110,17 +110,20 @@ far_shadow_table far_shadow_nodes(const scene& s, float reach) {
     return t;
 }
 
+std::vector<float> far_shadow_scene_key(const scene& s, const glm::vec3& sun, float reach) {
+    return {s.camera_altitude, s.planet_radius, s.layer_bottom, s.layer_top, sun.x, sun.y, sun.z,
+            s.coverage, s.cloud_type, s.extinction, s.base_tile, s.detail_tile, s.weather_tile,
+            s.shape == cloud_shape::classic ? 0.0f : 1.0f, s.weather_wide_tile, s.curl_tile,
+            s.curl_strength, s.type_spread, s.top_rounding, s.density_scale, reach};
+}
+
 const far_shadow_table& far_shadow(const scene& s, const glm::vec3& sun, const cloud_textures& t, float reach) {
     // Everything the table depends on: geometry, sun, the field's parameters and textures.
     std::uint32_t bytes = 2166136261u;  // FNV-1a over the weather maps: which textures
     for (const std::vector<std::uint8_t>* v : {&t.weather, &t.weather_wide})
         for (std::size_t i = 0; i < v->size(); i += 61) bytes = (bytes ^ (*v)[i]) * 16777619u;
-    const std::vector<float> key{s.camera_altitude, s.planet_radius, s.layer_bottom, s.layer_top, sun.x, sun.y, sun.z,
-                                 s.coverage, s.cloud_type, s.extinction, s.base_tile, s.detail_tile, s.weather_tile,
-                                 s.shape == cloud_shape::classic ? 0.0f : 1.0f, s.weather_wide_tile, s.curl_tile,
-                                 s.curl_strength, s.type_spread, s.top_rounding, s.density_scale, reach,
-                                 float(t.base_size), float(t.detail_size), float(t.weather_size),
-                                 float(bytes & 0xffffu), float(bytes >> 16)};
+    std::vector<float> key = far_shadow_scene_key(s, sun, reach);
+    key.insert(key.end(), {float(t.base_size), float(t.detail_size), float(t.weather_size), float(bytes & 0xffffu), float(bytes >> 16)});
     return made_once<far_shadow_table>(key, [&] { return make_table(s, sun, t, reach); });
 }
 

@@ -51,6 +51,11 @@ inline constexpr int far_shadow_grid = 12;
 // texels empty (what far_shadow fills on the CPU, clouds.frag's pass 4 on the GPU).
 far_shadow_table far_shadow_nodes(const scene& s, float reach);
 
+// What the table depends on besides the textures: the geometry, the sun in direction sun_dir,
+// the field's parameters and the reach (not the wind: the table is a mean over the field's
+// period). far_shadow() and the GL renderer's GPU table key by it, each with its textures.
+std::vector<float> far_shadow_scene_key(const scene& s, const glm::vec3& sun_dir, float reach);
+
 // The table for scene s (its band, geometry and density field) and the sun in direction
 // sun_dir (frame_constants::sun_dir), with the light march ending at `reach` (light_reach);
 // made once per scene, sun and reach and kept (made_once).

@@ -349,11 +349,8 @@ bool ensure_far_shadow(gl_renderer::state& st, const scene& sc, const variant& v
     const gl_api& gl = st.gl;
     const frame_constants k = make_frame_constants(sc);
     const float reach = light_reach(v, k);
-    const std::vector<float> key{sc.camera_altitude, sc.planet_radius, sc.layer_bottom, sc.layer_top, k.sun_dir.x, k.sun_dir.y,
-                                 k.sun_dir.z, sc.coverage, sc.cloud_type, sc.extinction, sc.base_tile, sc.detail_tile,
-                                 sc.weather_tile, sc.shape == cloud_shape::classic ? 0.0f : 1.0f, sc.weather_wide_tile,
-                                 sc.curl_tile, sc.curl_strength, sc.type_spread, sc.top_rounding, sc.density_scale,
-                                 reach, st.textures_uploaded};  // not the wind: a mean over the field's period
+    std::vector<float> key = far_shadow_scene_key(sc, k.sun_dir, reach);
+    key.push_back(st.textures_uploaded);
     if (st.far_shadow != 0 && key == st.far_shadow_key) return true;
     const far_shadow_table f = far_shadow_nodes(sc, reach);
     if (st.far_shadow == 0) {

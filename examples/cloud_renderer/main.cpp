@@ -537,9 +537,6 @@ std::vector<std::string> output_files(const options& o) {
     }
 }
 
-}  // namespace
-
-namespace {
 // --print-sky: the frame constants that describe the sky and the sun (make_frame_constants),
 // as JSON with 9 significant digits: what the web demo's physical sky (web/demo/physical_sky.js)
 // is checked against.

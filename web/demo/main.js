@@ -180,7 +180,7 @@ function bakeTextures(keepTexels) {
 let clouds = null, textures = null, target = null;
 // The physical sky's baker, its last bake (key: scene and sun), its last far shadow (key: the
 // bake's, the coverage and the reach) and the tables WebGPU reads (a new object when either changes).
-const physicalSky = { sky: null, baked: null, key: null, farKey: null, farShadowMs: null, tables: null };
+const physicalSky = { sky: null, baked: null, key: null, farKey: null, tables: null };
 const cloudPrograms = new Map();
 function useClouds(values) {
   // The physical sky is a permutation as well (the desktop host's #define CR_PHYSICAL_SKY).
@@ -276,7 +276,7 @@ function bindClouds(values, farShadow) {
     else if (type === gl.FLOAT_VEC2) gl.uniform2fv(at, v);
     else if (type === gl.FLOAT_VEC3) gl.uniform3fv(at, v);
     else if (type === gl.FLOAT_VEC4) gl.uniform4fv(at, v);
-    else throw new Error(`clouds.frag: uniform ${name} has type 0x${type.toString(16)}, which render() does not set`);
+    else throw new Error(`clouds.frag: uniform ${name} has type 0x${type.toString(16)}, which bindClouds() does not set`);
   }
   // u_shadow_map, u_weather_wide and u_curl get units of their own (a 1 x 1 texture: shadows
   // are off and the shape is classic), so that no unit holds two texture types.
@@ -306,8 +306,7 @@ function ensureFarShadow(values) {
   gl.bindFramebuffer(gl.FRAMEBUFFER, null);
   gl.deleteFramebuffer(fbo);
   physicalSky.farKey = key;
-  physicalSky.farShadowMs = performance.now() - t0;
-  demo.farShadow = { ms: physicalSky.farShadowMs, table: Array.from(data.filter((_, i) => i % 4 === 0)) };
+  demo.farShadow = { ms: performance.now() - t0, table: Array.from(data.filter((_, i) => i % 4 === 0)) };
   const b = physicalSky.baked.tables;
   physicalSky.tables = { haze: b.haze, skyView: b.skyView, farShadow: { width: farShadowSize[0], height: farShadowSize[1], data } };
 }
@@ -437,8 +436,6 @@ async function main() {
   const state = { scene: params.get('scene') || 'cumulus', variant: params.get('variant') || 'default', ms: params.get('ms') || 'production',
                   sky: params.get('sky') || 'physical' };  // the desktop renderer's default sky
   if (!['artistic', 'physical'].includes(state.sky)) throw new Error(`unknown sky ${state.sky} (artistic or physical)`);
-  // The physical sky's baker: the refined multiple-scattering table (web/demo/sky_table.bin) and
-  // its program (physical_sky.js).
   if (state.sky === 'physical') await loadPhysicalSky();
   const preset = () => scenePresets.find((x) => x.name === state.scene);
   state.sunElevation = Number(params.get('sun') ?? preset().sunElevation);

@@ -25,6 +25,9 @@ export const hazeDistance = 160000;  // ... its max_distance (m)
 const tableSize = 32, tableParts = 21;  // the table's layout (cloudmath_atmosphere_lut --write-table)
 const sunHeights = 8;  // scene.hpp's sun_heights
 export const farShadowSize = [16, 48];  // far_shadow.hpp's far_shadow_table: n_alt, n_mu
+// The values row (u_kind 2): the sun at sunHeights heights, at the band's middle and at the
+// camera, the zenith, the horizon at 8 azimuths, the band.
+const valueCount = sunHeights + 12;
 
 // One fragment shader for every table (u_kind), one texel per fragment.
 function bakeSource(header, library) {
@@ -142,16 +145,16 @@ export function createPhysicalSky(gl, header, library, compile, tableBytes) {
   gl.bindTexture(gl.TEXTURE_2D, farShadow);
   gl.texImage2D(gl.TEXTURE_2D, 0, gl.R32F, 2, 2, 0, gl.RED, gl.FLOAT, new Float32Array([1, 1, 1, 1]));
   for (const k of [gl.TEXTURE_MIN_FILTER, gl.TEXTURE_MAG_FILTER]) gl.texParameteri(gl.TEXTURE_2D, k, gl.NEAREST);
-  const sky = { table, program, farShadow, cache: new Map(),
+  return { table, program, farShadow,
     skyView: floatTexture(...skyViewSize), skyTop: floatTexture(...skyViewSize),
-    haze: floatTexture(hazeSize[0] * hazeSize[1], hazeSize[2]), values: floatTexture(sunHeights + 12, 1),
+    haze: floatTexture(hazeSize[0] * hazeSize[1], hazeSize[2]), values: floatTexture(valueCount, 1),
     farTable: floatTexture(...farShadowSize) };
-  return sky;
 }
 
 // Bakes the tables for scene s (the demo's scene preset with its state: altitudes, the layer,
-// the cloud type) and sun direction sunDir (frame constants), reads back what the frame's uniforms need and returns them with
-// the bake's time. The tables stay in sky.skyView and sky.haze until the next bake.
+// the cloud type) and sun direction sunDir (frame constants), reads back what the frame's
+// uniforms need and returns them with the bake's time. The tables stay in sky.skyView and
+// sky.haze until the next bake.
 export function bakePhysicalSky(gl, sky, s, sunDir) {
   const t0 = performance.now();
   const sunAtZero = [Math.sqrt(Math.max(1 - sunDir[1] * sunDir[1], 0)), sunDir[1], 0];
@@ -183,7 +186,7 @@ export function bakePhysicalSky(gl, sky, s, sunDir) {
   const below = draw(sky.skyView, ...skyViewSize, 0, [...skyViewSize, 0], camera, sunAtZero, true);
   const above = draw(sky.skyTop, ...skyViewSize, 0, [...skyViewSize, 0], s.layerTop, sunAtZero, true);
   const haze = draw(sky.haze, hazeSize[0] * hazeSize[1], hazeSize[2], 1, hazeSize, camera, sunAtZero, true);
-  const v = draw(sky.values, sunHeights + 12, 1, 2, [0, 0, 0], camera, sunDir, true);
+  const v = draw(sky.values, valueCount, 1, 2, [0, 0, 0], camera, sunDir, true);
   gl.bindFramebuffer(gl.FRAMEBUFFER, null);
   gl.deleteFramebuffer(fbo);
   const texel = (i) => [v[4 * i], v[4 * i + 1], v[4 * i + 2]];
