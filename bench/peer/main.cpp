@@ -5,6 +5,8 @@
 // prints a Markdown report on stdout (scripts/peer-bench.sh puts it in docs/peer_bench.md).
 // Not part of the library: built only with -DCLOUDMATH_BUILD_PEER_BENCH=ON.
 #include "peer_clouds.hpp"
+#include "quality_sweep.hpp"
+#include "timing.hpp"
 
 #include "cpu_renderer.hpp"
 #include "egl_headless.hpp"
@@ -26,6 +28,8 @@
 namespace {
 
 using namespace cloud_renderer;
+using peer_bench::time_rows;
+using peer_bench::timed_row;
 
 const char* const usage =
     "usage: cloudmath_peer_bench --peer DIR [options]\n"
@@ -40,13 +44,19 @@ const char* const usage =
     "  --images DIR     write DIR/peer_clouds.png, peer_ours_default.png, peer_ours_temporal.png\n"
     "                   and peer_ours_octaves.png\n"
     "  --cache DIR      our baked texture cache (default ~/.cache/cloudmath; 'none': no cache)\n"
+    "  --sweep          also the equal-quality sweep: both renderers at 16-256 view steps and\n"
+    "                   3, 6, 12 and 24 light samples against their own converged images\n"
+    "  --sweep-rounds N timed rounds of the sweep (default 3)\n"
+    "  --sweep-steps L  the sweep's view steps, a comma-separated list (default 16,32,64,128,256)\n"
+    "  --sweep-light L  the sweep's light samples, a comma-separated list (default 3,6,12,24)\n"
     "  --quiet          no progress lines on stderr\n"
     "  --help           this text\n";
 
 struct options {
     std::string peer_dir, images_dir, cache_dir, preset = "ground";
-    int width = 480, height = 270, frames = 5;
-    bool quiet = false;
+    int width = 480, height = 270, frames = 5, sweep_rounds = 3;
+    std::vector<int> sweep_steps{16, 32, 64, 128, 256}, sweep_light{3, 6, 12, 24};
+    bool quiet = false, sweep = false;
 };
 
 bool parse_int(const std::string& text, int lo, int hi, int& out) {
@@ -66,12 +76,13 @@ int parse(int argc, char** argv, options& o) {
             std::fputs(usage, stdout);
             return 1;
         }
-        if (flag == "--quiet") {
-            o.quiet = true;
+        if (flag == "--quiet" || flag == "--sweep") {
+            (flag == "--quiet" ? o.quiet : o.sweep) = true;
             continue;
         }
         const bool takes_value = flag == "--peer" || flag == "--width" || flag == "--height" || flag == "--frames" ||
-                                 flag == "--preset" || flag == "--images" || flag == "--cache";
+                                 flag == "--preset" || flag == "--images" || flag == "--cache" ||
+                                 flag == "--sweep-rounds" || flag == "--sweep-steps" || flag == "--sweep-light";
         if (!takes_value) {
             std::fprintf(stderr, "error: unknown option '%s'\n%s", flag.c_str(), usage);
             return 2;
@@ -88,10 +99,29 @@ int parse(int argc, char** argv, options& o) {
         else if (flag == "--cache") o.cache_dir = value;
         else if (flag == "--width") ok = parse_int(value, 16, 8192, o.width);
         else if (flag == "--height") ok = parse_int(value, 16, 8192, o.height);
+        else if (flag == "--sweep-rounds") ok = parse_int(value, 1, 1000, o.sweep_rounds);
+        else if (flag == "--sweep-steps" || flag == "--sweep-light") {
+            std::vector<int>& list = flag == "--sweep-steps" ? o.sweep_steps : o.sweep_light;
+            list.clear();
+            std::size_t start = 0;
+            while (ok && start <= value.size()) {
+                const std::size_t comma = std::min(value.find(',', start), value.size());
+                int n = 0;
+                ok = parse_int(value.substr(start, comma - start), 1, 1024, n);
+                list.push_back(n);
+                start = comma + 1;
+            }
+            if (!ok) {
+                std::fprintf(stderr, "error: %s must be a comma-separated list of integers 1 to 1024, not '%s'\n",
+                             flag.c_str(), value.c_str());
+                return 2;
+            }
+            continue;
+        }
         else ok = parse_int(value, 1, 1000, o.frames);
         if (!ok) {
             std::fprintf(stderr, "error: %s must be an integer (%s), not '%s'\n", flag.c_str(),
-                         flag == "--frames" ? "1 to 1000" : "16 to 8192", value.c_str());
+                         flag == "--frames" || flag == "--sweep-rounds" ? "1 to 1000" : "16 to 8192", value.c_str());
             return 2;
         }
     }
@@ -104,43 +134,6 @@ int parse(int argc, char** argv, options& o) {
         return 2;
     }
     return 0;
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
-// One timed row: how to draw one frame of it (returning its host time), how many frames
-// to draw before timing (shader compile and JIT; the temporal history), the measured times.
-struct timed_row {
-    std::function<bool(double& ms, std::string& why)> frame;
-    int warm_up = 1;
-    std::vector<double> ms;
-    double median_ms = 0, min_ms = 0, max_ms = 0;
-};
-
-// Warms every row up, then times them in rounds (one frame of each row per round), so that
-// a change in the machine's load (other processes on a shared machine) hits all rows alike
-// rather than whichever row happened to run then.
-bool time_rows(std::vector<timed_row*> rows, int frames, std::string& why) {
-    for (timed_row* r : rows)
-        for (int f = 0; f < r->warm_up; ++f) {
-            double ignored = 0;
-            if (!r->frame(ignored, why)) return false;
-        }
-    for (int f = 0; f < frames; ++f)
-        for (timed_row* r : rows) {
-            double ms = 0;
-            if (!r->frame(ms, why)) return false;
-            r->ms.push_back(ms);
-        }
-    for (timed_row* r : rows) {
-        r->median_ms = median(r->ms);
-        r->min_ms = *std::min_element(r->ms.begin(), r->ms.end());
-        r->max_ms = *std::max_element(r->ms.begin(), r->ms.end());
-    }
-    return true;
 }
 
 // The 1-minute load average (/proc/loadavg), negative where there is none: the machine may
@@ -331,6 +324,20 @@ int run(const options& o) {
                 octaves_reads.p95, 100.0 * octaves_reads.light_share);
     std::printf("\nPeer image: mean brightness %.3f, %.0f%% of pixels with cloud opacity above 0.1, %d NaN pixels.\n",
                 peer_stats.mean_brightness, 100.0 * peer_stats.cloud_fraction, peer_stats.nan_pixels);
+
+    if (o.sweep) {
+        peer_bench::sweep_settings sw;
+        sw.width = o.width;
+        sw.height = o.height;
+        sw.rounds = o.sweep_rounds;
+        sw.view_steps = o.sweep_steps;
+        sw.light_steps = o.sweep_light;
+        sw.images_dir = o.images_dir;
+        sw.quiet = o.quiet;
+        std::string section;
+        if (!peer_bench::quality_sweep(*ours, *peer, sc, sw, section, why)) return fail(why);
+        std::printf("\n## Equal quality: each renderer against its own converged image\n\n%s", section.c_str());
+    }
     return 0;
 }
 

@@ -7,6 +7,7 @@
 
 #include "gl_functions.hpp"
 #include "instrument.hpp"
+#include "quality_knobs.hpp"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -99,6 +100,9 @@ struct peer_clouds::state {
     gl_api gl;
     bool quiet = false;
     std::string sky_vert, sky_frag;                // screen.vert, sky.frag (the sky texture's pass)
+    std::string clouds_source;                     // volumetric_clouds.comp as shipped
+    std::vector<GLuint> quality;                   // add_quality_program's copies
+    peer_view last_view;                           // of the last prepare()
     GLuint clouds = 0, counted = 0, sky = 0;       // programs: as shipped, instrumented, sky
     GLuint perlin = 0, worley = 0, weather = 0;    // the noise textures
     GLuint outputs[output_images] = {0, 0, 0, 0};
@@ -314,6 +318,7 @@ struct peer_clouds::state {
         const GLuint programs[3] = {clouds, counted, sky};
         for (GLuint p : programs)
             if (p != 0) gl.DeleteProgram(p);
+        for (GLuint p : quality) gl.DeleteProgram(p);
         const GLuint textures[9] = {perlin, worley, weather, outputs[0], outputs[1], outputs[2], outputs[3], sky_texture, depth};
         for (GLuint t : textures)
             if (t != 0) gl.DeleteTextures(1, &t);
@@ -358,6 +363,7 @@ std::unique_ptr<peer_clouds> peer_clouds::create(const std::string& peer_dir, pr
     state& st = *peer->s_;
     st.sky_vert = sources[5];
     st.sky_frag = sources[4];
+    st.clouds_source = sources[0];
 
     const instrumented_shader counted = instrument_texture_reads(sources[0], why);
     if (counted.source.empty()) return nullptr;
@@ -400,8 +406,10 @@ bool peer_clouds::prepare(int width, int height, const peer_view& view, std::str
         }
     }
     if (!st.draw_sky(view, why)) return false;
+    st.last_view = view;
     st.set_clouds_uniforms(st.clouds, view);
     st.set_clouds_uniforms(st.counted, view);
+    for (GLuint p : st.quality) st.set_clouds_uniforms(p, view);
     why = gl.errors("setting the peer's uniforms");
     return why.empty();
 }
@@ -415,6 +423,52 @@ bool peer_clouds::dispatch(double& wall_ms, std::string& why) {
     st.gl.Finish();
     wall_ms = 1000.0 * seconds_since(start);
     why = st.gl.errors("the clouds dispatch");
+    return why.empty();
+}
+
+int peer_clouds::add_quality_program(int view_steps, int light_steps, std::string& why) {
+    state& st = *s_;
+    const std::string source = with_quality_knobs(st.clouds_source, view_steps, light_steps, why);
+    if (source.empty()) return -1;
+    const std::string label = "volumetric_clouds.comp (" + std::to_string(view_steps) + " view steps, " +
+                              std::to_string(light_steps) + " light samples)";
+    const GLuint program = st.compute_program(source, label, why);
+    if (program == 0) return -1;
+    st.quality.push_back(program);
+    st.set_clouds_uniforms(program, st.last_view);
+    why = st.gl.errors(label.c_str());
+    return why.empty() ? static_cast<int>(st.quality.size()) - 1 : -1;
+}
+
+bool peer_clouds::dispatch_quality(int program, float jitter, double& wall_ms, std::string& why) {
+    state& st = *s_;
+    if (program < 0 || static_cast<std::size_t>(program) >= st.quality.size()) {
+        why = "dispatch_quality: no such program";
+        return false;
+    }
+    const GLuint p = st.quality[static_cast<std::size_t>(program)];
+    st.gl.UseProgram(p);
+    st.gl.Uniform1f(st.gl.GetUniformLocation(p, jitter_uniform), jitter);
+    st.bind_clouds_inputs();
+    st.gl.Finish();
+    const auto start = std::chrono::steady_clock::now();
+    st.dispatch_clouds(p);
+    st.gl.Finish();
+    wall_ms = 1000.0 * seconds_since(start);
+    why = st.gl.errors("the clouds dispatch (quality knobs)");
+    return why.empty();
+}
+
+bool peer_clouds::read_marched(std::vector<char>& mask, std::string& why) {
+    state& st = *s_;
+    std::vector<glm::vec4> distance(static_cast<std::size_t>(st.width) * static_cast<std::size_t>(st.height));
+    st.gl.MemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    st.gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    st.gl.BindTexture(GL_TEXTURE_2D, st.outputs[3]);  // cloudDistance: -1 where the fog test skipped the march
+    st.gl.GetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, distance.data());
+    why = st.gl.errors("reading cloudDistance");
+    mask.assign(distance.size(), 0);
+    for (std::size_t i = 0; i < distance.size(); ++i) mask[i] = distance[i].x == -1.0f ? 0 : 1;
     return why.empty();
 }
 

@@ -11,6 +11,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace peer_bench {
 
@@ -55,6 +56,15 @@ public:
     // One frame: the clouds dispatch (and the engine's image barrier) between glFinish calls;
     // wall_ms the host time from before the dispatch to the end of glFinish().
     bool dispatch(double& wall_ms, std::string& why);
+    // A copy of the clouds shader with its quality knobs explicit (quality_knobs.hpp: view
+    // steps, light samples, a start-offset shift), compiled and set up as the shipped one for
+    // the view of the last prepare(); its handle for dispatch_quality, or -1 and the reason.
+    int add_quality_program(int view_steps, int light_steps, std::string& why);
+    // One frame of such a copy, its start offsets shifted by `jitter` in [0, 1); timed as dispatch().
+    bool dispatch_quality(int program, float jitter, double& wall_ms, std::string& why);
+    // Which pixels the last dispatch marched through the layer (1) and which the peer's fog
+    // test skipped (0: its cloudDistance image holds -1 there).
+    bool read_marched(std::vector<char>& mask, std::string& why);
     // One dispatch of the instrumented copy, then the counters read back.
     bool count_reads(peer_reads& out, std::string& why);
     // The fragColor image of the last dispatch (rows bottom-up, as cloud_renderer::image).
