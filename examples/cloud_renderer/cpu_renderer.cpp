@@ -38,11 +38,13 @@ void bilinear_taps(vec4 fp, int width, int height, Tap tap) {
         }
 }
 
-// Catmull-Rom's 16 taps around footprint fp (the bilinear taps and the ring around them),
-// clamped to the grid: a sharper reconstruction than GL_LINEAR, which, repeated every frame
-// on a moving history, blurs it (temporal_resolve.frag's cr_catmull_rom).
-template <class Tap>
-void catmull_rom_taps(vec4 fp, int width, int height, Tap tap) {
+// Catmull-Rom's value of `values` (a width x height grid) around footprint fp, clamped to
+// the grid, then to the range of the four bilinear taps: no ringing. A sharper
+// reconstruction than GL_LINEAR, which, repeated every frame on a moving history, blurs it.
+// temporal_resolve.frag's cr_catmull_rom reads it in five GL_LINEAR reads (the middle pair of
+// taps along each axis is one linear read); those are the 16 taps less the four corners
+// (each weight at most 0.0055), renormalised, which is what this sums texel by texel.
+vec4 catmull_rom_clamped(vec4 fp, int width, int height, const std::vector<vec4>& values) {
     const auto weights = [](float f, float* w) {
         w[0] = f * (-0.5f + f * (1.0f - 0.5f * f));
         w[1] = 1.0f + f * f * (-2.5f + 1.5f * f);
@@ -52,23 +54,23 @@ void catmull_rom_taps(vec4 fp, int width, int height, Tap tap) {
     float wx[4], wy[4];
     weights(fp.z, wx);
     weights(fp.w, wy);
+    vec4 sum(0.0f), lo(INFINITY), hi(-INFINITY);
+    float total = 0.0f;
     for (int dy = -1; dy < 3; ++dy)
         for (int dx = -1; dx < 3; ++dx) {
+            const bool corner = (dx == -1 || dx == 2) && (dy == -1 || dy == 2);
+            if (corner) continue;
             const int tx = std::clamp(int(fp.x) + dx, 0, width - 1), ty = std::clamp(int(fp.y) + dy, 0, height - 1);
-            tap(static_cast<std::size_t>(ty) * static_cast<std::size_t>(width) + static_cast<std::size_t>(tx), wx[dx + 1] * wy[dy + 1]);
+            const vec4 texel = values[static_cast<std::size_t>(ty) * static_cast<std::size_t>(width) + static_cast<std::size_t>(tx)];
+            const float weight = wx[dx + 1] * wy[dy + 1];
+            sum += texel * weight;
+            total += weight;
         }
-}
-
-// Catmull-Rom's value of `values` (a width x height grid) at footprint fp, clamped to the
-// range of the four bilinear taps: no ringing (temporal_resolve.frag's cr_catmull_rom).
-vec4 catmull_rom_clamped(vec4 fp, int width, int height, const std::vector<vec4>& values) {
-    vec4 sum(0.0f), lo(INFINITY), hi(-INFINITY);
     bilinear_taps(fp, width, height, [&](std::size_t i, float) {
         lo = glm::min(lo, values[i]);
         hi = glm::max(hi, values[i]);
     });
-    catmull_rom_taps(fp, width, height, [&](std::size_t i, float weight) { sum += values[i] * weight; });
-    return glm::clamp(sum, lo, hi);
+    return glm::clamp(sum / total, lo, hi);
 }
 
 // A view sample in cloud, recorded by the march for the light pass (clouds.frag's CrLitSample).

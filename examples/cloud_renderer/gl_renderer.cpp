@@ -117,7 +117,11 @@ struct gl_renderer::state {
     GLuint far_shadow = 0, far_shadow_fbo = 0, far_shadow_stand_in = 0;
     std::vector<float> far_shadow_key;
     float textures_uploaded = 0.0f;  // upload_textures' count: the far shadow's field changes with them
-    GLuint shadow_fbo = 0, shadow_map = 0;  // the Beer shadow map (clouds.frag's pass 2)
+    // The Beer shadow map (clouds.frag's pass 2): an RGBA32F target and its framebuffer.
+    struct shadow_target {
+        GLuint fbo = 0, map = 0;
+    };
+    shadow_target shadow;  // the full frame's, drawn whole every frame
     int target_w = 0, target_h = 0;
     std::map<std::string, GLuint> programs;  // "" for the run-time program, else the variant spec
 
@@ -130,6 +134,9 @@ struct gl_renderer::state {
         GLuint background_fbo = 0, background = 0;  // clouds.frag's pass 3: what lies behind the layer
         GLuint history_fbo[2] = {0, 0}, history[2][2] = {{0, 0}, {0, 0}}, display = 0;
         GLuint resolve_program = 0;
+        // Its own shadow map, a slice a frame: a full frame in between (another variant, another
+        // scene) does not make it redraw the whole map.
+        shadow_target shadow;
         std::string shadow_map_key;  // what the shadow map was last drawn whole for (empty: redraw it whole)
         int current = 0;          // the history the next resolve reads
         bool has_history = false;
@@ -170,13 +177,12 @@ struct gl_renderer::state {
         programs.clear();
         gl.DeleteTextures(5, textures);
         if (target) gl.DeleteTextures(1, &target);
-        if (shadow_map) gl.DeleteTextures(1, &shadow_map);
+        release_shadow(shadow);
         if (haze) gl.DeleteTextures(1, &haze);
         if (far_shadow) gl.DeleteTextures(1, &far_shadow);
         if (far_shadow_stand_in) gl.DeleteTextures(1, &far_shadow_stand_in);
         if (far_shadow_fbo) gl.DeleteFramebuffers(1, &far_shadow_fbo);
         if (sky_view) gl.DeleteTextures(1, &sky_view);
-        if (shadow_fbo) gl.DeleteFramebuffers(1, &shadow_fbo);
         if (fbo) gl.DeleteFramebuffers(1, &fbo);
         if (vao) gl.DeleteVertexArrays(1, &vao);
         if (queries[0]) gl.DeleteQueries(2, queries);
@@ -194,7 +200,14 @@ struct gl_renderer::state {
         for (GLuint* h : t.history)
             if (h[0]) gl.DeleteTextures(2, h);
         if (t.display) gl.DeleteTextures(1, &t.display);
+        release_shadow(t.shadow);
         t = temporal_targets{};
+    }
+
+    void release_shadow(shadow_target& t) {
+        if (t.map) gl.DeleteTextures(1, &t.map);
+        if (t.fbo) gl.DeleteFramebuffers(1, &t.fbo);
+        t = shadow_target{};
     }
 
     // GL objects go while the context is current; `egl` then destroys the context.
@@ -307,6 +320,14 @@ void make_target(const gl_api& gl, GLuint tex, GLenum internal_format, GLenum fo
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+// GL_LINEAR filtering for a make_target texture that a pass reads between texels (texture());
+// texelFetch reads ignore it.
+void linear_filter(const gl_api& gl, GLuint tex) {
+    gl.BindTexture(GL_TEXTURE_2D, tex);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
 }
 
 // Sets uniforms of one program by name (the location lookups of both passes).
@@ -538,16 +559,16 @@ GLuint bind_shadow_map(gl_renderer::state& st, const scene& sc, const variant& v
 // variant has no map), then binds the map to unit 3 for the passes that read it. Unit 3 holds
 // no texture while the map is drawn (no feedback loop). The caller makes its own pass current
 // afterwards.
-bool shadow_pass(gl_renderer::state& st, GLuint shadow_program, bool compile_time, std::string& why,
-                 glm::ivec2 rows = glm::ivec2(0, shadow_map_size)) {
+bool shadow_pass(gl_renderer::state& st, gl_renderer::state::shadow_target& target, GLuint shadow_program,
+                 bool compile_time, std::string& why, glm::ivec2 rows = glm::ivec2(0, shadow_map_size)) {
     const gl_api& gl = st.gl;
     gl.ActiveTexture(GL_TEXTURE3);  // make_target binds to the active unit: not the clouds' 0-2
-    if (st.shadow_fbo == 0) {
-        gl.GenFramebuffers(1, &st.shadow_fbo);
-        gl.GenTextures(1, &st.shadow_map);
-        make_target(gl, st.shadow_map, GL_RGBA32F, GL_RGBA, shadow_map_size, shadow_map_size);
-        gl.BindFramebuffer(GL_FRAMEBUFFER, st.shadow_fbo);
-        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, st.shadow_map, 0);
+    if (target.fbo == 0) {
+        gl.GenFramebuffers(1, &target.fbo);
+        gl.GenTextures(1, &target.map);
+        make_target(gl, target.map, GL_RGBA32F, GL_RGBA, shadow_map_size, shadow_map_size);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, target.fbo);
+        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target.map, 0);
         if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
             why = "the shadow map's float target is not supported (framebuffer incomplete)";
             return false;
@@ -557,7 +578,7 @@ bool shadow_pass(gl_renderer::state& st, GLuint shadow_program, bool compile_tim
     gl.BindTexture(GL_TEXTURE_2D, 0);
     if (shadow_program != 0) {
         const GLenum one = GL_COLOR_ATTACHMENT0;
-        gl.BindFramebuffer(GL_FRAMEBUFFER, st.shadow_fbo);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, target.fbo);
         gl.DrawBuffers(1, &one);
         gl.Viewport(0, 0, shadow_map_size, shadow_map_size);
         use_pass(gl, shadow_program, clouds_pass::shadow_map, compile_time);
@@ -570,7 +591,7 @@ bool shadow_pass(gl_renderer::state& st, GLuint shadow_program, bool compile_tim
         if (slice) gl.Disable(GL_SCISSOR_TEST);
     }
     gl.ActiveTexture(GL_TEXTURE3);
-    gl.BindTexture(GL_TEXTURE_2D, st.shadow_map);
+    gl.BindTexture(GL_TEXTURE_2D, target.map);
     return true;
 }
 
@@ -627,6 +648,7 @@ bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std:
     }
     const int lw = (width + 3) / 4, lh = (height + 3) / 4;
     make_target(gl, t.fresh[0], GL_RGBA32F, GL_RGBA, lw, lh);
+    linear_filter(gl, t.fresh[0]);  // the resolve's Catmull-Rom reads between texels
     make_target(gl, t.fresh[1], GL_R32F, GL_RED, lw, lh);
     make_target(gl, t.display, GL_RGBA32F, GL_RGBA, width, height);
     gl.BindFramebuffer(GL_FRAMEBUFFER, t.fresh_fbo);
@@ -639,6 +661,7 @@ bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std:
     complete = complete && gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
     for (int i = 0; i < 2; ++i) {
         make_target(gl, t.history[i][0], GL_RGBA32F, GL_RGBA, width, height);
+        linear_filter(gl, t.history[i][0]);
         make_target(gl, t.history[i][1], GL_RG32F, GL_RG, width, height);
         gl.BindFramebuffer(GL_FRAMEBUFFER, t.history_fbo[i]);
         gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.history[i][0], 0);
@@ -670,8 +693,7 @@ bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, uns
     bool shadow_ok = true;
     const GLenum one = GL_COLOR_ATTACHMENT0;
     const bool ok = timed(*s_, timing, why, [&] {
-        shadow_ok = shadow_pass(*s_, shadow, compile_time, why);
-        s_->temporal.shadow_map_key.clear();  // the temporal scheme's next frame redraws it whole
+        shadow_ok = shadow_pass(*s_, s_->shadow, shadow, compile_time, why);
         use_pass(gl, program, clouds_pass::frame, compile_time);
         gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
         if (fbo != 0) gl.DrawBuffers(1, &one);
@@ -696,7 +718,7 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
     const GLuint shadow = bind_shadow_map(*s_, shading, v, compile_time, width, height, why);
     if (shadow == 0 && !why.empty()) return false;
     // The shadow map a slice a frame (temporal_shadow_rows): the whole of it on a first frame,
-    // after a full frame drew it, or when the variant, the shape or the shader form changed.
+    // or when the variant, the shape or the shader form changed.
     const std::string map_key = permutation_key(v, sc.shape) + (compile_time ? "" : "/run-time");
     const bool whole_map = !t.has_history || map_key != t.shadow_map_key;
     t.shadow_map_key = map_key;
@@ -738,19 +760,34 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
     const int out = 1 - t.current;
 
     bool shadow_ok = true;
+    // With split_passes, each pass's host time (glFinish after it).
+    const bool split = timing != nullptr && timing->split_passes;
+    auto mark = std::chrono::steady_clock::now();
+    const auto lap = [&](double* ms) {
+        if (!split) return;
+        gl.Finish();
+        const auto now = std::chrono::steady_clock::now();
+        *ms = std::chrono::duration<double, std::milli>(now - mark).count();
+        mark = now;
+    };
+    double shadow_ms = 0, shading_ms = 0, background_ms = 0, resolve_ms = 0;
     const bool ok = timed(*s_, timing, why, [&] {
-        shadow_ok = shadow_pass(*s_, shadow, compile_time, why, temporal_shadow_rows(sc.frame, whole_map));
+        mark = std::chrono::steady_clock::now();
+        shadow_ok = shadow_pass(*s_, t.shadow, shadow, compile_time, why, temporal_shadow_rows(sc.frame, whole_map));
+        lap(&shadow_ms);
         use_pass(gl, clouds, clouds_pass::temporal_shading, compile_time);
         gl.BindFramebuffer(GL_FRAMEBUFFER, t.fresh_fbo);
         gl.DrawBuffers(2, two);
         gl.Viewport(0, 0, lw, lh);
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        lap(&shading_ms);
         // The background pass (clouds.frag's pass 3) at full resolution.
         use_pass(gl, background, clouds_pass::background, compile_time);
         gl.BindFramebuffer(GL_FRAMEBUFFER, t.background_fbo);
         gl.DrawBuffers(1, two);
         gl.Viewport(0, 0, width, height);
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        lap(&background_ms);
         gl.UseProgram(r);
         for (int i = 0; i < 5; ++i) {
             gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + i));
@@ -761,7 +798,14 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
         gl.DrawBuffers(3, three);
         gl.Viewport(0, 0, width, height);
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        lap(&resolve_ms);
     });
+    if (timing != nullptr) {
+        timing->shadow_ms = shadow_ms;
+        timing->shading_ms = shading_ms;
+        timing->background_ms = background_ms;
+        timing->resolve_ms = resolve_ms;
+    }
     if (!ok || !shadow_ok) return false;
     t.current = out;
     t.previous = sc;

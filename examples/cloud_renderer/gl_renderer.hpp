@@ -38,6 +38,10 @@ inline constexpr int temporal_max_samples = 8;
 struct frame_timing {
     double gpu_ms = 0;
     double wall_ms = 0;
+    // The temporal scheme's passes apart, on the host (set split_passes before the call: each
+    // pass then ends with glFinish, which adds a little to wall_ms; 0 when not split).
+    bool split_passes = false;
+    double shadow_ms = 0, shading_ms = 0, background_ms = 0, resolve_ms = 0;
 };
 
 class gl_renderer {

@@ -211,9 +211,29 @@ int run_headless(const options& o) {
                 "first draw %.0f ms (with any shader compilation the driver defers to it)\n",
                 o.sc.name.c_str(), o.width, o.height, variant_spec(o.var).c_str(), o.compile_time ? "" : " (run-time uber-shader)",
                 ft.wall_ms, ft.gpu_ms, first.wall_ms);
-    if (o.temporal > 0)
+    if (o.temporal > 0) {
         std::printf("GPU temporal: %d frames, %.1f ms per frame (median after the first 16; every pass; GL timestamps "
                     "%.1f ms)\n", o.temporal, temporal_ms, temporal_gpu_ms);
+        // Where the time goes: 9 more frames (the camera held at the last one's), each pass
+        // ended by glFinish and timed apart; the medians. Not in the frame times above.
+        std::vector<double> passes[4];
+        image spare;
+        for (int f = 0; f < 9; ++f) {
+            scene s = temporal_scene(o, o.temporal - 1);
+            s.frame = static_cast<std::uint32_t>(o.temporal + f);
+            frame_timing split;
+            split.split_passes = true;
+            if (!gpu->render_temporal(s, o.var, o.compile_time, o.width, o.height, spare, &split, why)) {
+                std::fprintf(stderr, "error: %s\n", why.c_str());
+                return 1;
+            }
+            const double ms[4] = {split.shadow_ms, split.shading_ms, split.background_ms, split.resolve_ms};
+            for (int i = 0; i < 4; ++i) passes[i].push_back(ms[i]);
+        }
+        std::printf("GPU temporal passes (each ended by glFinish, medians of 9 frames): shadow-map slice %.1f ms, "
+                    "shading %.1f ms, background %.1f ms, resolve %.1f ms\n",
+                    median_of(passes[0]), median_of(passes[1]), median_of(passes[2]), median_of(passes[3]));
+    }
     print_stats("GPU image", img);
     return save(img, o.out.empty() ? "clouds.png" : o.out) ? 0 : 1;
 }
@@ -454,6 +474,7 @@ int run_convergence(const options& o) {
           << "|---|---|---:|---:|---:|---:|\n";
     const auto t0 = std::chrono::steady_clock::now();
     for (const scene& preset : presets()) {
+        if (o.preset_given && preset.name != o.sc.name) continue;  // --preset: that one alone
         scene s = preset;
         variant reference_variant = base;
         (void)apply_variant_spec(reference_spec, reference_variant);

@@ -34,7 +34,7 @@ const char* usage_text() {
            "  --compare           render on both, print PSNR and max difference, write both PNGs\n"
            "  --bench             render every lighting variant, print ms per frame and PSNR\n"
            "                      against the reference variant as a markdown table\n"
-           "  --convergence       every preset on the CPU: the variant (and one change per row)\n"
+           "  --convergence       every preset (--preset: that one) on the CPU: the variant (and one change per row)\n"
            "                      against 1024 view steps and 128-step light marches of the same\n"
            "                      lighting model, PSNR of the image and of the horizon band\n"
            "  --list-presets      print the scene presets\n"
@@ -104,6 +104,7 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
                 return "unknown preset '" + args[i + 1] + "' (known: " + names + ")";
             }
             o.sc = *p;
+            o.preset_given = true;
         }
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];

@@ -13,6 +13,7 @@ enum class run_mode { window, headless, cpu, compare, bench, convergence, list_p
 struct options {
     run_mode mode = run_mode::window;
     scene sc = presets().front();
+    bool preset_given = false;   // --preset was on the command line (--convergence: that preset alone)
     variant var;
     bool compile_time = true;    // variant and shape as shader constants (false: the run-time uber-shader, --run-time)
     int width = 1280, height = 720;

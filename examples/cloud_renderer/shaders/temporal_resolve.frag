@@ -47,27 +47,34 @@ vec4 cr_bilinear(sampler2D t, vec4 fp, ivec2 last) {
     return sum;
 }
 
-// Catmull-Rom's 16 taps of t around footprint fp (the bilinear taps and the ring around them),
-// clamped to texels [0, last], the result clamped to the range of the four bilinear taps (no
-// ringing): a sharper reconstruction than GL_LINEAR, which, repeated every frame on a moving
-// history, blurs it (cpu_renderer.cpp's catmull_rom_taps).
+// Catmull-Rom around footprint fp, clamped to texels [0, last], the result clamped to the
+// range of the four bilinear taps (no ringing): a sharper reconstruction than GL_LINEAR,
+// which, repeated every frame on a moving history, blurs it. Five GL_LINEAR reads instead of
+// 16 texel reads (the form of Jimenez, "Filmic SMAA", SIGGRAPH 2016): along each axis the two
+// middle taps, whose weights are both positive, are one linear read between them at
+// w2 / (w1 + w2); the four corner taps (each weight at most 0.0055) are dropped and the rest
+// renormalised. t must be filtered GL_LINEAR with GL_CLAMP_TO_EDGE (the clamp of the texel
+// indices). cpu_renderer.cpp's catmull_rom_clamped is its twin.
 vec4 cr_catmull_rom(sampler2D t, vec4 fp, ivec2 last) {
     vec2 f = fp.zw;
     vec2 w0 = f * (-0.5 + f * (1.0 - 0.5 * f));
     vec2 w1 = 1.0 + f * f * (-2.5 + 1.5 * f);
     vec2 w2 = f * (0.5 + f * (2.0 - 1.5 * f));
     vec2 w3 = f * f * (-0.5 + 0.5 * f);
-    vec4 sum = vec4(0.0), lo = vec4(1e30), hi = vec4(-1e30);
-    for (int dy = -1; dy < 3; ++dy)
-        for (int dx = -1; dx < 3; ++dx) {
-            vec4 texel = texelFetch(t, clamp(ivec2(fp.xy) + ivec2(dx, dy), ivec2(0), last), 0);
-            float wx = dx == -1 ? w0.x : dx == 0 ? w1.x : dx == 1 ? w2.x : w3.x;
-            float wy = dy == -1 ? w0.y : dy == 0 ? w1.y : dy == 1 ? w2.y : w3.y;
-            sum += texel * (wx * wy);
-            if (dx >= 0 && dx <= 1 && dy >= 0 && dy <= 1) {
-                lo = min(lo, texel);
-                hi = max(hi, texel);
-            }
+    vec2 w12 = w1 + w2;
+    // Texel-space positions (texel i's centre at i + 0.5), as uv.
+    vec2 texel = 1.0 / vec2(last + 1);
+    vec2 p0 = (fp.xy - 0.5) * texel, p12 = (fp.xy + 0.5 + w2 / w12) * texel, p3 = (fp.xy + 2.5) * texel;
+    float k0 = w12.x * w0.y, k1 = w0.x * w12.y, k2 = w12.x * w12.y, k3 = w3.x * w12.y, k4 = w12.x * w3.y;
+    vec4 sum = texture(t, vec2(p12.x, p0.y)) * k0 + texture(t, vec2(p0.x, p12.y)) * k1 + texture(t, p12) * k2 +
+               texture(t, vec2(p3.x, p12.y)) * k3 + texture(t, vec2(p12.x, p3.y)) * k4;
+    sum /= k0 + k1 + k2 + k3 + k4;
+    vec4 lo = vec4(1e30), hi = vec4(-1e30);
+    for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) {
+            vec4 texel_value = texelFetch(t, clamp(ivec2(fp.xy) + ivec2(dx, dy), ivec2(0), last), 0);
+            lo = min(lo, texel_value);
+            hi = max(hi, texel_value);
         }
     return clamp(sum, lo, hi);
 }
@@ -125,7 +132,7 @@ void main() {
         // Not shaded yet (valid, 0 samples: filled): the fills of successive frames, each from
         // other pixels of the block, averaged until this pixel's own turn replaces them. No
         // history (first frame, off the previous screen, or not this pixel's): the fill alone.
-        // One copy of its 16 taps for both cases: on SIMD hardware (llvmpipe too) a branch's
+        // One copy of its taps for both cases: on SIMD hardware (llvmpipe too) a branch's
         // body is paid by the whole group, so two copies cost twice.
         vec2 q = (vec2(p) - vec2(u_update_offset)) * 0.25;
         vec4 fill = cr_catmull_rom(u_fresh, vec4(floor(q), q - floor(q)), (size + 3) / 4 - 1);
