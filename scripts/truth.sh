@@ -85,7 +85,7 @@ selection=(sun_behind cumulus stratus low_sun_ahead low_sun_behind)
 # production octaves it replaced (flat sky light); octaves_march: the octaves given an
 # accurate light march; flat_ambient: the default without the sky light's occlusion;
 # capped, reach_map and reach_band: the far field toward a low sun other than the default's
-# (reach=far: the capped march plus 12 full-density steps to the band's end): none (the default
+# (reach=far: the capped march plus 4 base-shape steps to the band's end): none (the default
 # before it), the Beer shadow map beyond the capped march, the march's 6 steps stretched to
 # the band's end, up to 30 km. fitted_table: the default with the diffusion model's table
 # fitted to homogeneous spheres and slabs (diffusion_models::fitted, the default before the
