@@ -314,6 +314,32 @@ struct peer_clouds::state {
         gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
 
+    // One timed frame of a clouds program: the dispatch (and the engine's image barrier)
+    // between glFinish calls; wall_ms the host time from before the dispatch to the end of
+    // glFinish().
+    bool timed_dispatch(GLuint program, const char* label, double& wall_ms, std::string& why) const {
+        bind_clouds_inputs();
+        gl.Finish();  // nothing earlier in the measured time
+        const auto start = std::chrono::steady_clock::now();
+        dispatch_clouds(program);
+        gl.Finish();
+        wall_ms = 1000.0 * seconds_since(start);
+        why = gl.errors(label);
+        return why.empty();
+    }
+
+    // Output image `index` (outputs[]: fragColor, bloom, alphaness, cloudDistance) of the last
+    // dispatch, rows bottom-up.
+    bool read_output(int index, std::vector<glm::vec4>& out, const char* label, std::string& why) const {
+        out.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), glm::vec4(0.0f));
+        gl.MemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+        gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+        gl.BindTexture(GL_TEXTURE_2D, outputs[index]);
+        gl.GetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, out.data());
+        why = gl.errors(label);
+        return why.empty();
+    }
+
     void release() {
         const GLuint programs[3] = {clouds, counted, sky};
         for (GLuint p : programs)
@@ -415,15 +441,7 @@ bool peer_clouds::prepare(int width, int height, const peer_view& view, std::str
 }
 
 bool peer_clouds::dispatch(double& wall_ms, std::string& why) {
-    state& st = *s_;
-    st.bind_clouds_inputs();
-    st.gl.Finish();  // nothing earlier in the measured time
-    const auto start = std::chrono::steady_clock::now();
-    st.dispatch_clouds(st.clouds);
-    st.gl.Finish();
-    wall_ms = 1000.0 * seconds_since(start);
-    why = st.gl.errors("the clouds dispatch");
-    return why.empty();
+    return s_->timed_dispatch(s_->clouds, "the clouds dispatch", wall_ms, why);
 }
 
 int peer_clouds::add_quality_program(int view_steps, int light_steps, std::string& why) {
@@ -449,27 +467,15 @@ bool peer_clouds::dispatch_quality(int program, float jitter, double& wall_ms, s
     const GLuint p = st.quality[static_cast<std::size_t>(program)];
     st.gl.UseProgram(p);
     st.gl.Uniform1f(st.gl.GetUniformLocation(p, jitter_uniform), jitter);
-    st.bind_clouds_inputs();
-    st.gl.Finish();
-    const auto start = std::chrono::steady_clock::now();
-    st.dispatch_clouds(p);
-    st.gl.Finish();
-    wall_ms = 1000.0 * seconds_since(start);
-    why = st.gl.errors("the clouds dispatch (quality knobs)");
-    return why.empty();
+    return st.timed_dispatch(p, "the clouds dispatch (quality knobs)", wall_ms, why);
 }
 
 bool peer_clouds::read_marched(std::vector<char>& mask, std::string& why) {
-    state& st = *s_;
-    std::vector<glm::vec4> distance(static_cast<std::size_t>(st.width) * static_cast<std::size_t>(st.height));
-    st.gl.MemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-    st.gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-    st.gl.BindTexture(GL_TEXTURE_2D, st.outputs[3]);  // cloudDistance: -1 where the fog test skipped the march
-    st.gl.GetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, distance.data());
-    why = st.gl.errors("reading cloudDistance");
+    std::vector<glm::vec4> distance;  // cloudDistance: -1 where the fog test skipped the march
+    if (!s_->read_output(3, distance, "reading cloudDistance", why)) return false;
     mask.assign(distance.size(), 0);
     for (std::size_t i = 0; i < distance.size(); ++i) mask[i] = distance[i].x == -1.0f ? 0 : 1;
-    return why.empty();
+    return true;
 }
 
 bool peer_clouds::count_reads(peer_reads& out, std::string& why) {
@@ -517,16 +523,9 @@ bool peer_clouds::count_reads(peer_reads& out, std::string& why) {
 }
 
 bool peer_clouds::read_image(cloud_renderer::image& out, std::string& why) {
-    state& st = *s_;
-    out.width = st.width;
-    out.height = st.height;
-    out.pixels.assign(static_cast<std::size_t>(st.width) * static_cast<std::size_t>(st.height), glm::vec4(0.0f));
-    st.gl.MemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-    st.gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
-    st.gl.BindTexture(GL_TEXTURE_2D, st.outputs[0]);  // fragColor
-    st.gl.GetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, out.pixels.data());
-    why = st.gl.errors("reading fragColor");
-    return why.empty();
+    out.width = s_->width;
+    out.height = s_->height;
+    return s_->read_output(0, out.pixels, "reading fragColor", why);
 }
 
 }  // namespace peer_bench
