@@ -11,6 +11,7 @@ packages=(
   doctest-dev                                    # unit tests
   libbenchmark-dev                               # bench/
   libstb-dev                                     # tools/: stb_image_write for PNG output
+  zlib1g-dev                                     # tools/: the gzip-stored truth data (docs/data)
   libegl-dev libgl-dev libopengl-dev             # GLSL tests: EGL + GL headers, libOpenGL
   libegl-mesa0 libgl1-mesa-dri                   # GLSL tests: Mesa EGL, llvmpipe (no GPU)
   glslang-tools spirv-tools spirv-cross          # GLSL and HLSL tests: glslangValidator, spirv-val, spirv-cross

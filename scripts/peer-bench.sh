@@ -122,7 +122,7 @@ cost=$(bash scripts/shader-cost.sh build/peer/examples/cloud_renderer/cloudmath_
   echo "4 times and change the picture, not its sampling), the texture level follows the fraction of the ray"
   echo "(the shipped \`i/16\` counts steps) and the light march's switch to the detailed density stays at the"
   echo "same summed density. Ours is swept through the variant (\`steps=N,light-steps=L\`, the rest the default;"
-  echo "\`light-steps\` also sets the far steps beyond 6 km, two thirds of it)."
+  echo "\`light-steps\` also sets the far steps beyond 6 km, twice as many)."
   echo
   echo "Two things to know when reading the rows:"
   echo "- On llvmpipe the peer's copy is slower with 2 to 5 light samples than with 6 (at 64 view steps, 160 x 90:"

@@ -21,7 +21,7 @@
 #                                  measured on all six (cloudmath_lighting_error fit-diffusion;
 #                                  seconds); ctest -R reference.lighting_diffusion checks that
 #                                  the headers are what the stored data gives
-#   docs/data/truth_*.csv, docs/lighting_truth.md  whole cloud images of the example
+#   docs/data/truth_*.csv.gz, docs/lighting_truth.md  whole cloud images of the example
 #                                  renderer against their path-traced truth (scripts/truth.sh)
 # Usage: bash scripts/reference.sh [--reports-only]
 #   --reports-only  keeps the tables, the Monte Carlo reference and the truth images, reruns

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Ground truth for whole cloud images: the example renderer's presets path-traced over its
 # own density field, and its lighting variants measured against them.
-#   docs/data/truth_PRESET.csv     linear radiance and standard error per pixel
+#   docs/data/truth_PRESET.csv.gz  linear radiance and standard error per pixel (gzip-compressed
+#                                  CSV: zcat shows it)
 #                                  (cloudmath_volume_truth render; 160 x 90 pixels; adaptive
 #                                  sampling for a noise floor of 3% of the image mean:
 #                                  a 64-path pilot, then each pixel's paths by its variance
@@ -10,8 +11,10 @@
 #                                  paths per pixel, say so in their "allocation" line or
 #                                  lack it) stay until their preset is rerun: --only)
 #   docs/lighting_truth.md         the renderer's CPU reference (render_cpu_linear) for each
-#   docs/images/truth_PRESET.png   variant against them, with truth | model | difference
-#                                  images (cloudmath_volume_truth report; seconds)
+#   docs/images/truth_PRESET.png   variant against them, with the first variant's truth |
+#                                  model | difference image (cloudmath_volume_truth report;
+#                                  seconds; report --variant-images writes the others' too,
+#                                  which are not stored)
 #   --shape detailed               the same for the renderer's default density field (per-cloud
 #                                  types and tops, crisp edges; 6 times slower to trace): data
 #                                  in docs/data/detailed/, report docs/detailed/lighting_truth.md
@@ -35,7 +38,7 @@
 #                                  lighting_truth.md (the default variant rendered with the
 #                                  same light)
 #   --budget-minutes N             stop tracing after N minutes in all: the render under way stops
-#                                  cleanly and keeps its checkpoint (docs/data/.../truth_P.csv.checkpoint,
+#                                  cleanly and keeps its checkpoint (docs/data/.../truth_P.csv.gz.checkpoint,
 #                                  about 1.2 MB: commit it); the report is regenerated when a truth
 #                                  was finished, else left as it is. A preset with a checkpoint is always resumed
 #                                  (cloudmath_volume_truth render --resume), so the same command in
@@ -57,7 +60,7 @@
 #                              [--shape S] [--sky S] [--variant NAME=SPEC ...] [--pending]
 #                              [--budget-minutes N]
 #        bash scripts/truth.sh --check TOOL [--shape S] [--sky S] [--cache DIR]
-#   --reports-only  keeps docs/data/truth_*.csv, reruns the report
+#   --reports-only  keeps docs/data/truth_*.csv.gz, reruns the report
 #   --check TOOL    reruns the report for the default and fitted_table variants with the built
 #                   cloudmath_volume_truth TOOL from the stored truth into a temporary
 #                   directory and fails unless their summary rows (rms on every preset) are
@@ -85,7 +88,7 @@ selection=(sun_behind cumulus stratus low_sun_ahead low_sun_behind)
 # production octaves it replaced (flat sky light); octaves_march: the octaves given an
 # accurate light march; flat_ambient: the default without the sky light's occlusion;
 # capped, reach_map and reach_band: the far field toward a low sun other than the default's
-# (reach=far: the capped march plus 4 base-shape steps to the band's end): none (the default
+# (reach=far: the capped march plus 12 full-density steps to the band's end): none (the default
 # before it), the Beer shadow map beyond the capped march, the march's 6 steps stretched to
 # the band's end, up to 30 km. fitted_table: the default with the diffusion model's table
 # fitted to homogeneous spheres and slabs (diffusion_models::fitted, the default before the
@@ -159,7 +162,7 @@ noise=${noise:-0.03}
 keep_traced() {
     local p
     for p in "$@"; do
-        if [[ ! -f $data/truth_$p.csv && " ${late[*]} " == *" $p "* ]]; then
+        if [[ ! -f $data/truth_$p.csv.gz && ! -f $data/truth_$p.csv && " ${late[*]} " == *" $p "* ]]; then
             echo "truth.sh: no $shape $sky-sky truth for $p yet (bash scripts/truth.sh --shape $shape --sky $sky --only $p); left out of the report" >&2
             continue
         fi
@@ -246,7 +249,7 @@ if [[ $reports_only == 0 ]]; then
     start=$SECONDS
     for p in "${selection[@]}" "${presets[@]}"; do
         [[ -z $only || ",$only," == *",$p,"* ]] || continue
-        checkpoint="$data/truth_$p.csv.checkpoint"
+        checkpoint="$data/truth_$p.csv.gz.checkpoint"
         if [[ $pending == 1 ]]; then
             state=$("$tool" status --presets "$p" --data "$data" --shape "$shape" --sky "$sky" "${light_args[@]}" --noise-target "$noise" "${cache[@]}")
             echo "truth.sh: $state" >&2
@@ -271,7 +274,7 @@ if [[ $reports_only == 0 ]]; then
         fi
         status=0
         "$tool" render --preset "$p" --shape "$shape" --sky "$sky" "${light_args[@]}" --width "$width" --height "$height" --noise-target "$noise" \
-            "${cache[@]}" "${resume[@]}" "${budget_args[@]}" --out "$data/truth_$p.csv" || status=$?
+            "${cache[@]}" "${resume[@]}" "${budget_args[@]}" --out "$data/truth_$p.csv.gz" || status=$?
         if [[ $status == 3 ]]; then
             echo "truth.sh: $p stopped by the budget, its checkpoint kept in $checkpoint: commit it, and run the same command again to go on" >&2
             break

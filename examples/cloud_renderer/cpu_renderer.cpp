@@ -248,13 +248,13 @@ struct pixel_program {
         }
         if (near != nullptr) *near = tau;
         // variant::far_steps: toward the sun, the rest of the band beyond the capped march in
-        // far_step_count uniform steps on the base shape (the near steps keep the detail).
+        // far_step_count uniform steps on the full density.
         if (v.far_steps && seg.y > length_to_exit && glm::dot(toward, k.sun_dir) > 0.0f) {
             const int nf = far_step_count(v.light_steps);
             const float span = (std::min(seg.y, light_long_reach) - length_to_exit) / float(nf);
             for (int j = 0; j < nf; ++j) {
                 const vec3 q = p + toward * (length_to_exit + (float(j) + light_offset) * span);
-                tau += s.extinction * field.coarse_density(q, altitude(q), counter, footprint) * span;
+                tau += cone_extinction(q, counter, footprint) * span;
             }
         }
         // variant::far_map: toward the sun, what lies beyond the capped march, from the map

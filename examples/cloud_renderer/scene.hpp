@@ -116,11 +116,11 @@ struct variant {
     // bilinear map read), so a low sun's light crosses the whole layer.
     bool far_map = false;
     // The far field toward the sun by steps (reach=far, the default): beyond the capped
-    // march, far_step_count(light_steps) uniform steps on the base shape alone
-    // (coarse_density) to where the band ends, up to light_long_reach, jittered like the
-    // march. The near steps, where a lit edge's detail is, stay as they are; at a high sun
-    // the band ends within the cap and nothing changes. Chosen on the selection presets of
-    // both fields (docs/lighting_research.md, "The far field toward the sun").
+    // march, far_step_count(light_steps) uniform steps on the full density to where the band
+    // ends, up to light_long_reach, jittered like the march. At a high sun the band ends
+    // within the cap and nothing changes. The steps were on the base shape alone until the
+    // physical sky's truths measured them (docs/lighting_research.md, "The far field toward
+    // the sun" and "The far field on the full density").
     bool far_steps = true;
     bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
     bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
@@ -207,9 +207,11 @@ inline constexpr const char* previous_default_spec = "lighting=octaves,powder=on
 inline constexpr int light_far_step = 3;
 // variant::long_reach's cap on the light march (metres); also where variant::far_steps end.
 inline constexpr float light_long_reach = 30000.0f;
-// variant::far_steps: two thirds as many far steps as the near march has (4 for 6), so a
-// converged reference (light-steps=128) converges the far field too.
-inline constexpr int far_step_count(int light_steps) { return light_steps < 2 ? 1 : 2 * light_steps / 3; }
+// variant::far_steps: twice as many far steps as the near march has (12 for 6), so a
+// converged reference (light-steps=128) converges the far field too. Twelve full-density
+// steps, not four base-shape ones (docs/lighting_research.md, "The far field on the full
+// density"): closer to the path-traced truth at a low sun and converging in fewer steps.
+inline constexpr int far_step_count(int light_steps) { return light_steps < 2 ? 1 : 2 * light_steps; }
 
 // Steps per empty-space probe (variant::skip).
 inline constexpr int skip_block = 4;

@@ -143,11 +143,11 @@ TEST_CASE("lighting out of the view loop: the light pass's buffer size does not 
 
 TEST_CASE("the far field toward a low sun (reach=far, the default, and reach=map): darker than the capped march, GPU and CPU alike") {
     // A sun 3 degrees up crosses tens of kilometres of the layer; the capped march sees 6 km
-    // of it, reach=far adds base-shape steps to the band's end and reach=map the Beer shadow
+    // of it, reach=far adds full-density steps to the band's end and reach=map the Beer shadow
     // map's optical depth beyond: only less light.
     REQUIRE(variant{}.far_steps);
-    REQUIRE(far_step_count(6) == 4);
-    REQUIRE(far_step_count(128) == 85);
+    REQUIRE(far_step_count(6) == 12);
+    REQUIRE(far_step_count(128) == 256);
     REQUIRE(far_step_count(1) == 1);
     // The artistic sky: under the physical one the capped march is followed by the far-shadow
     // table from its own end (far_shadow.cpp), so capped and far differ in form, not in reach.

@@ -1,14 +1,17 @@
 // Tests of tools/common: atomic_file.hpp (a failed write leaves the old file and no
 // temporary; the failures are produced with RLIMIT_FSIZE, which stops writes to regular
-// files even for root, /dev/full and a directory in the way) and strict_number.hpp.
+// files even for root, /dev/full and a directory in the way), strict_number.hpp and
+// gzip_text.hpp (checked against the system's gzip where one is installed).
 #define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
 #include <doctest/doctest.h>
 
 #include "atomic_file.hpp"
+#include "gzip_text.hpp"
 #include "strict_number.hpp"
 
 #include <algorithm>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -206,4 +209,73 @@ TEST_CASE("parse_count: non-negative whole numbers, digits or exponent forms") {
         CAPTURE(bad);
         CHECK(!parse_count(bad));
     }
+}
+
+// A text like the stored truths: metadata, a header, rows of numbers.
+std::string truth_like_text(int rows) {
+    std::string text = "# preset: ground\nx,y,r,g,b\n";
+    for (int i = 0; i < rows; ++i)
+        text += std::to_string(i % 160) + "," + std::to_string(i / 160) + "," + std::to_string(0.001 * (i % 997)) + ",0.5," +
+                std::to_string(i) + "\n";
+    return text;
+}
+
+TEST_CASE("gzip_text: a round trip keeps every byte, and the same text gives the same bytes") {
+    for (const std::string& text : {std::string(), std::string("x"), truth_like_text(14400), std::string(3u << 20, 'a')}) {
+        CAPTURE(text.size());
+        const std::string z = cloudmath::tools::gzip_compress(text);
+        CHECK(cloudmath::tools::is_gzip(z));
+        CHECK(cloudmath::tools::gunzip(z, "t") == text);
+        CHECK(cloudmath::tools::gzip_compress(text) == z);  // deterministic: no name, mtime 0
+    }
+    const std::string text = truth_like_text(14400);
+    CHECK(cloudmath::tools::gzip_compress(text).size() * 3 < text.size());  // worth storing
+}
+
+TEST_CASE("gzip_text: read_data_file reads plain and gzip files alike; the system's gzip agrees") {
+    const fs::path dir = scratch("gzip_read");
+    const std::string text = truth_like_text(2000);
+    put(dir / "plain.csv", text);
+    put(dir / "packed.csv.gz", cloudmath::tools::gzip_compress(text));
+    CHECK(cloudmath::tools::read_data_file((dir / "plain.csv").string()) == text);
+    CHECK(cloudmath::tools::read_data_file((dir / "packed.csv.gz").string()) == text);
+    if (std::system("command -v gzip >/dev/null 2>&1") == 0) {
+        // Ours read by gzip, and gzip's read by ours.
+        REQUIRE(std::system(("gzip -dc '" + (dir / "packed.csv.gz").string() + "' > '" + (dir / "by_gzip.csv").string() + "'").c_str()) == 0);
+        CHECK(read(dir / "by_gzip.csv") == text);
+        REQUIRE(std::system(("gzip -9nc '" + (dir / "plain.csv").string() + "' > '" + (dir / "theirs.gz").string() + "'").c_str()) == 0);
+        CHECK(cloudmath::tools::read_data_file((dir / "theirs.gz").string()) == text);
+    }
+    try {
+        (void)cloudmath::tools::read_data_file((dir / "missing.csv.gz").string());
+        FAIL("a missing file was read");
+    } catch (const std::runtime_error& e) {
+        CHECK(contains(e.what(), "missing.csv.gz"));
+    }
+}
+
+TEST_CASE("gzip_text: damaged, truncated, padded and oversized streams are errors naming the file") {
+    const std::string text = truth_like_text(2000);
+    const std::string z = cloudmath::tools::gzip_compress(text);
+    std::string damaged = z;
+    damaged[z.size() / 2] = static_cast<char>(damaged[z.size() / 2] ^ 0x55);
+    std::string bad_crc = z;
+    bad_crc[z.size() - 6] = static_cast<char>(bad_crc[z.size() - 6] ^ 0x01);  // the CRC-32 in the trailer
+    const std::string cases[][2] = {{damaged, "damaged"},
+                                    {bad_crc, "damaged"},
+                                    {z.substr(0, z.size() / 2), "truncated"},
+                                    {z.substr(0, z.size() - 1), "truncated"},
+                                    {z + "junk", "after the end"}};
+    for (const auto& c : cases) {
+        CAPTURE(c[1]);
+        try {
+            (void)cloudmath::tools::gunzip(c[0], "truth_x.csv.gz");
+            FAIL("a bad stream was read");
+        } catch (const std::runtime_error& e) {
+            CHECK(contains(e.what(), "truth_x.csv.gz"));
+            CHECK(contains(e.what(), c[1]));
+        }
+    }
+    CHECK_THROWS_WITH_AS((void)cloudmath::tools::gunzip(z, "big.gz", 1000), doctest::Contains("more than 1000 bytes"),
+                         std::runtime_error);
 }

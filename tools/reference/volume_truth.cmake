@@ -19,7 +19,8 @@ target_link_libraries(cloudmath_volume_tracer_lib PUBLIC cloudmath_montecarlo_li
 
 add_executable(cloudmath_volume_truth volume_truth_main.cpp)
 cloudmath_reference_target(cloudmath_volume_truth)
-target_link_libraries(cloudmath_volume_truth PRIVATE cloudmath_volume_tracer_lib cloudmath_lighting_lib)  # read_clouds_model
+target_link_libraries(cloudmath_volume_truth PRIVATE cloudmath_volume_tracer_lib cloudmath_lighting_lib  # read_clouds_model
+  cloudmath_tools_gzip)  # the truths stored as .csv.gz
 
 if(CLOUDMATH_BUILD_TESTS)
   cloudmath_reference_test(truth_checkpoint test_truth_checkpoint.cpp)
@@ -191,6 +192,32 @@ if(CLOUDMATH_BUILD_TESTS)
         [ -s "$out/docs/$f" ] || { echo "missing $f"; exit 1; }
       done
       grep -q "| march |" "$out/docs/lighting_truth.md" || { echo "report lacks the variant"; exit 1; }
+      # One image a preset unless --variant-images asks for the other variants' too.
+      [ ! -e "$out/docs/images/truth_ground_march.png" ] || { echo "an image of the second variant without --variant-images"; exit 1; }
+      grep -q "truth_ground_march.png" "$out/docs/lighting_truth.md" && { echo "the report links an image it did not write"; exit 1; }
+      "$tool" report --presets ground --variant "default=" --variant "march=light=march" --data "$out" \
+        --docs "$out/all" --cache "$cache" --quiet --variant-images >/dev/null || { echo "report --variant-images failed"; exit 1; }
+      [ -s "$out/all/images/truth_ground_march.png" ] || { echo "--variant-images wrote no image of the second variant"; exit 1; }
+      grep -q "(images/truth_ground_march.png)" "$out/all/lighting_truth.md" || { echo "--variant-images: no link to it"; exit 1; }
+      cmp -s "$out/all/images/truth_ground.png" "$out/docs/images/truth_ground.png" || { echo "--variant-images changed the first image"; exit 1; }
+      # The stored form (docs/data/truth_*.csv.gz): the report reads a gzip-compressed truth
+      # as it reads the plain one, to the byte; render --out F.csv.gz writes gzip; a damaged
+      # file is an error naming it.
+      mkdir -p "$out/gz"
+      gzip -9nc "$out/truth_ground.csv" >"$out/gz/truth_ground.csv.gz"
+      "$tool" report --presets ground --variant "default=" --variant "march=light=march" --data "$out/gz" \
+        --docs "$out/gzdocs" --cache "$cache" --quiet >/dev/null || { echo "report over .csv.gz failed"; exit 1; }
+      cmp -s "$out/gzdocs/lighting_truth.md" "$out/docs/lighting_truth.md" || { echo "the report over .csv.gz differs"; exit 1; }
+      cmp -s "$out/gzdocs/images/truth_ground.png" "$out/docs/images/truth_ground.png" || { echo "its image differs"; exit 1; }
+      "$tool" render --preset ground --sky artistic --width 8 --height 4 --spp 2 --threads 2 --cache "$cache" --quiet \
+        --out "$out/gz/rendered.csv.gz" >/dev/null || { echo "render to .csv.gz failed"; exit 1; }
+      [ "$(od -An -tx1 -N2 "$out/gz/rendered.csv.gz" | tr -d ' ')" = 1f8b ] || { echo "render --out .csv.gz wrote no gzip"; exit 1; }
+      gzip -dc "$out/gz/rendered.csv.gz" | grep '^[0-9]' >"$out/gz.rows"
+      grep '^[0-9]' "$out/truth_ground.csv" | cmp -s - "$out/gz.rows" || { echo "the .csv.gz's pixels are not the plain render's"; exit 1; }
+      head -c 300 "$out/gz/truth_ground.csv.gz" >"$out/gz/cut" && mv "$out/gz/cut" "$out/gz/truth_ground.csv.gz"
+      "$tool" report --presets ground --variant "default=" --data "$out/gz" --docs "$out/gzdocs" --cache "$cache" --quiet \
+        >/dev/null 2>"$out.err"; s=$?
+      [ $s -eq 1 ] && grep -q "truth_ground.csv.gz: the gzip stream is truncated" "$out.err" || { echo "truncated .csv.gz: exit $s"; cat "$out.err"; exit 1; }
       for section in "## Excess error" "## PSNR of the display images" "| variant | rms | excess | bias |"; do
         grep -qF "$section" "$out/docs/lighting_truth.md" || { echo "report lacks '$section'"; exit 1; }
       done

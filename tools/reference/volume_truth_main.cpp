@@ -8,7 +8,7 @@
 // diffusion_models::clouds by cloudmath_lighting_error fit-diffusion).
 //
 //   cloudmath_volume_truth render --preset ground --width 160 --height 90 --spp 64
-//       --out docs/data/truth_ground.csv
+//       --out docs/data/truth_ground.csv.gz
 //   cloudmath_volume_truth report --presets ground,inside --variant default=
 //       --variant march=light=march,light-steps=64                          (one line each)
 //
@@ -21,6 +21,7 @@
 // albedo, threads, seconds), the header x,y,r,g,b,se_r,se_g,se_b, then one row per pixel,
 // x fastest, y = 0 the BOTTOM row (cloud_renderer::image's order); r, g, b the linear
 // radiance in the renderer's units (those of sun_radiance), se_* their standard errors.
+// Stored gzip-compressed (truth_NAME.csv.gz, gzip_text.hpp); zcat shows the text.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -43,6 +44,7 @@
 #include "cli_main.hpp"
 #include "cloud_medium.hpp"
 #include "cpu_renderer.hpp"
+#include "gzip_text.hpp"
 #include "lighting_diffusion.hpp"
 #include "image.hpp"
 #include "phase_table.hpp"
@@ -64,7 +66,8 @@ const char* const usage_text =
     "\n"
     "commands:\n"
     "  render   path-trace one preset; CSV of linear rgb radiance and standard error per pixel\n"
-    "           flags: --preset NAME --out F.csv [--width 160] [--height 90] [--spp 64]\n"
+    "           flags: --preset NAME --out F.csv|F.csv.gz (.gz: gzip-compressed, as stored)\n"
+    "                  [--width 160] [--height 90] [--spp 64]\n"
     "                  [--seed 1] [--phase SPEC] [--threads 0] [--cache DIR] [--shape classic]\n"
     "                  [--sky physical|artistic] (default: physical, every preset's; stored in the file,\n"
     "                  report and fit-clouds render the model under it)\n"
@@ -99,9 +102,10 @@ const char* const usage_text =
     "           --variant: repeatable, SPEC as the renderer's --variant (empty = default);\n"
     "           without any: default=, octaves=lighting=octaves,powder=on,light=cone,ambient=flat,\n"
     "           single=lighting=octaves,octaves=1,light=cone,ambient=flat, mie=phase=mie.\n"
-    "           Reads DATA/truth_NAME.csv, writes DOCS/lighting_truth.md and\n"
-    "           DOCS/images/truth_NAME.png (truth | first variant | difference) and\n"
-    "           truth_NAME_VARIANT.png for the other variants.\n"
+    "           Reads DATA/truth_NAME.csv.gz (or .csv), writes DOCS/lighting_truth.md and\n"
+    "           DOCS/images/truth_NAME.png (truth | first variant | difference);\n"
+    "           --variant-images: also truth_NAME_VARIANT.png for the other variants\n"
+    "           (not stored in the repository: their tables say the numbers).\n"
     "  fit-clouds  the diffusion model's table and peak weights (diffusion_lighting.hpp) by least\n"
     "           squares of the renderer (render_cpu_linear) against stored truths, the ridge\n"
     "           toward diffusion_models::fitted chosen by leave-one-preset-out; prints the fit\n"
@@ -112,7 +116,7 @@ const char* const usage_text =
     "                  [--check F.txt] (exit 1 unless F's numbers are this fit's to 1e-4)\n"
     "                  [--sky] (a diagnosis: also fits scales of the sky light's top and bottom,\n"
     "                  printed, not stored) [--threads 0] [--cache DIR] [--quiet]\n"
-    "           SHAPE:PRESET reads DATA/truth_PRESET.csv (classic) or DATA/detailed/...\n"
+    "           SHAPE:PRESET reads DATA/truth_PRESET.csv.gz (classic) or DATA/detailed/...\n"
     "  status   where each preset's truth stands (scripts/truth.sh --pending): one line a preset,\n"
     "           PRESET done|checkpoint|stale|short|missing and why\n"
     "           flags: --presets P1,P2 --noise-target F [--data docs/data] [--shape classic]\n"
@@ -137,7 +141,7 @@ cr::cloud_textures load_textures(const flags& f, bool quiet) {
 }
 
 // The preset with the density field `shape` (--shape: classic unless asked, the field the
-// stored docs/data/truth_*.csv were traced over).
+// stored docs/data/truth_*.csv.gz were traced over).
 cr::scene preset(const std::string& name, cr::cloud_shape shape = cr::cloud_shape::classic) {
     const cr::scene* s = cr::find_preset(name);
     if (s == nullptr) {
@@ -209,9 +213,23 @@ std::string format_csv(const truth_image& t, const std::vector<std::string>& met
     return o.str();
 }
 
+// The stored truths are gzip-compressed CSV (DIR/truth_NAME.csv.gz; gzip_text.hpp: the same
+// bytes of text at a third of the size, issue 39). A plain DIR/truth_NAME.csv, which render
+// writes unless --out ends in .gz, is read where no .gz is beside it.
+std::string truth_file(const std::string& dir, const std::string& name) {
+    const std::string gz = dir + "/truth_" + name + ".csv.gz", plain = dir + "/truth_" + name + ".csv";
+    std::error_code ec;
+    if (std::filesystem::exists(gz, ec) || !std::filesystem::exists(plain, ec)) return gz;
+    return plain;
+}
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 truth_image read_truth(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error("cannot read the truth file " + path + " (run: cloudmath_volume_truth render)");
+    if (!std::ifstream(path)) throw std::runtime_error("cannot read the truth file " + path + " (run: cloudmath_volume_truth render)");
+    std::istringstream in(cloudmath::tools::read_data_file(path));
     truth_image t;
     std::string line;
     int line_no = 0;
@@ -533,7 +551,12 @@ int run_render(int argc, char** argv) {
         t.meta.emplace("orders", std::to_string(orders));
         meta_order.insert(std::find(meta_order.begin(), meta_order.end(), "light") + 1, "orders");  // the light's limit
     }
-    cloudmath::reference::write_text_file_atomically(out, format_csv(t, meta_order));
+    if (ends_with(out, ".gz")) {
+        const std::string why = cloudmath::tools::write_file_atomically(out, cloudmath::tools::gzip_compress(format_csv(t, meta_order)));
+        if (!why.empty()) throw std::runtime_error(why);
+    } else {
+        cloudmath::reference::write_text_file_atomically(out, format_csv(t, meta_order));
+    }
     std::remove(checkpoint.c_str());
     std::cout << "render " << s.name << ": " << width << "x" << height << ", " << t.meta.at("spp") << " spp ("
               << t.meta.at("allocation") << "), noise floor " << t.meta.at("noise floor") << ", " << t.meta.at("seconds")
@@ -688,7 +711,10 @@ cr::image render_mean(const cr::scene& s, const cr::variant& v, const cr::cloud_
 
 int run_report(int argc, char** argv) {
     const flags f(argc, argv, {"--presets", "--selection", "--variant", "--data", "--docs", "--threads", "--cache", "--shape", "--frames"},
-                  {"--quiet"});
+                  {"--quiet", "--variant-images"});
+    // One image a preset unless asked: the other variants' images were most of the
+    // repository's weight (issue 39) and their tables carry the numbers.
+    const bool variant_images = f.has("--variant-images");
     const int frames = static_cast<int>(f.integer("--frames", 8, 1, 1024));
     const cr::cloud_shape shape = shape_flag(f.get("--shape", "classic"));
     const std::vector<std::string> evaluation = split_list(f.get("--presets", "ground,horizon,inside,above"));
@@ -737,7 +763,7 @@ int run_report(int argc, char** argv) {
     // ... and one order limit (the file's "orders" line; none: every order).
     std::optional<std::string> orders;
     for (const std::string& n : names) {
-        const std::string path = data + "/truth_" + n + ".csv";
+        const std::string path = truth_file(data, n);
         truths.push_back(read_truth(path));
         const cr::sky_model traced_under = traced_sky(truths.back(), path);
         if (sky && *sky != traced_under)
@@ -759,7 +785,7 @@ int run_report(int argc, char** argv) {
         const auto it = truths.back().meta.find("shape");
         const std::string traced = it == truths.back().meta.end() ? "classic" : it->second;
         if (traced != cr::name(shape))
-            throw usage_error(data + "/truth_" + n + ".csv was traced over the " + traced + " field, not --shape " +
+            throw usage_error(path + " was traced over the " + traced + " field, not --shape " +
                               cr::name(shape));
     }
     const cr::cloud_textures textures = load_textures(f, quiet);
@@ -809,8 +835,8 @@ int run_report(int argc, char** argv) {
           "  its mean: an rms error near it is noise, not model error;\n"
           "- **excess**: the model's error with the truth's noise removed in quadrature,\n"
           "  sqrt(rms^2 - noise floor^2) (the two are independent).\n\n"
-          "Images (docs/images/truth_PRESET.png for the first variant, truth_PRESET_VARIANT.png for\n"
-          "the others): truth | model | difference\n"
+          "Images (docs/images/truth_PRESET.png, for the first variant; `report --variant-images`\n"
+          "also writes truth_PRESET_VARIANT.png for the others): truth | model | difference\n"
           "of the display images, 0.5 + 2 (model - truth) per channel (mid-grey: no difference,\n"
           "brighter: the model is too bright).\n\n";
     md << "Variants (the renderer's `--variant` notation over the defaults; `sun=off,haze=off,shadows=off` in all of\n"
@@ -857,13 +883,14 @@ int run_report(int argc, char** argv) {
             table << "| " << vname << " | " << percent(e.rms) << " | " << percent(e.excess) << " | " << signed_percent(e.bias) << " | "
                   << fixed(e.psnr_db, 1) << " | (" << e.worst_col << ", " << e.worst_row << ") | " << percent(e.worst_rms)
                   << " | " << signed_percent(e.worst_bias) << " |\n";
-            // truth | model | difference for every variant: the first inline, the others linked.
+            // truth | model | difference: the first variant's inline, the others' linked when
+            // --variant-images writes them.
             const std::string png = "truth_" + names[p] + (first ? std::string() : "_" + vname) + ".png";
-            write_side_by_side(docs + "/images/" + png, t, model, cr::display_exposure(s));
+            if (first || variant_images) write_side_by_side(docs + "/images/" + png, t, model, cr::display_exposure(s));
             if (first) {
                 sections << "\n\n![truth | " << vname << " | difference](images/" << png << ")\n\n";
                 first = false;
-            } else {
+            } else if (variant_images) {
                 others << (others.tellp() > 0 ? ", " : "") << "[" << vname << "](images/" << png << ")";
             }
             last = e;
@@ -1062,7 +1089,7 @@ int run_fit_clouds(int argc, char** argv) {
     const auto load = [&](const std::string& item, cr::scene& s, truth_image& t) {
         const auto [shape, name] = item_parts(item);
         s = preset(name, shape);
-        const std::string path = data + (shape == cr::cloud_shape::detailed ? "/detailed" : "") + "/truth_" + name + ".csv";
+        const std::string path = truth_file(data + (shape == cr::cloud_shape::detailed ? "/detailed" : ""), name);
         t = read_truth(path);
         const auto it = t.meta.find("shape");
         if ((it == t.meta.end() ? std::string("classic") : it->second) != cr::name(shape))
@@ -1263,7 +1290,7 @@ int run_status(int argc, char** argv) {
     };
     for (const std::string& name : names) {
         (void)preset(name, shape);  // an unknown name: exit 2
-        const std::string truth_path = data + "/truth_" + name + ".csv", checkpoint = truth_path + ".checkpoint";
+        const std::string truth_path = truth_file(data, name), checkpoint = truth_path + ".checkpoint";
         std::cout << name << ' ';
         if (std::ifstream(checkpoint)) {
             const vt::truth_checkpoint c = vt::read_checkpoint(checkpoint);

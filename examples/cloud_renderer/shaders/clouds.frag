@@ -40,7 +40,7 @@ CR_PARAM(int, u_lod)              // 0 level 0 everywhere, 1 the mip level of th
 CR_PARAM(int, u_far_base)         // 1: the light's far samples on the base shape only (cr_coarse_density)
 CR_PARAM(int, u_long_reach)       // the march toward the sun: 0 capped at u_light_march_max, 1 to the band's end (30 km),
                                   // 2 capped, and the shadow map's optical depth beyond (the far field),
-                                  // 3 capped, and cr_far_steps(u_light_steps) base-shape steps beyond to the band's end
+                                  // 3 capped, and cr_far_steps(u_light_steps) full-density steps beyond to the band's end
 CR_PARAM(int, u_jitter)
 CR_PARAM(int, u_sun_disc)         // 0 no sun disc, 1 the disc at its physical radiance
 CR_PARAM(int, u_haze)             // 0 off, 1 aerial perspective (air between camera and cloud)
@@ -157,8 +157,8 @@ const int CR_SKIP_BLOCK = 4;  // steps per empty-space probe (scene.hpp's skip_b
 const int CR_LIGHT_FAR_STEP = 3;          // scene.hpp's light_far_step
 const float CR_LIGHT_LONG_REACH = 30000.0;  // ... light_long_reach
 
-// scene.hpp's far_step_count: two thirds as many far steps as the near march (u_long_reach 3).
-int cr_far_steps(int light_steps) { return light_steps < 2 ? 1 : 2 * light_steps / 3; }
+// scene.hpp's far_step_count: twice as many far steps as the near march (u_long_reach 3).
+int cr_far_steps(int light_steps) { return light_steps < 2 ? 1 : 2 * light_steps; }
 const int CR_SHADOW_MAP_SIZE = 128;      // scene.hpp's shadow_map_size
 const int CR_SHADOW_MAP_STEPS = 24;      // ... shadow_map_steps
 const float CR_GROUND_SKY_SHARE = 0.4;   // ... ground_sky_share
@@ -295,13 +295,13 @@ float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode, floa
     }
     cr_light_near_tau = tau;
     // The far field by steps (u_long_reach 3): toward the sun, the rest of the band beyond the
-    // capped march, uniform steps on the base shape (the near steps keep the detail).
+    // capped march, uniform steps on the full density.
     if (u_long_reach == 3 && seg.y > length_to_exit && dot(toward, u_sun_dir) > 0.0) {
         int nf = cr_far_steps(u_light_steps);
         float span = (min(seg.y, CR_LIGHT_LONG_REACH) - length_to_exit) / float(nf);
         for (int j = 0; j < nf; ++j) {
             vec3 q = p + toward * (length_to_exit + (float(j) + light_offset) * span);
-            tau += u_extinction * cr_coarse_density(q, cr_altitude(q)) * span;
+            tau += u_extinction * cr_density(q, cr_altitude(q)) * span;
         }
     }
     // The far field (u_long_reach 2): toward the sun, what lies beyond the capped march, from

@@ -154,7 +154,7 @@ fn cr_sky_depth_toward_sun(whole: f32, near: f32) -> f32 { return select(whole, 
 const CR_SKIP_BLOCK = 4;
 const CR_LIGHT_FAR_STEP = 3;
 const CR_LIGHT_LONG_REACH = 30000.0;
-fn cr_far_steps(light_steps: i32) -> i32 { return select(2 * light_steps / 3, 1, light_steps < 2); }
+fn cr_far_steps(light_steps: i32) -> i32 { return select(2 * light_steps, 1, light_steps < 2); }
 const CR_SHADOW_MAP_SIZE = 128;
 const CR_SHADOW_MAP_STEPS = 24;
 const CR_GROUND_SKY_SHARE = 0.4;
@@ -275,7 +275,7 @@ fn cr_light_optical_depth(p: vec3f, altitude: f32, toward: vec3f, mode_in: i32, 
         let span = (min(seg.y, CR_LIGHT_LONG_REACH) - length_to_exit) / f32(nf);
         for (var j = 0; j < nf; j++) {
             let q = p + toward * (length_to_exit + (f32(j) + light_offset) * span);
-            tau += U.u_extinction * cr_coarse_density(q, cr_altitude(q)) * span;
+            tau += U.u_extinction * cr_density(q, cr_altitude(q)) * span;
         }
     }
     if (u_long_reach == 2 && seg.y > length_to_exit && dot(toward, U.u_sun_dir) > 0.0) {
