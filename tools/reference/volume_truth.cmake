@@ -57,7 +57,7 @@ if(CLOUDMATH_BUILD_TESTS)
       "$tool" render --preset ground --sky artistic --width 8 --height 4 --spp 2 --threads 2 --cache "$cache" --quiet \
         --out "$out/truth_ground.csv" >/dev/null || { echo "render failed"; exit 1; }
       [ "$(grep -c '^[0-9]' "$out/truth_ground.csv")" -eq 32 ] || { echo "want 32 pixel rows"; exit 1; }
-      grep -q '^x,y,r,g,b,se_r,se_g,se_b$' "$out/truth_ground.csv" || { echo "no header"; exit 1; }
+      grep -q '^r,g,b,se_r,se_g,se_b$' "$out/truth_ground.csv" || { echo "no header"; exit 1; }
       grep -q '^# allocation: uniform$' "$out/truth_ground.csv" || { echo "no uniform allocation line"; exit 1; }
       grep -q '^# sky: artistic$' "$out/truth_ground.csv" || { echo "no artistic sky line"; exit 1; }
       # --sky: the file says which sky it was traced under; the report renders the model under
@@ -112,7 +112,7 @@ if(CLOUDMATH_BUILD_TESTS)
       done
       grep -q '^# light: sun$' "$out/light/sun.csv" || { echo "no light line"; exit 1; }
       paste -d, "$out/light/all.csv" "$out/light/sun.csv" "$out/light/sky.csv" | grep '^[0-9]' | awk -F, '
-        { for (c = 3; c <= 5; ++c) { whole = $c; parts = $(c + 8) + $(c + 16); d = whole - parts; if (d < 0) d = -d
+        { for (c = 1; c <= 3; ++c) { whole = $c; parts = $(c + 6) + $(c + 12); d = whole - parts; if (d < 0) d = -d
             if (d > 1e-5 * (whole > 1 ? whole : 1)) bad++ } n++ }
         END { if (n != 32 || bad) { print "the sun and the sky do not add up to the whole: " bad + 0 " of " n " rows"; exit 1 } }' ||
         exit 1
@@ -134,7 +134,7 @@ if(CLOUDMATH_BUILD_TESTS)
       grep -q '^# orders: 1$' "$out/orders/stratus_1.csv" || { echo "no orders line"; exit 1; }
       grep -q '^# orders:' "$out/orders/stratus_0.csv" && { echo "an orders line for every order"; exit 1; }
       paste -d, "$out/orders/stratus_0.csv" "$out/orders/stratus_1.csv" | grep '^[0-9]' | awk -F, '
-        { for (c = 3; c <= 5; ++c) { all += $c; single += $(c + 8) } n++ }
+        { for (c = 1; c <= 3; ++c) { all += $c; single += $(c + 6) } n++ }
         END { if (n != 32 || !(single > 0) || !(single < 0.5 * all)) { print "single " single " against every order " all; exit 1 } }' ||
         exit 1
       "$tool" render --preset sunrise --light sun --orders 1 --width 8 --height 4 --spp 16 --threads 2 --cache "$cache" --quiet \
@@ -280,6 +280,20 @@ x,y,r,g,b,se_r,se_g,se_b'
         >"$out/truth_ground.csv"
       "$tool" report --presets ground --data "$out" --docs "$out" --quiet 2>"$out.err" >/dev/null; s=$?
       [ $s -eq 1 ] && grep -q "truth_ground.csv: unknown sky 'blue'" "$out.err" || { echo "sky blue: exit $s"; cat "$out.err"; exit 1; }
+      # The compact rows (no x, y: the row's place is the pixel), as render writes them now.
+      compact=$(printf '%s\n' "$head" | sed 's/^x,y,r,g,b,se_r,se_g,se_b$/r,g,b,se_r,se_g,se_b/')
+      printf '%s\n%s\n' "$compact" "0,0,0.1,0.2,0.3,0,0,0" >"$out/truth_ground.csv"
+      "$tool" report --presets ground --data "$out" --docs "$out" --quiet 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "truth_ground.csv:6: malformed row: expected 6 comma-separated cells" "$out.err" || { echo "compact, 8 cells: exit $s"; cat "$out.err"; exit 1; }
+      printf '%s\n%s\n' "$compact" "0.1,0.2,0.3,0,0,0" >"$out/truth_ground.csv"
+      "$tool" report --presets ground --data "$out" --docs "$out" --quiet 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "truth_ground.csv: 1 of 2 pixels" "$out.err" || { echo "compact, truncated: exit $s"; cat "$out.err"; exit 1; }
+      printf '%s\n%s\n%s\n%s\n' "$compact" "0.1,0.2,0.3,0,0,0" "0.1,0.2,0.3,0,0,0" "0.1,0.2,0.3,0,0,0" >"$out/truth_ground.csv"
+      "$tool" report --presets ground --data "$out" --docs "$out" --quiet 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "truth_ground.csv:8: more rows than the 2 pixels" "$out.err" || { echo "compact, a row too many: exit $s"; cat "$out.err"; exit 1; }
+      printf '%s\n%s\n%s\n' "$compact" "0.1,0.2,nan,0,0,0" "0.1,0.2,0.3,0,0,0" >"$out/truth_ground.csv"
+      "$tool" report --presets ground --data "$out" --docs "$out" --quiet 2>"$out.err" >/dev/null; s=$?
+      [ $s -eq 1 ] && grep -q "truth_ground.csv:6: malformed row: 'nan' is not a finite number" "$out.err" || { echo "compact, nan: exit $s"; cat "$out.err"; exit 1; }
       printf '%s\n' "$head" | sed 's/# width: 2/# width: 2xyz/' >"$out/truth_ground.csv"
       "$tool" report --presets ground --data "$out" --docs "$out" --quiet 2>"$out.err" >/dev/null; s=$?
       [ $s -eq 1 ] && grep -q "width and height metadata" "$out.err" || { echo "width 2xyz: exit $s"; cat "$out.err"; exit 1; }

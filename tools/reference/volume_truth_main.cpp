@@ -18,8 +18,9 @@
 // --threads is.
 //
 // Truth CSV: "# key: value" metadata lines (preset, width, height, spp, seed, phase,
-// albedo, threads, seconds), the header x,y,r,g,b,se_r,se_g,se_b, then one row per pixel,
-// x fastest, y = 0 the BOTTOM row (cloud_renderer::image's order); r, g, b the linear
+// albedo, threads, seconds), the header r,g,b,se_r,se_g,se_b, then one row per pixel,
+// x fastest, y = 0 the BOTTOM row (cloud_renderer::image's order; files with the header
+// x,y,r,g,b,se_r,se_g,se_b name each row's pixel and are still read); r, g, b the linear
 // radiance in the renderer's units (those of sun_radiance), se_* their standard errors.
 // Stored gzip-compressed (truth_NAME.csv.gz, gzip_text.hpp); zcat shows the text.
 #include <algorithm>
@@ -195,21 +196,25 @@ struct truth_image {
     std::vector<vt::rgb> radiance, std_error;
 };
 
+// The rows' header. The pixel is the row's place (x fastest, y = 0 the bottom row): the x, y
+// columns of the first files (legacy_header, still read) were a sixth of the stored bytes
+// after gzip (issue 39), and a row out of place could only be an error.
+constexpr const char* compact_header = "r,g,b,se_r,se_g,se_b";
+constexpr const char* legacy_header = "x,y,r,g,b,se_r,se_g,se_b";
+
 std::string format_csv(const truth_image& t, const std::vector<std::string>& meta_order) {
     std::ostringstream o;
     o << "# cloudmath volume truth (tools/reference/volume_truth_main.cpp): linear radiance of a cloud_renderer preset\n";
     for (const std::string& k : meta_order) o << "# " << k << ": " << t.meta.at(k) << '\n';
-    o << "# rows: x fastest, y = 0 the bottom row; r, g, b linear radiance (units of sun_radiance), se_* standard errors\n";
-    o << "x,y,r,g,b,se_r,se_g,se_b\n";
+    o << "# rows: one a pixel, x fastest, y = 0 the bottom row; r, g, b linear radiance (units of sun_radiance), se_* standard errors\n";
+    o << compact_header << '\n';
     char line[256];
-    for (int y = 0; y < t.height; ++y)
-        for (int x = 0; x < t.width; ++x) {
-            const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(x);
-            const vt::rgb& L = t.radiance[i];
-            const vt::rgb& e = t.std_error[i];
-            std::snprintf(line, sizeof line, "%d,%d,%.6g,%.6g,%.6g,%.4g,%.4g,%.4g\n", x, y, L.r, L.g, L.b, e.r, e.g, e.b);
-            o << line;
-        }
+    for (std::size_t i = 0; i < t.radiance.size(); ++i) {
+        const vt::rgb& L = t.radiance[i];
+        const vt::rgb& e = t.std_error[i];
+        std::snprintf(line, sizeof line, "%.6g,%.6g,%.6g,%.4g,%.4g,%.4g\n", L.r, L.g, L.b, e.r, e.g, e.b);
+        o << line;
+    }
     return o.str();
 }
 
@@ -233,7 +238,8 @@ truth_image read_truth(const std::string& path) {
     truth_image t;
     std::string line;
     int line_no = 0;
-    bool header = false;
+    bool header = false, compact = false;
+    std::size_t next = 0;    // compact rows: the pixel of the next row
     std::vector<bool> seen;  // pixels read so far
     const auto fail = [&](const std::string& why) {
         throw std::runtime_error(path + ":" + std::to_string(line_no) + ": " + why);
@@ -248,8 +254,10 @@ truth_image read_truth(const std::string& path) {
             continue;
         }
         if (!header) {
-            if (line != "x,y,r,g,b,se_r,se_g,se_b") fail("expected the header x,y,r,g,b,se_r,se_g,se_b");
+            if (line != compact_header && line != legacy_header)
+                fail(std::string("expected the header ") + compact_header + " (or " + legacy_header + ")");
             header = true;
+            compact = line == compact_header;
             const auto size = [&](const char* key) {
                 const auto it = t.meta.find(key);
                 const std::optional<int> v =
@@ -265,24 +273,31 @@ truth_image read_truth(const std::string& path) {
             seen.assign(t.radiance.size(), false);
             continue;
         }
-        // Eight cells, each the whole number (strict_number.hpp): sscanf took trailing junk
-        // and nan.
+        // Six cells (eight with the legacy x, y), each the whole number (strict_number.hpp):
+        // sscanf took trailing junk and nan.
         std::vector<std::string> cells;
         std::stringstream row(line);
         for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-        if (cells.size() != 8 || line.back() == ',') fail("malformed row: expected 8 comma-separated cells");
-        const std::optional<int> px = cloudmath::tools::parse_integer<int>(cells[0]);
-        const std::optional<int> py = cloudmath::tools::parse_integer<int>(cells[1]);
-        if (!px || !py || *px < 0 || *py < 0 || *px >= t.width || *py >= t.height)
-            fail("malformed row: pixel '" + cells[0] + "," + cells[1] + "' is not in the image");
-        const int x = *px, y = *py;
+        const std::size_t want = compact ? 6 : 8, first = compact ? 0 : 2;
+        if (cells.size() != want || line.back() == ',')
+            fail("malformed row: expected " + std::to_string(want) + " comma-separated cells");
+        std::size_t i = 0;
+        if (compact) {
+            if (next >= seen.size()) fail("more rows than the " + std::to_string(seen.size()) + " pixels of the image");
+            i = next++;
+        } else {
+            const std::optional<int> px = cloudmath::tools::parse_integer<int>(cells[0]);
+            const std::optional<int> py = cloudmath::tools::parse_integer<int>(cells[1]);
+            if (!px || !py || *px < 0 || *py < 0 || *px >= t.width || *py >= t.height)
+                fail("malformed row: pixel '" + cells[0] + "," + cells[1] + "' is not in the image");
+            i = static_cast<std::size_t>(*py) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(*px);
+        }
         double v[6];
         for (std::size_t c = 0; c < 6; ++c) {
-            const std::optional<double> value = cloudmath::tools::parse_finite(cells[c + 2]);
-            if (!value) fail("malformed row: '" + cells[c + 2] + "' is not a finite number");
+            const std::optional<double> value = cloudmath::tools::parse_finite(cells[c + first]);
+            if (!value) fail("malformed row: '" + cells[c + first] + "' is not a finite number");
             v[c] = *value;
         }
-        const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(x);
         if (seen[i]) fail("pixel " + cells[0] + "," + cells[1] + " appears twice");
         seen[i] = true;
         t.radiance[i] = {v[0], v[1], v[2]};
