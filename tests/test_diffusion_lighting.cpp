@@ -4,7 +4,7 @@
 // (no table and no peak: exact single scattering) and the hard cases (zero and huge optical
 // depths, +Inf, mu = +-1, g at and past +-1, denormals) in float and double, with and
 // without -ffast-math. The fitted numbers' documented errors are checked against the
-// stored Monte Carlo data by tools/reference/test_lighting_diffusion.cpp.
+// stored Monte Carlo data by tools/reference/truths/test_lighting_diffusion.cpp.
 #include <cloudmath/diffusion_lighting.hpp>
 
 #include <cmath>

@@ -103,7 +103,7 @@ TEST_CASE_TEMPLATE("multiple_scattering sweep: finite and non-negative over the 
 }
 
 TEST_CASE_TEMPLATE("multiple_scattering with a preset equals the explicit parameters", T, float, double) {
-    // The presets' documented error is reproduced by tools/reference/test_lighting_presets.cpp
+    // The presets' documented error is reproduced by tools/reference/truths/test_lighting_presets.cpp
     // from the Monte Carlo reference; here: the overload uses exactly the preset's numbers.
     for (const multiple_scattering_preset& p : ms_preset::all)
         for (T tau : {T(0), T(0.5), T(8), T(100)})

@@ -79,8 +79,8 @@ template <int Octaves, class T>
 // with the sun term integrated exactly along each camera ray. Each ray's error is relative
 // to the mean radiance of its image (one geometry, thickness and sun angle):
 // rms_error = rms of (L_model - L_MC) / mean(L_MC), max_error = its largest magnitude
-// (docs/lighting_error.md, measured by tools/reference/lighting_report.cpp;
-// tools/reference/test_lighting_presets.cpp reproduces both from the reference data).
+// (docs/lighting_error.md, measured by tools/reference/truths/lighting_report.cpp;
+// tools/reference/truths/test_lighting_presets.cpp reproduces both from the reference data).
 // Outside that range, or for a very different g, the error is not measured.
 // What the numbers say: no choice of a, b, c and N brings the octaves below 50% rms over
 // these ranges (they have no term for light diffusing around a shadowing core); the fitted
