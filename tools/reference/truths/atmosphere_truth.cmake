@@ -17,10 +17,10 @@ cloudmath_reference_target(cloudmath_atmosphere_lib)
 target_include_directories(cloudmath_atmosphere_lib PUBLIC ${cloudmath_reference_include_dirs})
 target_link_libraries(cloudmath_atmosphere_lib PUBLIC cloudmath_montecarlo_lib)
 
-add_executable(cloudmath_atmosphere_truth truths/atmosphere_truth_main.cpp $<TARGET_OBJECTS:cloudmath_stb_image_write>)
+add_executable(cloudmath_atmosphere_truth truths/atmosphere_truth_main.cpp)
 cloudmath_reference_target(cloudmath_atmosphere_truth)
 target_include_directories(cloudmath_atmosphere_truth SYSTEM PRIVATE "${CLOUDMATH_STB_INCLUDE_DIR}")
-target_link_libraries(cloudmath_atmosphere_truth PRIVATE cloudmath_atmosphere_lib ZLIB::ZLIB)  # stb's PNGs, deflated by zlib
+target_link_libraries(cloudmath_atmosphere_truth PRIVATE cloudmath_atmosphere_lib cloudmath_stb_image_write)
 
 if(CLOUDMATH_BUILD_TESTS)
   cloudmath_reference_test(atmosphere_tracer transport/test_atmosphere_tracer.cpp)

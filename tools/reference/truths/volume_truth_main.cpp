@@ -298,7 +298,8 @@ truth_image read_truth(const std::string& path) {
             if (!value) fail("malformed row: '" + cells[c + first] + "' is not a finite number");
             v[c] = *value;
         }
-        if (seen[i]) fail("pixel " + cells[0] + "," + cells[1] + " appears twice");
+        // Compact rows cannot repeat a pixel (each takes the next); named rows can.
+        if (!compact && seen[i]) fail("pixel " + cells[0] + "," + cells[1] + " appears twice");
         seen[i] = true;
         t.radiance[i] = {v[0], v[1], v[2]};
         t.std_error[i] = {v[3], v[4], v[5]};
