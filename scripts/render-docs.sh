@@ -24,7 +24,7 @@ presets=$("$renderer" --list-presets | awk '{ print $1 }')
 # Before: what the renderer drew when the work on its images began (the artistic sky, the
 # classic field, the octaves with the cone, flat sky light, no haze, no shadows, no dither, one
 # frame). After: the default, the physical sky included.
-before=(--sky artistic --shape classic --variant lighting=octaves,powder=on,light=cone,ambient=flat,haze=off,shadows=off,dither=off,refine=1,reach=capped)
+before=(--sky artistic --shape classic --variant lighting=octaves,powder=on,light=cone,ambient=flat,refine=1 --without haze,shadows,dither)
 for p in $presets; do
   "$renderer" --headless --preset "$p" "${common[@]}" --temporal 128 --out "docs/images/clouds_$p.png" >/dev/null
   "$renderer" --headless --preset "$p" "${common[@]}" "${before[@]}" --out "docs/images/before_$p.png" >/dev/null
@@ -49,32 +49,30 @@ profile=$("$renderer" --headless --preset ground "${common[@]}" --temporal 32 --
 profile_frame=$(grep '^GPU temporal:' <<< "$profile" | sed 's/^GPU temporal: //')
 profile_passes=$(grep '^GPU temporal passes' <<< "$profile" | sed 's/^[^:]*: //')
 frame_ms() { "$renderer" --headless --preset ground --width "$1" --height "$2" --cache build/main/texture-cache --quiet \
-  --variant shadows=off --out build/main/frame_ms.png | sed -n 's/^GPU: .*: \([0-9.]*\) ms per frame.*/\1/p'; }
+  --without shadows --out build/main/frame_ms.png | sed -n 's/^GPU: .*: \([0-9.]*\) ms per frame.*/\1/p'; }
 quarter_ms=$(frame_ms $((width / 4)) $((height / 4)))
 full_ms=$(frame_ms "$width" "$height")
 quarter_premium=$(awk -v q="$quarter_ms" -v f="$full_ms" 'BEGIN { printf "%.2f", q / (f / 16) }')
 # name|variant spec|caption, all on the "horizon" preset (low sun ahead: phase and powder show)
 variants=(
   "default||default: diffusion model, dual-lobe HG, 6-step marches both ways (quadratic, jittered), 64 steps refined where opaque"
-  "octaves|lighting=octaves,powder=on,light=cone,ambient=flat,refine=1,reach=capped|octaves: 3, powder, cone, flat sky light (the previous default)"
+  "octaves|lighting=octaves,powder=on,light=cone,ambient=flat,refine=1|octaves: 3, powder, cone, flat sky light (the previous default)"
   "flat_ambient|ambient=flat|sky light not occluded inside the clouds"
   "hg|phase=hg|phase: HG"
   "mie|phase=mie|phase: Mie fit (15 um droplets)"
   "octaves1|lighting=octaves,octaves=1,light=cone|1 octave (single scattering), cone"
   "powder_off|lighting=octaves,light=cone|octaves without powder"
   "march|light-steps=32,behind=march|light: 32-step march both ways"
-  "far_base|far=base|light: far samples on the base shape only"
   "reach|reach=band|light: the march toward the sun to the band's end (30 km)"
-  "lod|lod=on|texture LOD from the pixel footprint"
-  "skip|skip=on|empty-space skipping"
-  "no_shadows|shadows=off|no cloud shadows"
+  "no_shadows|--without shadows|no cloud shadows on the ground"
   "naive16|integration=naive,steps=16|naive Riemann integration, 16 steps"
   "analytic16|steps=16|energy-conserving integration, 16 steps"
 )
 for v in "${variants[@]}"; do
   IFS='|' read -r name spec caption <<< "$v"
   args=(--headless --preset horizon "${common[@]}" --out "docs/images/clouds_variant_$name.png")
-  [[ -n "$spec" ]] && args+=(--variant "$spec")
+  if [[ "$spec" == --* ]]; then read -ra extra <<< "$spec"; args+=("${extra[@]}")
+  elif [[ -n "$spec" ]]; then args+=(--variant "$spec"); fi
   "$renderer" "${args[@]}" >/dev/null
 done
 compare=$("$renderer" --compare --preset ground "${common[@]}" --out build/main/compare.png | grep 'GPU vs CPU')
@@ -129,7 +127,7 @@ cost=$(bash scripts/shader-cost.sh "$renderer")
   echo "each pass ended by glFinish and timed apart: $profile_passes. The shading pass shades a"
   echo "compact quarter-resolution image (the resolve takes the frame's offset), so it costs what a"
   echo "quarter-resolution frame does: a full frame at $((width / 4)) x $((height / 4)) takes $quarter_ms ms against"
-  echo "$full_ms ms at $width x $height (both \`shadows=off\`), $quarter_premium times a sixteenth of it. Neighbouring"
+  echo "$full_ms ms at $width x $height (both \`--without shadows\`), $quarter_premium times a sixteenth of it. Neighbouring"
   echo "rays 4 pixels apart diverge more within a SIMD group than neighbouring pixels do. The resolve"
   echo "reads its Catmull-Rom taps as five linear reads (the 16 taps less the corners, renormalised)."
   echo
@@ -165,17 +163,10 @@ cost=$(bash scripts/shader-cost.sh "$renderer")
   echo
   echo "$convergence"
   echo
-  echo 'Why empty-space skipping and texture LOD stay off (the rows `skip=on` and `lod=on` above):'
-  echo "- Skipping probes the base shape at the end of each block of 4 empty steps. A cloud that"
-  echo "  lies wholly between two probes (a chord shorter than the block: small clouds, grazing"
-  echo "  rays) is stepped over: against the converged render it loses up to 7.5 dB of the horizon band. A"
-  echo "  conservative probe (a max-filtered coverage map) would be the fix."
-  echo "- LOD reads mips that average the noise before the density's nonlinear remap (coverage,"
-  echo "  erosion, saturation): the remap of a mean is not the mean of the remap, so coarse levels"
-  echo "  change the clouds' shapes rather than only filtering them. Against a 4x4 supersampled"
-  echo "  render it is no closer than level 0 (ground 32.45 against 32.57 dB, horizon 33.59"
-  echo "  against 35.83; measured once by hand, not by this script), and a mipmapped filter costs"
-  echo "  llvmpipe more time, not less. Both stay as measured comparisons, like naive integration."
+  echo "The switches the renderer no longer has (empty-space skipping, texture LOD, a fixed view jitter,"
+  echo "uniform and unjittered light steps, the light's far samples on the base shape, the"
+  echo "capped and shadow-map reaches, the run-time uber-shader) and the measurements that removed"
+  echo "them: [lighting_research.md](lighting_research.md), \"Switches removed\"."
   echo
   echo "## Frame time of every variant"
   echo

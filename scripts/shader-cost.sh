@@ -55,14 +55,12 @@ row() {
 for pass in frame temporal shadow background; do
   "$renderer" --dump-shader --pass "$pass" > "$work/$pass.frag"
 done
-"$renderer" --dump-shader --run-time > "$work/runtime.frag"
 echo "| Shader | SPIR-V instructions | texture operations | loops |"
 echo "|---|---:|---:|---:|"
 row "ours: the default's full frame (one permutation compiled in: the variant, the shape and the pass)" frag "$work/frame.frag"
 row "ours: the default's temporal shading pass (\`--pass temporal\`)" frag "$work/temporal.frag"
 row "ours: the default's shadow-map pass (\`--pass shadow\`)" frag "$work/shadow.frag"
 row "ours: the default's background pass (\`--pass background\`: the temporal scheme's sky and ground)" frag "$work/background.frag"
-row "ours: the run-time uber-shader (\`--run-time\`: every variant's paths and every pass)" frag "$work/runtime.frag"
 if [[ -n "$peer" ]]; then
   [[ -r "$peer/shaders/volumetric_clouds.comp" ]] || { echo "shader-cost: $peer/shaders/volumetric_clouds.comp not found" >&2; exit 2; }
   # Its `uniform bool enablePowder = false;` is an initialised bool uniform, which the SPIR-V

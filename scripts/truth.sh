@@ -82,23 +82,20 @@ presets=(ground horizon inside above)
 # choice off the horizon preset.
 selection=(sun_behind cumulus stratus low_sun_ahead low_sun_behind)
 # default: the diffusion model (6-step marches toward the sun and away from it, quadratic
-# and jittered, opaque view steps refined, occluded sky light); previous_estimators: the
-# same model with the estimators it had before (no refinement, uniform light steps at their
-# midpoints, the cone behind, the capped march); cone_behind: the default with the cone behind; octaves: the
-# production octaves it replaced (flat sky light); octaves_march: the octaves given an
-# accurate light march; flat_ambient: the default without the sky light's occlusion;
-# capped, reach_map and reach_band: the far field toward a low sun other than the default's
-# (reach=far: the capped march plus 12 full-density steps to the band's end): none (the default
-# before it), the Beer shadow map beyond the capped march, the march's 6 steps stretched to
-# the band's end, up to 30 km. fitted_table: the default with the diffusion model's table
+# and jittered, opaque view steps refined, occluded sky light, the far field toward a low sun
+# in 12 full-density steps); octaves: the production octaves it replaced (the cone, flat sky
+# light); octaves_march: the octaves given an accurate light march; diffusion_cone and
+# cone_behind: the cone both ways or behind the sample only; flat_ambient: the default without
+# the sky light's occlusion; reach_band: the march's 6 steps stretched to the band's end, up to
+# 30 km, instead of the far steps; fitted_table: the default with the diffusion model's table
 # fitted to homogeneous spheres and slabs (diffusion_models::fitted, the default before the
-# whole-cloud fit diffusion_models::clouds).
-variants=(default= previous_estimators=refine=1,light-spacing=uniform,light-jitter=off,behind=cone,reach=capped
-          octaves=lighting=octaves,powder=on,light=cone,ambient=flat,refine=1,reach=capped
+# whole-cloud fit diffusion_models::clouds). The rows of switches the renderer no longer has
+# (previous_estimators, capped, reach_map): docs/lighting_research.md, "Switches removed".
+variants=(default= octaves=lighting=octaves,powder=on,light=cone,ambient=flat,refine=1
           octaves_march=lighting=octaves,powder=on,light=march,light-steps=64,ambient=flat
           single=lighting=octaves,octaves=1,light=cone,ambient=flat mie=phase=mie
           diffusion_cone=light=cone,behind=cone cone_behind=behind=cone flat_ambient=ambient=flat
-          capped=reach=capped reach_map=reach=map reach_band=reach=band fitted_table=table=fitted)
+          reach_band=reach=band fitted_table=table=fitted)
 width=160 height=90 noise=""
 reports_only=0 build="" check="" cache=() shape=classic sky=artistic only="" fit=0 added_variants=0 pending=0 budget="" light=""
 while [[ $# -gt 0 ]]; do

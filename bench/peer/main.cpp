@@ -199,17 +199,16 @@ int run(const options& o) {
     // The previous default drew the classic density field (scene.hpp's cloud_shape).
     scene classic = sc;
     classic.shape = cloud_shape::classic;
-    // compile_time: the default, one permutation compiled in; false: the run-time uber-shader.
-    const auto full_frame = [&](const scene& s, const variant& v, image& img, bool compile_time) {
-        return [&ours, &o, sp = &s, vp = &v, ip = &img, compile_time](double& ms, std::string& w) {
+    const auto full_frame = [&](const scene& s, const variant& v, image& img) {
+        return [&ours, &o, sp = &s, vp = &v, ip = &img](double& ms, std::string& w) {
             frame_timing t;
-            const bool ok = ours->render(*sp, *vp, compile_time, o.width, o.height, *ip, &t, w);
+            const bool ok = ours->render(*sp, *vp, o.width, o.height, *ip, &t, w);
             ms = t.wall_ms;
             return ok;
         };
     };
-    timed_row peer_row, ours_default, ours_temporal, ours_octaves, ours_runtime, ours_no_march;
-    image ours_runtime_img, ours_no_march_img;
+    timed_row peer_row, ours_default, ours_temporal, ours_octaves, ours_no_march;
+    image ours_no_march_img;
     // The default with its light taken from the Beer shadow map both ways: no light march at
     // all, so the view march's own cost (a lower bound of the default's frame for any light
     // estimate).
@@ -217,10 +216,9 @@ int run(const options& o) {
     why = apply_variant_spec(no_light_march_spec, no_light_march);
     if (!why.empty()) return fail(why);
     peer_row.frame = [&peer](double& ms, std::string& w) { return peer->dispatch(ms, w); };
-    ours_default.frame = full_frame(sc, defaults, ours_default_img, true);
-    ours_octaves.frame = full_frame(classic, octaves, ours_octaves_img, true);
-    ours_runtime.frame = full_frame(sc, defaults, ours_runtime_img, false);
-    ours_no_march.frame = full_frame(sc, no_light_march, ours_no_march_img, true);
+    ours_default.frame = full_frame(sc, defaults, ours_default_img);
+    ours_octaves.frame = full_frame(classic, octaves, ours_octaves_img);
+    ours_no_march.frame = full_frame(sc, no_light_march, ours_no_march_img);
     // Temporal: frames count up from 0; the first 16 fill the history, 16 onward are timed
     // (both passes: the 1-in-16 shading pass and the resolve).
     std::uint32_t temporal_frame = 0;
@@ -230,13 +228,13 @@ int run(const options& o) {
         scene s = sc;
         s.frame = temporal_frame++;
         frame_timing t;
-        const bool ok = ours->render_temporal(s, defaults, true, o.width, o.height, ours_temporal_img, &t, w);
+        const bool ok = ours->render_temporal(s, defaults, o.width, o.height, ours_temporal_img, &t, w);
         ms = t.wall_ms;
         return ok;
     };
     const double load_before = load_average();
-    if (!o.quiet) std::fprintf(stderr, "peer-bench: timing 6 rows, %d rounds\n", o.frames);
-    if (!time_rows({&peer_row, &ours_default, &ours_temporal, &ours_octaves, &ours_runtime, &ours_no_march}, o.frames, why))
+    if (!o.quiet) std::fprintf(stderr, "peer-bench: timing 5 rows, %d rounds\n", o.frames);
+    if (!time_rows({&peer_row, &ours_default, &ours_temporal, &ours_octaves, &ours_no_march}, o.frames, why))
         return fail(why);
     const double load_after = load_average();
     if (!peer->read_image(peer_img, why)) return fail(why);
@@ -296,8 +294,6 @@ int run(const options& o) {
     char octaves_label[160];
     std::snprintf(octaves_label, sizeof octaves_label, "`gl_renderer::render` with `%s`, `--shape classic` (warm-up: 1 frame)", octaves_spec);
     row("ours: previous default", octaves_label, ours_octaves);
-    row("ours: default, run-time uber-shader", "`gl_renderer::render` with the variant as uniforms (`--run-time`; warm-up: 1 frame)",
-        ours_runtime);
     char no_march_label[200];
     std::snprintf(no_march_label, sizeof no_march_label,
                   "`gl_renderer::render` with `%s`: no light march, the view march's own cost (warm-up: 1 frame)",

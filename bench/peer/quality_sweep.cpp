@@ -20,14 +20,12 @@ namespace {
 
 using namespace cloud_renderer;
 
-// The converged images. Ours: docs/renderer.md's convergence reference (1024 uniform view
-// steps, none refined, 128-step light marches both ways at their midpoints, no jitter). The
+// The converged images. Ours: docs/renderer.md's convergence reference (1024 view steps, none
+// refined, 128-step light marches both ways). The
 // peer's: its model sampled 8 times more finely both ways, the mean of 4 frames whose start
 // offsets are shifted by k / 4 (each pixel's Bayer offset plus that, so 64 offsets per 4 x 4
 // block). Each is checked against the same at half its steps and samples.
-const char* const our_reference_spec =
-    "steps=1024,refine=1,light=march,light-steps=128,light-spacing=uniform,behind=march,schedule=uniform,skip=off,"
-    "lod=off,jitter=off";
+const char* const our_reference_spec = "steps=1024,refine=1,light=march,light-steps=128,behind=march";
 const char* const our_half_spec = "steps=512,light-steps=64";
 constexpr int peer_reference_view = 512, peer_reference_light = 48, peer_reference_frames = 4;
 
@@ -206,8 +204,10 @@ std::string svg_plot(const std::vector<setting>& all) {
 
 }  // namespace
 
-bool quality_sweep(gl_renderer& ours, peer_clouds& peer, const scene& sc, const sweep_settings& o, std::string& markdown,
+bool quality_sweep(gl_renderer& ours, peer_clouds& peer, const scene& scene_in, const sweep_settings& o, std::string& markdown,
                    std::string& why) {
+    scene sc = scene_in;  // ours without the dither (a new noise per frame, not the march's error)
+    sc.dither = false;
     const auto note = [&](const std::string& text) {
         if (!o.quiet) std::fprintf(stderr, "peer-bench: sweep: %s\n", text.c_str());
     };
@@ -259,8 +259,7 @@ bool quality_sweep(gl_renderer& ours, peer_clouds& peer, const scene& sc, const 
     const double peer_reference_s = seconds_since(t0);
     note("the peer's converged image in " + std::to_string(int(peer_reference_s)) + " s");
 
-    variant base;  // the default, without the dither (a new noise per frame, not the march's error)
-    base.dither = false;
+    const variant base;  // the default
     variant reference_variant = base, half_variant = base;
     why = apply_variant_spec(our_reference_spec, reference_variant);
     if (why.empty()) why = apply_variant_spec(our_reference_spec, half_variant);
@@ -268,8 +267,8 @@ bool quality_sweep(gl_renderer& ours, peer_clouds& peer, const scene& sc, const 
     if (!why.empty()) return false;
     t0 = std::chrono::steady_clock::now();
     image ours_reference, ours_half;
-    if (!ours.render(sc, reference_variant, true, o.width, o.height, ours_reference, nullptr, why) ||
-        !ours.render(sc, half_variant, true, o.width, o.height, ours_half, nullptr, why))
+    if (!ours.render(sc, reference_variant, o.width, o.height, ours_reference, nullptr, why) ||
+        !ours.render(sc, half_variant, o.width, o.height, ours_half, nullptr, why))
         return false;
     const double ours_reference_s = seconds_since(t0);
     note("our converged image in " + std::to_string(int(ours_reference_s)) + " s");
@@ -303,7 +302,7 @@ bool quality_sweep(gl_renderer& ours, peer_clouds& peer, const scene& sc, const 
         else
             s.row.frame = [&ours, &sc, &o, sp = &s](double& ms, std::string& w) {
                 frame_timing t;
-                const bool ok = ours.render(sc, sp->v, true, o.width, o.height, sp->img, &t, w);
+                const bool ok = ours.render(sc, sp->v, o.width, o.height, sp->img, &t, w);
                 ms = t.wall_ms;
                 return ok;
             };
@@ -342,7 +341,7 @@ bool quality_sweep(gl_renderer& ours, peer_clouds& peer, const scene& sc, const 
         scene sf = sc;
         sf.frame = f;
         image one;
-        if (!ours.render(sf, ours_default->v, true, o.width, o.height, one, nullptr, why)) return false;
+        if (!ours.render(sf, ours_default->v, o.width, o.height, one, nullptr, why)) return false;
         if (f == 0) ours_averaged = one;
         else
             for (std::size_t i = 0; i < pixels; ++i) ours_averaged.pixels[i] += one.pixels[i];
@@ -375,7 +374,7 @@ bool quality_sweep(gl_renderer& ours, peer_clouds& peer, const scene& sc, const 
         ours_band_count += ours_band[i];
     }
     std::snprintf(line, sizeof line,
-                  "Converged images. Ours: the default without its dither (`dither=off`) and with `%s` (docs/renderer.md's "
+                  "Converged images. Ours: the default without its dither (`--without dither`) and with `%s` (docs/renderer.md's "
                   "convergence reference), %.0f s. The peer's: its shader with %d view steps and %d light samples "
                   "(quality_knobs.cpp), the mean of %d frames with the start offsets shifted by k / %d, %.0f s. Each against "
                   "the same at half the steps and samples (how converged it is): peer %s dB over the pixels it marches, %s dB "

@@ -31,36 +31,6 @@ float linear_texture::texel(int x, int y, int z, int c) const {
     return float(data[i]) * (1.0f / 255.0f);
 }
 
-namespace {
-
-// Mip level k of t as a texture of its own (level 0: t itself).
-linear_texture level_of(const linear_texture& t, int k) {
-    if (k <= 0) return linear_texture{t.data, t.size, t.channels, {}};
-    return linear_texture{t.mips[static_cast<std::size_t>(k - 1)], t.size >> k, t.channels, {}};
-}
-
-// GL_LINEAR_MIPMAP_LINEAR's two levels and weight for lod (clamped to the last level).
-template <class Sample>
-vec4 trilinear(const linear_texture& t, float lod, Sample sample) {
-    if (!(lod > 0.0f) || t.mips.empty()) return sample(t);
-    const float last = float(t.mips.size());
-    const float l = lod < last ? lod : last;
-    const int k = int(l);
-    const float f = l - float(k);
-    const vec4 a = sample(level_of(t, k));
-    return f > 0.0f ? glm::mix(a, sample(level_of(t, k + 1)), f) : a;
-}
-
-}  // namespace
-
-vec4 linear_texture::sample3(vec3 uvw, float lod) const {
-    return trilinear(*this, lod, [&](const linear_texture& l) { return l.sample3(uvw); });
-}
-
-vec4 linear_texture::sample2(vec2 uv, float lod) const {
-    return trilinear(*this, lod, [&](const linear_texture& l) { return l.sample2(uv); });
-}
-
 // GL_LINEAR with GL_REPEAT: cloudmath's texture_trilinear_repeat over this texture's bytes.
 vec4 linear_texture::texel4(int x, int y, int z) const {
     // One address for the texel's channels (texel() per channel recomputed it: this is the
@@ -89,52 +59,36 @@ vec4 linear_texture::sample2(vec2 uv) const {
     return cm::texture_bilinear_repeat(uv, glm::ivec2(size), [this](int x, int y) { return texel4(x, y, 0); });
 }
 
-namespace {
-std::vector<const std::uint8_t*> pointers(const std::vector<std::vector<std::uint8_t>>& mips) {
-    std::vector<const std::uint8_t*> out;
-    for (const auto& m : mips) out.push_back(m.data());
-    return out;
-}
-}  // namespace
-
 cloud_density::cloud_density(const scene& s, const cloud_textures& t)
-    : s_(s), base_{t.base.data(), t.base_size, 4, pointers(t.base_mips)},
-      detail_{t.detail.data(), t.detail_size, 3, pointers(t.detail_mips)},
-      weather_{t.weather.data(), t.weather_size, 3, pointers(t.weather_mips)},
-      weather_wide_{t.weather_wide.data(), t.weather_wide_size, 3, pointers(t.weather_wide_mips)},
-      curl_{t.curl.data(), t.curl_size, 3, {}} {}
+    : s_(s), base_{t.base.data(), t.base_size, 4},
+      detail_{t.detail.data(), t.detail_size, 3},
+      weather_{t.weather.data(), t.weather_size, 3},
+      weather_wide_{t.weather_wide.data(), t.weather_wide_size, 3},
+      curl_{t.curl.data(), t.curl_size, 3} {}
 
 float cloud_density::altitude(vec3 p) const { return cm::point_altitude(p, s_.camera_altitude, s_.planet_radius); }
 
-float cloud_density::base_density(vec3 p, float alt, long* texture_reads, float footprint) const {
+float cloud_density::base_density(vec3 p, float alt, long* texture_reads) const {
     const float h = cm::height_fraction(alt, s_.layer_bottom, s_.layer_top);
     if (h <= 0.0f || h >= 1.0f) return 0.0f;
     if (texture_reads) *texture_reads += 2;
     const vec3 q(p.x + s_.wind.x, alt, p.z + s_.wind.y);
     if (s_.shape == cloud_shape::detailed) {
-        const vec3 w = vec3(weather_wide_.sample2(vec2(q.x, q.z) / s_.weather_wide_tile,
-                                                  cm::texture_lod(footprint, s_.weather_wide_tile / float(weather_wide_.size))));
-        const vec4 b = base_.sample3(q / s_.base_tile, cm::texture_lod(footprint, s_.base_tile / float(base_.size)));
+        const vec3 w = vec3(weather_wide_.sample2(vec2(q.x, q.z) / s_.weather_wide_tile));
+        const vec4 b = base_.sample3(q / s_.base_tile);
         return cm::cloud_shape_density(b, w, h, s_.coverage, s_.cloud_type, s_.type_spread, s_.top_rounding);
     }
-    const float weather_lod = cm::texture_lod(footprint, s_.weather_tile / float(weather_.size));
-    const float base_lod = cm::texture_lod(footprint, s_.base_tile / float(base_.size));
-    const float coverage = cm::saturate(weather_.sample2(vec2(q.x, q.z) / s_.weather_tile, weather_lod).r - 0.5f + s_.coverage);
-    const vec4 b = base_.sample3(q / s_.base_tile, base_lod);
+    const float coverage = cm::saturate(weather_.sample2(vec2(q.x, q.z) / s_.weather_tile).r - 0.5f + s_.coverage);
+    const vec4 b = base_.sample3(q / s_.base_tile);
     const float shaped = cm::nubis_base_cloud(b) * cm::height_gradient_for_type(h, s_.cloud_type);
     return cm::apply_coverage(shaped, coverage);
 }
 
-float cloud_density::coarse_density(vec3 p, float alt, long* texture_reads, float footprint) const {
-    const float covered = base_density(p, alt, texture_reads, footprint);
-    return s_.shape == cloud_shape::detailed ? cm::saturate(covered * s_.density_scale) : covered;
+float cloud_density::density(vec3 p, float alt, long* texture_reads) const {
+    return detail_density(p, alt, base_density(p, alt, texture_reads), texture_reads);
 }
 
-float cloud_density::density(vec3 p, float alt, long* texture_reads, float footprint) const {
-    return detail_density(p, alt, base_density(p, alt, texture_reads, footprint), texture_reads, footprint);
-}
-
-float cloud_density::detail_density(vec3 p, float alt, float covered, long* texture_reads, float footprint) const {
+float cloud_density::detail_density(vec3 p, float alt, float covered, long* texture_reads) const {
     if (covered <= 0.0f) return 0.0f;
     if (texture_reads) *texture_reads += 1;
     const float h = cm::height_fraction(alt, s_.layer_bottom, s_.layer_top);
@@ -145,10 +99,10 @@ float cloud_density::detail_density(vec3 p, float alt, float covered, long* text
         const vec3 c = vec3(curl_.sample2(vec2(q.x, q.z) / s_.curl_tile));
         const vec3 curl(cm::curl_bake_decode(c.x), cm::curl_bake_decode(c.y), cm::curl_bake_decode(c.z));
         q += curl * (s_.curl_strength * (1.0f - h));
-        const vec3 d = vec3(detail_.sample3(q / s_.detail_tile, cm::texture_lod(footprint, s_.detail_tile / float(detail_.size))));
+        const vec3 d = vec3(detail_.sample3(q / s_.detail_tile));
         return cm::saturate(cm::erode(covered, cm::nubis_detail_erosion(d, h)) * s_.density_scale);
     }
-    const vec3 d = vec3(detail_.sample3(q / s_.detail_tile, cm::texture_lod(footprint, s_.detail_tile / float(detail_.size))));
+    const vec3 d = vec3(detail_.sample3(q / s_.detail_tile));
     return cm::erode(covered, cm::nubis_detail_erosion(d, h));
 }
 

@@ -26,18 +26,12 @@ namespace cloud_renderer {
 struct linear_texture {
     const std::uint8_t* data;
     int size, channels;
-    std::vector<const std::uint8_t*> mips;  // levels 1, 2, ... (level k: size >> k texels a side)
 
     // Texel (x, y, z) channel c in [0, 1]; indices must be in [0, size).
     float texel(int x, int y, int z, int c) const;
     glm::vec4 texel4(int x, int y, int z) const;  // every channel, 0 beyond `channels`
     glm::vec4 sample3(glm::vec3 uvw) const;
     glm::vec4 sample2(glm::vec2 uv) const;
-    // textureLod() with GL_LINEAR_MIPMAP_LINEAR: levels floor(lod) and floor(lod) + 1 mixed by
-    // the fraction, lod clamped to [0, last level]; lod <= 0 is sample3 / sample2 (GL_LINEAR
-    // magnification). Without mips, level 0.
-    glm::vec4 sample3(glm::vec3 uvw, float lod) const;
-    glm::vec4 sample2(glm::vec2 uv, float lod) const;
 };
 
 // The density field of shaders/clouds.frag (cr_altitude, cr_density). Keeps references to
@@ -55,21 +49,15 @@ public:
     // The same, adding to *texture_reads the texture() calls the shader makes for it: none
     // outside the layer, the weather map and the base volume inside it, and the detail
     // volume where the base cloud survives coverage (cr_density's early exits).
-    // footprint: the width a pixel covers there (pixel_footprint): each texture is read at the
-    // mip level that matches it (texture_lod); 0 reads level 0 (the volume tracer's field).
-    float density(glm::vec3 p, float alt, long* texture_reads, float footprint = 0.0f) const;
+    float density(glm::vec3 p, float alt, long* texture_reads) const;
     // The base shape alone (cr_base_density): the density before the detail erodes it, an
     // upper bound of density() from the weather map and the base volume only (2 reads inside
     // the layer, none outside).
-    float base_density(glm::vec3 p, float alt, long* texture_reads = nullptr, float footprint = 0.0f) const;
+    float base_density(glm::vec3 p, float alt, long* texture_reads = nullptr) const;
     // The detail's erosion of the base shape `covered` (base_density's value at p): density()
     // is detail_density(p, alt, base_density(p, alt)) (cr_detail_density; the detail volume,
     // and the curl map for the detailed shape, read only where covered > 0).
-    float detail_density(glm::vec3 p, float alt, float covered, long* texture_reads = nullptr, float footprint = 0.0f) const;
-    // A cheap stand-in for density() from the base shape alone (cr_coarse_density): the base
-    // density, with the detailed shape scaled by density_scale and saturated like density()
-    // (2 reads; an upper bound of density()).
-    float coarse_density(glm::vec3 p, float alt, long* texture_reads = nullptr, float footprint = 0.0f) const;
+    float detail_density(glm::vec3 p, float alt, float covered, long* texture_reads = nullptr) const;
 
     const scene& scene_data() const { return s_; }
     const linear_texture& base() const { return base_; }

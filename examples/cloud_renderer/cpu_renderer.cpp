@@ -99,7 +99,6 @@ struct pixel_program {
     const far_shadow_table* far_field = nullptr;  // ... and its clouds' shadow beyond the light march (far_shadow.hpp)
     std::vector<vec3> shadow_map;  // the Beer shadow map (needs_shadow_map), row j = 0 first
     long shadow_map_reads = 0;     // texture reads of building it (once per frame)
-    float map_footprint = 0.0f;    // its texels' width with LOD, else 0
 
     // `kept_map`: the shadow map of the temporal scheme's previous frames, of which only rows
     // `rows` are redrawn (temporal_shadow_rows); null: the whole map is drawn.
@@ -111,8 +110,7 @@ struct pixel_program {
           model(m != nullptr ? m : va.table == diffusion_table::clouds ? &cm::diffusion_models::clouds : &cm::diffusion_models::fitted),
           haze(sc.sky == sky_model::physical ? &physical_haze(sc.camera_altitude, k.sun_dir) : nullptr),
           far_field(sc.sky == sky_model::physical ? &far_shadow(sc, k.sun_dir, t, light_reach(va, k)) : nullptr) {
-        if (needs_shadow_map(v)) {
-            if (v.lod) map_footprint = 2.0f * k.shadow_half_extent / float(shadow_map_size);
+        if (needs_shadow_map(v, s)) {
             shadow_map.resize(static_cast<std::size_t>(shadow_map_size) * static_cast<std::size_t>(shadow_map_size));
             if (kept_map != nullptr && kept_map->size() == shadow_map.size()) shadow_map = *kept_map;
             else rows = glm::ivec2(0, shadow_map_size);
@@ -134,7 +132,7 @@ struct pixel_program {
             for (int m = 0; m < shadow_map_steps; ++m) {
                 const float t = seg.x + float(m) * ds;
                 const vec3 q = p0 - k.sun_dir * (t + 0.5f * ds);
-                acc.add_step(t, ds, s.extinction * density(q, altitude(q), counter, map_footprint));
+                acc.add_step(t, ds, s.extinction * density(q, altitude(q), counter));
             }
         }
         return acc.texel();
@@ -172,21 +170,9 @@ struct pixel_program {
     float altitude(vec3 p) const { return field.altitude(p); }
     // The unit vertical at the camera-relative point p (clouds.frag's cr_up).
     vec3 up_at(vec3 p) const { return glm::normalize(vec3(p.x, p.y + (s.planet_radius + s.camera_altitude), p.z)); }
-    // footprint: the pixel's width at the sample (variant::lod; 0: level 0 everywhere).
-    float density(vec3 p, float alt, long* counter = nullptr, float footprint = 0.0f) const {
-        return field.density(p, alt, counter, footprint);
-    }
+    float density(vec3 p, float alt, long* counter = nullptr) const { return field.density(p, alt, counter); }
 
-    float cone_extinction(vec3 p, long* counter = nullptr, float footprint = 0.0f) const {
-        return s.extinction * density(p, altitude(p), counter, footprint);
-    }
-
-    // A light sample's extinction (cr_light_extinction): a far one (`far`) on the base shape
-    // alone with variant::far_base.
-    float light_extinction(vec3 p, bool far, long* counter, float footprint) const {
-        if (far && v.far_base) return s.extinction * field.coarse_density(p, altitude(p), counter, footprint);
-        return cone_extinction(p, counter, footprint);
-    }
+    float cone_extinction(vec3 p, long* counter = nullptr) const { return s.extinction * density(p, altitude(p), counter); }
 
     float phase(float mu, float scale) const {
         switch (v.phase) {
@@ -205,11 +191,12 @@ struct pixel_program {
     // diffusion model's tau_behind) by the cone or by a march to where the cloud type's
     // altitude band ends (height_range_for_type: no density beyond it, so the band's steps
     // lose nothing and a 225 m stratus sheet gets all of them instead of 1 in 11), its steps
-    // uniform or quadratic (variant::light_quadratic), sampled at light_offset within each.
-    // near (if given): the depth without the far field (variant::far_steps, far_map), which the
-    // physical sky's occluded sky light uses (sky_depth_toward_sun); the whole in map and cone modes.
+    // quadratic (light_march_distance: short near the sample, where the light is decided),
+    // sampled at light_offset within each. near (if given): the depth without the far field
+    // (reach=far's steps), which the physical sky's occluded sky light uses
+    // (sky_depth_toward_sun); the whole in map and cone modes.
     float light_optical_depth(vec3 p, float alt, vec3 toward, light_mode mode, long* counter = nullptr,
-                              float footprint = 0.0f, float light_offset = 0.5f, float* near = nullptr) const {
+                              float light_offset = 0.5f, float* near = nullptr) const {
         const auto whole = [near](float tau) {
             if (near != nullptr) *near = tau;
             return tau;
@@ -227,42 +214,31 @@ struct pixel_program {
             mode = light_mode::cone;
         }
         if (mode == light_mode::cone) {
-            const cm::cone_light_config<float> cone{v.cone_samples, k.cone_step, k.cone_spread, k.cone_far_distance,
+            const cm::cone_light_config<float> cone{cone_samples, k.cone_step, k.cone_spread, k.cone_far_distance,
                                                     k.cone_far_length};
-            return whole(cm::cone_optical_depth(p, toward, cone, [this, counter, footprint](const vec3& q, int i) {
-                return light_extinction(q, i >= v.cone_samples - 1, counter, footprint);
-            }));
+            return whole(cm::cone_optical_depth(p, toward, cone, [this, counter](const vec3& q, int) { return cone_extinction(q, counter); }));
         }
         const vec2 seg = cm::cloud_layer_segment(alt, glm::dot(toward, up_at(p)), s.planet_radius, band.x, band.y);
-        const float reach = v.long_reach ? light_long_reach : k.light_march_max;
+        const float reach = v.reach == reach_mode::band ? light_long_reach : k.light_march_max;
         const float length_to_exit = seg.y > seg.x ? std::min(seg.y, reach) : 0.0f;
         float tau = 0.0f;
         // Step i spans [at(i / n), at((i + 1) / n)], its sample at at((i + offset) / n).
         const float nl = float(v.light_steps);
-        const auto at = [&](float u) {
-            return v.light_quadratic ? cm::light_march_distance(u, length_to_exit) : u * length_to_exit;
-        };
+        const auto at = [&](float u) { return cm::light_march_distance(u, length_to_exit); };
         for (int i = 0; i < v.light_steps; ++i) {
             const float ds = at((float(i) + 1.0f) / nl) - at(float(i) / nl);
-            tau += light_extinction(p + toward * at((float(i) + light_offset) / nl), i >= light_far_step, counter, footprint) * ds;
+            tau += cone_extinction(p + toward * at((float(i) + light_offset) / nl), counter) * ds;
         }
         if (near != nullptr) *near = tau;
-        // variant::far_steps: toward the sun, the rest of the band beyond the capped march in
+        // reach=far: toward the sun, the rest of the band beyond the capped march in
         // far_step_count uniform steps on the full density.
-        if (v.far_steps && seg.y > length_to_exit && glm::dot(toward, k.sun_dir) > 0.0f) {
+        if (v.reach == reach_mode::far && seg.y > length_to_exit && glm::dot(toward, k.sun_dir) > 0.0f) {
             const int nf = far_step_count(v.light_steps);
             const float span = (std::min(seg.y, light_long_reach) - length_to_exit) / float(nf);
             for (int j = 0; j < nf; ++j) {
                 const vec3 q = p + toward * (length_to_exit + (float(j) + light_offset) * span);
-                tau += cone_extinction(q, counter, footprint) * span;
+                tau += cone_extinction(q, counter) * span;
             }
-        }
-        // variant::far_map: toward the sun, what lies beyond the capped march, from the map
-        // (its optical depth from the map's plane down to where the march ended).
-        if (v.far_map && seg.y > length_to_exit && glm::dot(toward, k.sun_dir) > 0.0f) {
-            const vec3 uvd = cm::shadow_map_project(p + toward * length_to_exit, k.shadow_origin, k.shadow_right, k.shadow_up,
-                                                    k.sun_dir, k.shadow_half_extent);
-            if (on_map(uvd)) tau += cm::beer_shadow_optical_depth(shadow_lookup(vec2(uvd), counter), uvd.z);
         }
         return tau;
     }
@@ -327,11 +303,6 @@ struct pixel_program {
                 grad[L::table_size + ia * L::peak_c_count + ic] += weight * t.beams[ia] * phase(t.mu, float(L::peak_c[ic]));
     }
 
-    // The pixel's footprint at distance t (variant::lod), 0 without LOD (level 0).
-    float footprint_at(float t, int height) const {
-        return v.lod ? cm::pixel_footprint(t, k.tan_half_fov, float(height)) : 0.0f;
-    }
-
     // main() of the shader for the pixel whose centre is (x + 0.5, y + 0.5), before the
     // tonemap: rgb linear radiance, a opacity. depth (optional): the cloud's
     // transmittance-weighted distance, 0 where the ray meets no cloud (out_depth).
@@ -359,7 +330,7 @@ struct pixel_program {
         if (seg.y > seg.x) {
             const float t1 = seg.y;
             const std::uint32_t pixel_hash = cm::noise_hash(static_cast<std::uint32_t>(x) + static_cast<std::uint32_t>(y) * 8192u);
-            const float offset = v.jitter ? cm::frame_jitter(pixel_hash, s.frame) : 0.5f;
+            const float offset = cm::frame_jitter(pixel_hash, s.frame);
             const float mu = glm::dot(dir, k.sun_dir);
             const float n = float(v.view_steps);
             const auto at = [&](float u) {
@@ -370,8 +341,8 @@ struct pixel_program {
             float depth_sum = 0.0f;   // sum of each step's opacity times its distance
             float step_begin = seg.x; // = at(0), for both schedules
             float step_end = seg.x;   // the end of view step i, once its sample is taken
-            int empty_steps = skip_block;  // empty-space skipping starts by probing
-            float last_empty = -1.0f;      // the last view sample (or skipped block's end) with no cloud
+            bool after_empty = true;  // no cloud since the last empty sample (or the start)
+            float last_empty = -1.0f; // the last view sample with no cloud
             std::uint32_t light_index = 0; // light estimates so far (their jitter's index)
             // The light pass (cr_light_samples): each recorded sample's light estimates and
             // source, added with its transmittance in the march's order.
@@ -379,15 +350,13 @@ struct pixel_program {
                 for (int q = 0; q < count; ++q) {
                     const lit_sample& e = samples[q];
                     const float alts = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, e.t);
-                    const float footprint = footprint_at(e.t, height);
                     // The light march's offset: new for each light estimate and frame.
-                    const float lo = v.jitter && v.light_jitter ? cm::sample_jitter(pixel_hash, s.frame, light_index++) : 0.5f;
+                    const float lo = cm::sample_jitter(pixel_hash, s.frame, light_index++);
                     float tau_near = 0.0f;
-                    const float tau_light =
-                        light_optical_depth(dir * e.t, alts, k.sun_dir, v.light, light_reads, footprint, lo, &tau_near);
+                    const float tau_light = light_optical_depth(dir * e.t, alts, k.sun_dir, v.light, light_reads, lo, &tau_near);
                     const float tau_sky = sky_depth_toward_sun(tau_light, tau_near);
                     const float tau_behind = v.lighting == lighting_model::diffusion
-                                                 ? light_optical_depth(dir * e.t, alts, -k.sun_dir, v.behind, light_reads, footprint, lo)
+                                                 ? light_optical_depth(dir * e.t, alts, -k.sun_dir, v.behind, light_reads, lo)
                                                  : 0.0f;
                     const float h = cm::height_fraction(alts, s.layer_bottom, s.layer_top);
                     const float far_light = far_shadow_at(dir * e.t, alts);
@@ -415,45 +384,24 @@ struct pixel_program {
                 }
             };
             // The march: one flat loop with one density sample per turn (clouds.frag's main):
-            // view step i's sample, a probe of the next block (variant::skip), or sub-step m
-            // of the refined step i (variant::refine: a step thicker than optical depth 1 is
-            // marched again in `sub` sub-steps of sub_ds from sub_from, the last empty sample
-            // when it is the first step in cloud). It records the samples in cloud, and the
-            // light pass lights them whenever lit_capacity are recorded and at the end.
+            // view step i's sample or sub-step m of the refined step i (variant::refine: a step
+            // thicker than optical depth 1 is marched again in `sub` sub-steps of sub_ds from
+            // sub_from, the last empty sample when it is the first step in cloud). It records
+            // the samples in cloud, and the light pass lights them whenever lit_capacity are
+            // recorded and at the end.
             std::array<lit_sample, lit_samples> recorded{};
             const int capacity = std::clamp(lit_capacity, 1, lit_samples);
             int i = 0, m = 0, sub = 0;
             float sub_from = 0.0f, sub_ds = 0.0f;
             bool opaque = false;
-            bool resumed = false;  // the last probe found cloud: the steps before it were empty
             for (;;) {
                 int count = 0;
                 while (!opaque && count < capacity && (m < sub || i < v.view_steps)) {
                     const bool refining = m < sub;
-                    const bool probe = !refining && v.skip && empty_steps >= skip_block;
-                    const int j = std::min(i + skip_block, v.view_steps);  // the probed block's end
-                    const float t = refining ? sub_from + (float(m) + offset) * sub_ds
-                                    : probe  ? at(float(j) / n)
-                                             : at((float(i) + offset) / n);
+                    const float t = refining ? sub_from + (float(m) + offset) * sub_ds : at((float(i) + offset) / n);
                     const float alt = cm::altitude_along_ray(s.camera_altitude, dir.y, s.planet_radius, t);
-                    const float footprint = footprint_at(t, height);
-                    // The probe reads the base shape alone at the block's end: a cloud that begins
-                    // inside the block and reaches past it is found, its front marched in full
-                    // steps (a probe inside the block skipped the fronts that lay before it).
-                    const float covered = field.base_density(dir * t, alt, view_reads, footprint);
-                    const float d = probe ? covered : field.detail_density(dir * t, alt, covered, view_reads, footprint);
+                    const float d = field.density(dir * t, alt, view_reads);
                     float ds = 0.0f;
-                    if (probe) {
-                        if (d <= 0.0f) {  // empty: step over the block
-                            step_begin = at(float(j) / n);
-                            last_empty = step_begin;
-                            i = j;
-                        } else {  // cloud: march the block, refining from the last empty sample
-                            empty_steps = 0;
-                            resumed = true;
-                        }
-                        continue;
-                    }
                     if (refining) {
                         ds = sub_ds;
                         if (++m == sub) {
@@ -466,14 +414,13 @@ struct pixel_program {
                         if (d <= 0.0f) {
                             last_empty = t;
                             step_begin = step_end;
-                            ++empty_steps;
+                            after_empty = true;
                             ++i;
                             continue;
                         }
-                        const float r0 = (empty_steps > 0 || resumed) && last_empty >= 0.0f ? last_empty : step_begin;
-                        resumed = false;
+                        const float r0 = after_empty && last_empty >= 0.0f ? last_empty : step_begin;
                         const int n_sub = cm::refine_substeps(s.extinction * d * (step_end - r0), v.refine);
-                        empty_steps = 0;
+                        after_empty = false;
                         if (n_sub > 1) {  // march the step again in sub-steps, from the next turn
                             sub = n_sub;
                             m = 0;
@@ -503,7 +450,7 @@ struct pixel_program {
             // sky's haze is the atmosphere's in-scattering along this direction to that depth.
             const float opacity = 1.0f - acc.transmittance.r;
             if (depth != nullptr && opacity > 0.0f) *depth = depth_sum / opacity;
-            if (v.haze && opacity > 0.0f) {
+            if (s.haze && opacity > 0.0f) {
                 const vec3 tau_air = cm::air_optical_depth(s.camera_altitude, dir.y, depth_sum / opacity);
                 if (haze != nullptr) {
                     acc.luminance = acc.luminance * glm::exp(-tau_air) + haze_lookup(*haze, dir, k.sun_dir, depth_sum / opacity) * opacity;
@@ -530,13 +477,13 @@ struct pixel_program {
 
     // What lies behind the cloud layer along dir: the sky, or the ground with the clouds'
     // shadows (cr_background).
-    vec3 behind(vec3 dir) const { return background(s, k, dir, v.sun) * (v.shadows ? ground_shadow(dir) : 1.0f); }
+    vec3 behind(vec3 dir) const { return background(s, k, dir, s.sun_disc) * (s.shadows ? ground_shadow(dir) : 1.0f); }
 
     // main() of the shader: the display colour, dithered for the 8-bit store.
     vec4 shade(int x, int y, int width, int height) const {
         const vec4 c = shade_linear(x, y, width, height);
         vec3 display = tonemap(vec3(c), k.exposure);
-        if (v.dither) display += cm::triangular_dither(dither_hash(x, y, s.frame)) * (1.0f / 255.0f);
+        if (s.dither) display += cm::triangular_dither(dither_hash(x, y, s.frame)) * (1.0f / 255.0f);
         return vec4(display, c.a);
     }
 };
@@ -660,7 +607,7 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
     shading.frame = s.frame >> 4U;
     // The shadow map a slice a frame (temporal_shadow_rows): the whole of it on a first frame
     // or when the variant or the shape changed.
-    const std::string map_key = permutation_key(v, s.shape);
+    const std::string map_key = permutation_key(v, s);
     const bool whole_map = !has_history_ || map_key != shadow_map_key_;
     const pixel_program program(shading, v, textures, nullptr, whole_map ? nullptr : &shadow_map_,
                                 temporal_shadow_rows(s.frame, whole_map));
@@ -752,7 +699,7 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
         aux[i] = a;
         // Display: the layer over what lies behind it, clouds.frag's tonemap and dither.
         vec3 shown = tonemap(behind * (1.0f - c.a) + vec3(c), program.k.exposure);
-        if (v.dither) shown += cm::triangular_dither(dither_hash(x, y, s.frame)) * (1.0f / 255.0f);
+        if (s.dither) shown += cm::triangular_dither(dither_hash(x, y, s.frame)) * (1.0f / 255.0f);
         return vec4(shown, c.a);
     });
     color_.swap(color);

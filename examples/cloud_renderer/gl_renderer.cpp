@@ -34,14 +34,14 @@ std::string vertex_shader_source() {
 
 namespace {
 
-// The variant's values under the shader's names (the CR_PARAM declarations of clouds.frag):
-// one list for both ways of passing them, constants and uniforms.
+// The permutation's values under the shader's names (the CR_PARAM declarations of
+// clouds.frag): the variant's and the scene's switches, compiled in as constants.
 struct shader_int {
     const char* name;
     int value;
 };
-std::vector<shader_int> variant_values(const variant& v, cloud_shape shape) {
-    return {{"u_shape", static_cast<int>(shape)},
+std::vector<shader_int> permutation_values(const variant& v, const scene& sc) {
+    return {{"u_shape", static_cast<int>(sc.shape)},
             {"u_phase_model", static_cast<int>(v.phase)},
             // 0 octaves, 1 diffusion with diffusion_models::clouds, 2 with ::fitted
             {"u_lighting", v.lighting == lighting_model::octaves ? 0 : v.table == diffusion_table::clouds ? 1 : 2},
@@ -49,24 +49,17 @@ std::vector<shader_int> variant_values(const variant& v, cloud_shape shape) {
             {"u_powder", v.powder ? 1 : 0},
             {"u_light_mode", static_cast<int>(v.light)},
             {"u_behind_mode", static_cast<int>(v.behind)},
-            {"u_cone_samples", v.cone_samples},
             {"u_light_steps", v.light_steps},
-            {"u_light_quadratic", v.light_quadratic ? 1 : 0},
-            {"u_light_jitter", v.light_jitter ? 1 : 0},
             {"u_refine", v.refine},
             {"u_integration", static_cast<int>(v.integration)},
             {"u_view_steps", v.view_steps},
             {"u_schedule", static_cast<int>(v.schedule)},
-            {"u_skip", v.skip ? 1 : 0},
-            {"u_shadows", v.shadows ? 1 : 0},
             {"u_occluded_ambient", v.occluded_ambient ? 1 : 0},
-            {"u_lod", v.lod ? 1 : 0},
-            {"u_far_base", v.far_base ? 1 : 0},
-            {"u_long_reach", v.long_reach ? 1 : v.far_map ? 2 : v.far_steps ? 3 : 0},
-            {"u_jitter", v.jitter ? 1 : 0},
-            {"u_sun_disc", v.sun ? 1 : 0},
-            {"u_haze", v.haze ? 1 : 0},
-            {"u_dither", v.dither ? 1 : 0}};
+            {"u_reach", static_cast<int>(v.reach)},
+            {"u_sun_disc", sc.sun_disc ? 1 : 0},
+            {"u_haze", sc.haze ? 1 : 0},
+            {"u_shadows", sc.shadows ? 1 : 0},
+            {"u_dither", sc.dither ? 1 : 0}};
 }
 
 // `body` with its line `#include "cloudmath.glsl"` (the line itself, not a comment that names
@@ -80,17 +73,13 @@ std::string with_cloudmath(std::string body) {
 
 }  // namespace
 
-std::string fragment_shader_source(const variant& v, cloud_shape shape, bool compile_time, clouds_pass pass, sky_model sky) {
+std::string fragment_shader_source(const variant& v, const scene& sc, clouds_pass pass) {
     std::string head = "#version 410 core\n";
-    if (sky == sky_model::physical) head += "#define CR_PHYSICAL_SKY 1\n";
-    if (compile_time) {
-        head += "#define CR_PARAM(type, name)\n";
-        head += "const int u_pass = " + std::to_string(static_cast<int>(pass)) + ";\n";
-        for (const shader_int& c : variant_values(v, shape))
-            head += std::string("const int ") + c.name + " = " + std::to_string(c.value) + ";\n";
-    } else {
-        head += "#define CR_PARAM(type, name) uniform type name;\n";
-    }
+    if (sc.sky == sky_model::physical) head += "#define CR_PHYSICAL_SKY 1\n";
+    head += "#define CR_PARAM(type, name)\n";
+    head += "const int u_pass = " + std::to_string(static_cast<int>(pass)) + ";\n";
+    for (const shader_int& c : permutation_values(v, sc))
+        head += std::string("const int ") + c.name + " = " + std::to_string(c.value) + ";\n";
     return head + with_cloudmath(clouds_frag_text);
 }
 
@@ -123,7 +112,7 @@ struct gl_renderer::state {
     };
     shadow_target shadow;  // the full frame's, drawn whole every frame
     int target_w = 0, target_h = 0;
-    std::map<std::string, GLuint> programs;  // "" for the run-time program, else the variant spec
+    std::map<std::string, GLuint> programs;  // by permutation_key, pass and sky
 
     // Temporal rendering (render_temporal): the quarter-resolution shading target (linear
     // radiance + opacity, depth), two full-resolution histories (colour, depth + samples)
@@ -151,17 +140,15 @@ struct gl_renderer::state {
         return gl.link(shaders, 2, "shader program", why);
     }
 
-    GLuint program_for(const variant& v, cloud_shape shape, bool compile_time, clouds_pass pass, sky_model sky, std::string& why) {
-        // One program per permutation (variant, shape, pass and sky) compiled in, one per sky
-        // for the uber-shader (its pass a uniform).
-        const std::string key =
-            (compile_time ? permutation_key(v, shape) + "/pass" + std::to_string(static_cast<int>(pass)) : std::string()) +
-            (sky == sky_model::physical ? "/physical" : "");
+    GLuint program_for(const variant& v, const scene& sc, clouds_pass pass, std::string& why) {
+        // One program per permutation (the variant, the scene's switches, the pass and the sky).
+        const std::string key = permutation_key(v, sc) + "/pass" + std::to_string(static_cast<int>(pass)) +
+                                (sc.sky == sky_model::physical ? "/physical" : "");
         const auto found = programs.find(key);
         if (found != programs.end()) return found->second;
         const GLuint vs = gl.compile(GL_VERTEX_SHADER, vertex_shader_source(), "vertex shader", why);
         if (vs == 0) return 0;
-        const GLuint fs = gl.compile(GL_FRAGMENT_SHADER, fragment_shader_source(v, shape, compile_time, pass, sky), "fragment shader", why);
+        const GLuint fs = gl.compile(GL_FRAGMENT_SHADER, fragment_shader_source(v, sc, pass), "fragment shader", why);
         if (fs == 0) {
             gl.DeleteShader(vs);
             return 0;
@@ -274,36 +261,25 @@ std::string gl_renderer::device() const {
 bool gl_renderer::upload_textures(const cloud_textures& t, std::string& why) {
     const gl_api& gl = s_->gl;
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    // Trilinear filtering over the mip levels of build_mipmaps (uploaded, not generated: the
-    // CPU twin samples the same bytes); without them, level 0 only.
-    const auto setup = [&gl](GLenum target, std::size_t levels) {
-        gl.TexParameteri(target, GL_TEXTURE_MIN_FILTER, levels > 0 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    // GL_LINEAR and GL_REPEAT, level 0 only (cloud_density.hpp's linear_texture is its twin).
+    const auto upload = [&](GLenum target, GLuint tex, GLint internal, GLenum format, int n, const std::vector<std::uint8_t>& texels) {
+        gl.BindTexture(target, tex);
+        if (target == GL_TEXTURE_3D)
+            gl.TexImage3D(target, 0, internal, n, n, n, 0, format, GL_UNSIGNED_BYTE, texels.data());
+        else
+            gl.TexImage2D(target, 0, internal, n, n, 0, format, GL_UNSIGNED_BYTE, texels.data());
+        gl.TexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         gl.TexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        gl.TexParameteri(target, GL_TEXTURE_MAX_LEVEL, static_cast<GLint>(levels));
+        gl.TexParameteri(target, GL_TEXTURE_MAX_LEVEL, 0);
         gl.TexParameteri(target, GL_TEXTURE_WRAP_S, GL_REPEAT);
         gl.TexParameteri(target, GL_TEXTURE_WRAP_T, GL_REPEAT);
         gl.TexParameteri(target, GL_TEXTURE_WRAP_R, GL_REPEAT);
     };
-    // One texture with its mip levels (level k is size >> k a side), then its parameters.
-    const auto upload = [&](GLenum target, GLuint tex, GLint internal, GLenum format, int size,
-                            const std::vector<std::uint8_t>& level0, const std::vector<std::vector<std::uint8_t>>& mips) {
-        gl.BindTexture(target, tex);
-        for (std::size_t k = 0; k <= mips.size(); ++k) {
-            const int n = size >> k;
-            const void* texels = k == 0 ? level0.data() : mips[k - 1].data();
-            if (target == GL_TEXTURE_3D)
-                gl.TexImage3D(target, static_cast<GLint>(k), internal, n, n, n, 0, format, GL_UNSIGNED_BYTE, texels);
-            else
-                gl.TexImage2D(target, static_cast<GLint>(k), internal, n, n, 0, format, GL_UNSIGNED_BYTE, texels);
-        }
-        setup(target, mips.size());
-    };
-    const std::vector<std::vector<std::uint8_t>> no_mips;
-    upload(GL_TEXTURE_3D, s_->textures[0], GL_RGBA8, GL_RGBA, t.base_size, t.base, t.base_mips);
-    upload(GL_TEXTURE_3D, s_->textures[1], GL_RGB8, GL_RGB, t.detail_size, t.detail, t.detail_mips);
-    upload(GL_TEXTURE_2D, s_->textures[2], GL_RGB8, GL_RGB, t.weather_size, t.weather, t.weather_mips);
-    upload(GL_TEXTURE_2D, s_->textures[3], GL_RGB8, GL_RGB, t.weather_wide_size, t.weather_wide, t.weather_wide_mips);
-    upload(GL_TEXTURE_2D, s_->textures[4], GL_RGB8, GL_RGB, t.curl_size, t.curl, no_mips);
+    upload(GL_TEXTURE_3D, s_->textures[0], GL_RGBA8, GL_RGBA, t.base_size, t.base);
+    upload(GL_TEXTURE_3D, s_->textures[1], GL_RGB8, GL_RGB, t.detail_size, t.detail);
+    upload(GL_TEXTURE_2D, s_->textures[2], GL_RGB8, GL_RGB, t.weather_size, t.weather);
+    upload(GL_TEXTURE_2D, s_->textures[3], GL_RGB8, GL_RGB, t.weather_wide_size, t.weather_wide);
+    upload(GL_TEXTURE_2D, s_->textures[4], GL_RGB8, GL_RGB, t.curl_size, t.curl);
     s_->textures_uploaded += 1.0f;
     why = s_->gl_errors("texture upload");
     return why.empty();
@@ -357,9 +333,8 @@ void bind_float_table(const gl_api& gl, int unit, GLuint& tex, const void*& uplo
     uploaded = table;
 }
 
-GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bool compile_time, int width, int height,
-                   clouds_pass pass, glm::uvec2 offset, std::string& why);
-void use_pass(const gl_api& gl, GLuint program, clouds_pass pass, bool compile_time);
+GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, int width, int height, clouds_pass pass,
+                   glm::uvec2 offset, std::string& why);
 
 // Draws the physical sky's far shadow for the scene and variant (clouds.frag's pass 4 into
 // st.far_shadow, far_shadow_nodes' size and range) unless it holds that table already: what
@@ -390,13 +365,13 @@ bool ensure_far_shadow(gl_renderer::state& st, const scene& sc, const variant& v
             return false;
         }
     }
-    const GLuint program = bind_clouds(st, sc, v, true, f.n_alt, f.n_mu, clouds_pass::far_shadow, glm::uvec2(0), why);
+    const GLuint program = bind_clouds(st, sc, v, f.n_alt, f.n_mu, clouds_pass::far_shadow, glm::uvec2(0), why);
     if (program == 0) return false;
     const GLenum one = GL_COLOR_ATTACHMENT0;
     gl.BindFramebuffer(GL_FRAMEBUFFER, st.far_shadow_fbo);
     gl.DrawBuffers(1, &one);
     gl.Viewport(0, 0, f.n_alt, f.n_mu);
-    use_pass(gl, program, clouds_pass::far_shadow, true);
+    gl.UseProgram(program);
     gl.BindVertexArray(st.vao);
     gl.DrawArrays(GL_TRIANGLES, 0, 3);
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -408,10 +383,9 @@ bool ensure_far_shadow(gl_renderer::state& st, const scene& sc, const variant& v
 
 // Makes the clouds program of the variant's pass current with every uniform of the scene set
 // and the cloud textures bound; 0 on failure. clouds_pass::temporal_shading shades pixel
-// 4 (i, j) + offset. The run-time uber-shader is one program for every pass: use_pass sets its
-// u_pass before each draw.
-GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bool compile_time, int width, int height,
-                   clouds_pass pass, glm::uvec2 offset, std::string& why) {
+// 4 (i, j) + offset.
+GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, int width, int height, clouds_pass pass,
+                   glm::uvec2 offset, std::string& why) {
     // scene::light splits the truth tool's light by source: the sky alone is drawn (its frame
     // only lacks the sun), the sun alone is for the CPU reference only: without the sky its
     // frame has no sky-view table to bind.
@@ -424,14 +398,10 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
     // The physical sky's far shadow, drawn on the GPU when what it depends on changes (pass 4
     // binds its own program through this function: it draws no far shadow itself).
     if (sc.sky == sky_model::physical && pass != clouds_pass::far_shadow && !ensure_far_shadow(st, sc, v, why)) return 0;
-    const GLuint program = st.program_for(v, sc.shape, compile_time, pass, sc.sky, why);
+    const GLuint program = st.program_for(v, sc, pass, why);
     if (program == 0) return 0;
     gl.UseProgram(program);
     const uniform_setter u{gl, program};
-    if (!compile_time) {
-        for (const shader_int& value : variant_values(v, sc.shape)) u.i1(value.name, value.value);
-        u.i1("u_pass", static_cast<int>(pass));
-    }
     const frame_constants k = make_frame_constants(sc);
     u.v2("u_resolution", glm::vec2(float(width), float(height)));
     u.v3("u_forward", k.forward);
@@ -442,7 +412,6 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
     u.f1("u_planet_radius", sc.planet_radius);
     u.f1("u_layer_bottom", sc.layer_bottom);
     u.f1("u_layer_top", sc.layer_top);
-    u.f1("u_march_near_distance", k.march_near_distance);
     u.v3("u_sun_dir", k.sun_dir);
     u.v3("u_sun_radiance", k.sun_radiance);
     u.v3("u_ambient_top", k.ambient_top);
@@ -476,31 +445,27 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
     u.f1("u_cone_far_distance", k.cone_far_distance);
     u.f1("u_cone_far_length", k.cone_far_length);
     u.f1("u_light_march_max", k.light_march_max);
+    u.f1("u_march_near_distance", k.march_near_distance);
     u.f1("u_min_transmittance", k.min_transmittance);
     u.u2("u_update_offset", offset);
     u.v3("u_shadow_origin", k.shadow_origin);
     u.v3("u_shadow_right", k.shadow_right);
     u.v3("u_shadow_up", k.shadow_up);
     u.f1("u_shadow_half_extent", k.shadow_half_extent);
-    // The mip levels are sampled only with the LOD variant: a mipmapped minification filter
-    // costs llvmpipe 1.8 times the frame even where every read is at level 0.
-    const GLint min_filter = v.lod ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR;
-    // Units 0-2 and 4-5 (3 is the shadow map's, bound by shadow_pass); the curl has no mips.
+    // Units 0-2 and 4-5 (3 is the shadow map's, bound by shadow_pass).
     struct unit {
         const char* sampler;
         GLenum kind;
         int texture, index;
-        bool mips;
     };
-    const unit units[5] = {{"u_base", GL_TEXTURE_3D, 0, 0, true},
-                           {"u_detail", GL_TEXTURE_3D, 1, 1, true},
-                           {"u_weather", GL_TEXTURE_2D, 2, 2, true},
-                           {"u_weather_wide", GL_TEXTURE_2D, 3, 4, true},
-                           {"u_curl", GL_TEXTURE_2D, 4, 5, false}};
+    const unit units[5] = {{"u_base", GL_TEXTURE_3D, 0, 0},
+                           {"u_detail", GL_TEXTURE_3D, 1, 1},
+                           {"u_weather", GL_TEXTURE_2D, 2, 2},
+                           {"u_weather_wide", GL_TEXTURE_2D, 3, 4},
+                           {"u_curl", GL_TEXTURE_2D, 4, 5}};
     for (const unit& t : units) {
         gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + t.index));
         gl.BindTexture(t.kind, st.textures[t.texture]);
-        if (t.mips) gl.TexParameteri(t.kind, GL_TEXTURE_MIN_FILTER, min_filter);
         u.i1(t.sampler, t.index);
     }
     u.i1("u_shadow_map", 3);
@@ -539,19 +504,11 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, bo
     return program;
 }
 
-// Makes `program` current for `pass`: the run-time uber-shader is one program whose u_pass
-// selects the pass; a compiled-in permutation is its pass already.
-void use_pass(const gl_api& gl, GLuint program, clouds_pass pass, bool compile_time) {
-    gl.UseProgram(program);
-    if (!compile_time) gl.Uniform1i(gl.GetUniformLocation(program, "u_pass"), static_cast<int>(pass));
-}
-
 // The shadow-map pass's program (bind_clouds with clouds_pass::shadow_map) when the variant
 // draws the map (needs_shadow_map), else 0 with `why` empty; 0 and `why` on failure.
-GLuint bind_shadow_map(gl_renderer::state& st, const scene& sc, const variant& v, bool compile_time, int width, int height,
-                       std::string& why) {
-    if (!needs_shadow_map(v)) return 0;
-    return bind_clouds(st, sc, v, compile_time, width, height, clouds_pass::shadow_map, glm::uvec2(0), why);
+GLuint bind_shadow_map(gl_renderer::state& st, const scene& sc, const variant& v, int width, int height, std::string& why) {
+    if (!needs_shadow_map(v, sc)) return 0;
+    return bind_clouds(st, sc, v, width, height, clouds_pass::shadow_map, glm::uvec2(0), why);
 }
 
 // Draws rows [rows.x, rows.y) of the Beer shadow map (all: a full frame; a slice: the
@@ -560,7 +517,7 @@ GLuint bind_shadow_map(gl_renderer::state& st, const scene& sc, const variant& v
 // no texture while the map is drawn (no feedback loop). The caller makes its own pass current
 // afterwards.
 bool shadow_pass(gl_renderer::state& st, gl_renderer::state::shadow_target& target, GLuint shadow_program,
-                 bool compile_time, std::string& why, glm::ivec2 rows = glm::ivec2(0, shadow_map_size)) {
+                 std::string& why, glm::ivec2 rows = glm::ivec2(0, shadow_map_size)) {
     const gl_api& gl = st.gl;
     gl.ActiveTexture(GL_TEXTURE3);  // make_target binds to the active unit: not the clouds' 0-2
     if (target.fbo == 0) {
@@ -581,7 +538,7 @@ bool shadow_pass(gl_renderer::state& st, gl_renderer::state::shadow_target& targ
         gl.BindFramebuffer(GL_FRAMEBUFFER, target.fbo);
         gl.DrawBuffers(1, &one);
         gl.Viewport(0, 0, shadow_map_size, shadow_map_size);
-        use_pass(gl, shadow_program, clouds_pass::shadow_map, compile_time);
+        gl.UseProgram(shadow_program);
         const bool slice = rows.x > 0 || rows.y < shadow_map_size;
         if (slice) {
             gl.Enable(GL_SCISSOR_TEST);
@@ -682,19 +639,19 @@ bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std:
 
 }  // namespace
 
-bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, unsigned fbo, int width, int height,
+bool gl_renderer::draw(const scene& sc, const variant& v, unsigned fbo, int width, int height,
                        frame_timing* timing, std::string& why) {
     // Every program bound (compiled the first time) and its uniforms set before the timing.
-    const GLuint shadow = bind_shadow_map(*s_, sc, v, compile_time, width, height, why);
+    const GLuint shadow = bind_shadow_map(*s_, sc, v, width, height, why);
     if (shadow == 0 && !why.empty()) return false;
-    const GLuint program = bind_clouds(*s_, sc, v, compile_time, width, height, clouds_pass::frame, glm::uvec2(0), why);
+    const GLuint program = bind_clouds(*s_, sc, v, width, height, clouds_pass::frame, glm::uvec2(0), why);
     if (program == 0) return false;
     const gl_api& gl = s_->gl;
     bool shadow_ok = true;
     const GLenum one = GL_COLOR_ATTACHMENT0;
     const bool ok = timed(*s_, timing, why, [&] {
-        shadow_ok = shadow_pass(*s_, s_->shadow, shadow, compile_time, why);
-        use_pass(gl, program, clouds_pass::frame, compile_time);
+        shadow_ok = shadow_pass(*s_, s_->shadow, shadow, why);
+        gl.UseProgram(program);
         gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
         if (fbo != 0) gl.DrawBuffers(1, &one);
         gl.Viewport(0, 0, width, height);
@@ -705,7 +662,7 @@ bool gl_renderer::draw(const scene& sc, const variant& v, bool compile_time, uns
 
 void gl_renderer::reset_temporal() { s_->temporal.has_history = false; }
 
-bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_time, int width, int height,
+bool gl_renderer::draw_temporal(const scene& sc, const variant& v, int width, int height,
                                 frame_timing* timing, std::string& why) {
     if (!ensure_temporal_targets(*s_, width, height, why)) return false;
     auto& t = s_->temporal;
@@ -715,16 +672,16 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
     // program bound (compiled the first time) and its uniforms set before the timing.
     scene shading = sc;
     shading.frame = sc.frame >> 4U;
-    const GLuint shadow = bind_shadow_map(*s_, shading, v, compile_time, width, height, why);
+    const GLuint shadow = bind_shadow_map(*s_, shading, v, width, height, why);
     if (shadow == 0 && !why.empty()) return false;
     // The shadow map a slice a frame (temporal_shadow_rows): the whole of it on a first frame,
     // or when the variant, the shape or the shader form changed.
-    const std::string map_key = permutation_key(v, sc.shape) + (compile_time ? "" : "/run-time");
+    const std::string map_key = permutation_key(v, sc);
     const bool whole_map = !t.has_history || map_key != t.shadow_map_key;
     t.shadow_map_key = map_key;
-    const GLuint background = bind_clouds(*s_, shading, v, compile_time, width, height, clouds_pass::background, offset, why);
+    const GLuint background = bind_clouds(*s_, shading, v, width, height, clouds_pass::background, offset, why);
     if (background == 0) return false;
-    const GLuint clouds = bind_clouds(*s_, shading, v, compile_time, width, height, clouds_pass::temporal_shading, offset, why);
+    const GLuint clouds = bind_clouds(*s_, shading, v, width, height, clouds_pass::temporal_shading, offset, why);
     if (clouds == 0) return false;
     const GLenum two[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
     const GLenum three[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
@@ -754,7 +711,7 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
     u.f1("u_fill_blend", temporal_fill_blend);
     u.f1("u_exposure", k.exposure);
     gl.Uniform1ui(u.loc("u_frame"), sc.frame);
-    u.i1("u_dither", v.dither ? 1 : 0);
+    u.i1("u_dither", sc.dither ? 1 : 0);
     const char* samplers[5] = {"u_fresh", "u_fresh_depth", "u_history", "u_history_aux", "u_background"};
     const GLuint inputs[5] = {t.fresh[0], t.fresh[1], t.history[t.current][0], t.history[t.current][1], t.background};
     const int out = 1 - t.current;
@@ -773,16 +730,16 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, bool compile_
     double shadow_ms = 0, shading_ms = 0, background_ms = 0, resolve_ms = 0;
     const bool ok = timed(*s_, timing, why, [&] {
         mark = std::chrono::steady_clock::now();
-        shadow_ok = shadow_pass(*s_, t.shadow, shadow, compile_time, why, temporal_shadow_rows(sc.frame, whole_map));
+        shadow_ok = shadow_pass(*s_, t.shadow, shadow, why, temporal_shadow_rows(sc.frame, whole_map));
         lap(&shadow_ms);
-        use_pass(gl, clouds, clouds_pass::temporal_shading, compile_time);
+        gl.UseProgram(clouds);
         gl.BindFramebuffer(GL_FRAMEBUFFER, t.fresh_fbo);
         gl.DrawBuffers(2, two);
         gl.Viewport(0, 0, lw, lh);
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
         lap(&shading_ms);
         // The background pass (clouds.frag's pass 3) at full resolution.
-        use_pass(gl, background, clouds_pass::background, compile_time);
+        gl.UseProgram(background);
         gl.BindFramebuffer(GL_FRAMEBUFFER, t.background_fbo);
         gl.DrawBuffers(1, two);
         gl.Viewport(0, 0, width, height);
@@ -825,9 +782,9 @@ bool gl_renderer::show_temporal(unsigned fbo, std::string& why) {
     return why.empty();
 }
 
-bool gl_renderer::render_temporal(const scene& sc, const variant& v, bool compile_time, int width, int height, image& out,
+bool gl_renderer::render_temporal(const scene& sc, const variant& v, int width, int height, image& out,
                                   frame_timing* timing, std::string& why) {
-    if (!draw_temporal(sc, v, compile_time, width, height, timing, why)) return false;
+    if (!draw_temporal(sc, v, width, height, timing, why)) return false;
     const gl_api& gl = s_->gl;
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, s_->temporal.history_fbo[s_->temporal.current]);
     gl.ReadBuffer(GL_COLOR_ATTACHMENT2);
@@ -861,7 +818,7 @@ bool gl_renderer::far_shadow_gpu(const scene& sc, const variant& v, std::vector<
     return true;
 }
 
-bool gl_renderer::render(const scene& sc, const variant& v, bool compile_time, int width, int height, image& out,
+bool gl_renderer::render(const scene& sc, const variant& v, int width, int height, image& out,
                          frame_timing* timing, std::string& why) {
     const gl_api& gl = s_->gl;
     if (s_->fbo == 0 || s_->target_w != width || s_->target_h != height) {
@@ -880,7 +837,7 @@ bool gl_renderer::render(const scene& sc, const variant& v, bool compile_time, i
         s_->target_w = width;
         s_->target_h = height;
     }
-    if (!draw(sc, v, compile_time, s_->fbo, width, height, timing, why)) return false;
+    if (!draw(sc, v, s_->fbo, width, height, timing, why)) return false;
     out.width = width;
     out.height = height;
     out.pixels.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), glm::vec4(0.0f));

@@ -20,11 +20,10 @@ namespace cloud_renderer {
 enum class clouds_pass { frame = 0, temporal_shading = 1, shadow_map = 2, background = 3, far_shadow = 4 };
 
 // The fragment shader for a variant, as compiled: #version, `#define CR_PHYSICAL_SKY 1` for the
-// physical sky (its aerial-perspective table), the permutation block (the variant, the shape and
-// the pass as constants when compile_time; as uniforms otherwise, where `pass` is unused), the
-// shader file with cloudmath.glsl resolved in.
-std::string fragment_shader_source(const variant& v, cloud_shape shape, bool compile_time,
-                                   clouds_pass pass = clouds_pass::frame, sky_model sky = sky_model::physical);
+// physical sky (its tables), the permutation block (the variant, the scene's shape and
+// switches, and the pass as constants: one program per permutation, as engines ship them),
+// the shader file with cloudmath.glsl resolved in.
+std::string fragment_shader_source(const variant& v, const scene& s, clouds_pass pass = clouds_pass::frame);
 std::string vertex_shader_source();
 // shaders/temporal_resolve.frag as compiled (#version, cloudmath.glsl resolved in).
 std::string temporal_resolve_shader_source();
@@ -61,14 +60,12 @@ public:
     std::string device() const;
     bool upload_textures(const cloud_textures& t, std::string& why);
 
-    // Draws into framebuffer `fbo` (0: the window) over (0, 0, width, height). compile_time:
-    // the variant is baked into the shader as constants (one program per variant, cached).
-    // timing (optional) receives the time of the draw.
-    bool draw(const scene& s, const variant& v, bool compile_time, unsigned fbo, int width, int height, frame_timing* timing,
-              std::string& why);
+    // Draws into framebuffer `fbo` (0: the window) over (0, 0, width, height) with the
+    // permutation's programs (compiled on first use, cached). timing (optional) receives the
+    // time of the draw.
+    bool draw(const scene& s, const variant& v, unsigned fbo, int width, int height, frame_timing* timing, std::string& why);
     // Draws offscreen into a float target and reads it back.
-    bool render(const scene& s, const variant& v, bool compile_time, int width, int height, image& out,
-                frame_timing* timing, std::string& why);
+    bool render(const scene& s, const variant& v, int width, int height, image& out, frame_timing* timing, std::string& why);
 
     // Temporal rendering, the twin of cpu_temporal_renderer (cpu_renderer.hpp): frame s.frame
     // shades one pixel of every 4 x 4 block (clouds.frag's temporal pass) and resolves the
@@ -76,11 +73,10 @@ public:
     // up by one; a new size or reset_temporal() starts a new history. timing covers both
     // passes. draw_temporal keeps the display image on the GPU (show_temporal copies it
     // into framebuffer fbo, 0 the window); render_temporal reads it back.
-    bool draw_temporal(const scene& s, const variant& v, bool compile_time, int width, int height, frame_timing* timing,
-                       std::string& why);
+    bool draw_temporal(const scene& s, const variant& v, int width, int height, frame_timing* timing, std::string& why);
     bool show_temporal(unsigned fbo, std::string& why);
-    bool render_temporal(const scene& s, const variant& v, bool compile_time, int width, int height, image& out,
-                         frame_timing* timing, std::string& why);
+    bool render_temporal(const scene& s, const variant& v, int width, int height, image& out, frame_timing* timing,
+                         std::string& why);
     void reset_temporal();
 
     // The physical sky's far shadow as the frame reads it, drawn on the GPU (clouds.frag's pass

@@ -158,11 +158,11 @@ bool render_gpu_frames(gl_renderer& gpu, const options& o, image& out, std::stri
     if (o.temporal > 0) {
         gpu.reset_temporal();
         return temporal_frames(o, "clouds.png", [&](const scene& s, image& img, frame_timing& ft) {
-            return gpu.render_temporal(s, o.var, o.compile_time, o.width, o.height, img, &ft, why);
+            return gpu.render_temporal(s, o.var, o.width, o.height, img, &ft, why);
         }, out, why, temporal_ms, temporal_gpu_ms);
     }
     return accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& img) {
-        return gpu.render(s, o.var, o.compile_time, o.width, o.height, img, nullptr, why);
+        return gpu.render(s, o.var, o.width, o.height, img, nullptr, why);
     }, out);
 }
 
@@ -188,7 +188,7 @@ int run_headless(const options& o) {
         std::vector<double> wall, gl;
         ok = accumulate_frames(o.sc, o.accumulate, [&](const scene& s, image& frame) {
             frame_timing timing;
-            const bool drawn = gpu->render(s, o.var, o.compile_time, o.width, o.height, frame, &timing, why);
+            const bool drawn = gpu->render(s, o.var, o.width, o.height, frame, &timing, why);
             if (s.frame == 0) {
                 first = timing;
             } else {
@@ -199,18 +199,17 @@ int run_headless(const options& o) {
         }, img);
         ft = frame_timing{median_of(gl), median_of(wall)};
     } else {
-        ok = gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &first, why) &&
-             gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, img, &ft, why) &&
+        ok = gpu->render(o.sc, o.var, o.width, o.height, img, &first, why) &&
+             gpu->render(o.sc, o.var, o.width, o.height, img, &ft, why) &&
              (o.temporal == 0 || render_gpu_frames(*gpu, o, img, why, &temporal_ms, &temporal_gpu_ms));
     }
     if (!ok) {
         std::fprintf(stderr, "error: %s\n", why.c_str());
         return 1;
     }
-    std::printf("GPU: preset %s, %d x %d, %s%s: %.1f ms per frame (host clock to glFinish; GL timestamps %.1f ms); "
+    std::printf("GPU: preset %s, %d x %d, %s: %.1f ms per frame (host clock to glFinish; GL timestamps %.1f ms); "
                 "first draw %.0f ms (with any shader compilation the driver defers to it)\n",
-                o.sc.name.c_str(), o.width, o.height, variant_spec(o.var).c_str(), o.compile_time ? "" : " (run-time uber-shader)",
-                ft.wall_ms, ft.gpu_ms, first.wall_ms);
+                o.sc.name.c_str(), o.width, o.height, variant_spec(o.var).c_str(), ft.wall_ms, ft.gpu_ms, first.wall_ms);
     if (o.temporal > 0) {
         std::printf("GPU temporal: %d frames, %.1f ms per frame (median after the first 16; every pass; GL timestamps "
                     "%.1f ms)\n", o.temporal, temporal_ms, temporal_gpu_ms);
@@ -223,7 +222,7 @@ int run_headless(const options& o) {
             s.frame = static_cast<std::uint32_t>(o.temporal + f);
             frame_timing split;
             split.split_passes = true;
-            if (!gpu->render_temporal(s, o.var, o.compile_time, o.width, o.height, spare, &split, why)) {
+            if (!gpu->render_temporal(s, o.var, o.width, o.height, spare, &split, why)) {
                 std::fprintf(stderr, "error: %s\n", why.c_str());
                 return 1;
             }
@@ -274,7 +273,7 @@ int run_compare(const options& o) {
     image g;
     std::string why;
     frame_timing ft;
-    if (!gpu->render(o.sc, o.var, o.compile_time, o.width, o.height, g, &ft, why) ||
+    if (!gpu->render(o.sc, o.var, o.width, o.height, g, &ft, why) ||
         ((o.accumulate > 1 || o.temporal > 0) && !render_gpu_frames(*gpu, o, g, why))) {
         std::fprintf(stderr, "error: %s\n", why.c_str());
         return 1;
@@ -306,43 +305,38 @@ int run_compare(const options& o) {
 struct bench_row {
     const char* label;
     const char* spec;
-    bool compile_time;      // false: the run-time uber-shader (--run-time)
     bool temporal = false;  // the temporal scheme: frames 0..15 fill the history, then the timed ones
     bool classic = false;   // on the classic density field (scene.hpp's cloud_shape), as the previous default drew
+    bool no_shadows = false;  // without the clouds' shadows on the ground (scene::shadows): no shadow-map pass
 };
 const std::vector<bench_row>& bench_rows() {
     static const std::vector<bench_row> rows = {
-        {"reference: 256 steps, light march 32 steps both ways, Mie phase, no jitter",
-         "steps=256,light=march,light-steps=32,behind=march,phase=mie,jitter=off", true},
-        {"default: diffusion model, 64 steps refined where opaque, 6-step marches both ways (quadratic, jittered), dual-lobe HG", "", true},
-        {"default, run-time uber-shader: the variant as uniforms (--run-time)", "", false},
-        {"temporal scheme: the default on 1 of 16 pixels per frame, resolved from the reprojected history", "", true, true},
-        {"temporal scheme, run-time uber-shader (--run-time)", "", false, true},
-        {"phase: HG", "phase=hg", true},
-        {"phase: Cornette-Shanks", "phase=cs", true},
-        {"phase: Mie fit", "phase=mie", true},
-        {"the previous default: octaves (3, powder, cone 6 samples), flat sky light, classic field",
-         previous_default_spec, true, false, true},
-        {"octaves: 3, powder, cone 6 samples, flat sky light", "lighting=octaves,powder=on,light=cone,ambient=flat", true},
-        {"octaves: 1, powder, cone", "lighting=octaves,powder=on,light=cone,ambient=flat,octaves=1", true},
-        {"octaves: 2, powder, cone", "lighting=octaves,powder=on,light=cone,ambient=flat,octaves=2", true},
-        {"octaves: 8, powder, cone", "lighting=octaves,powder=on,light=cone,ambient=flat,octaves=8", true},
-        {"sky light not occluded", "ambient=flat", true},
-        {"octaves: 3, no powder, cone", "lighting=octaves,light=cone", true},
-        {"octaves: 3, powder, light march 6 steps", "lighting=octaves,powder=on", true},
-        {"diffusion model, cone both ways", "light=cone,behind=cone", true},
-        {"diffusion model, cone behind (the default before refinement)", "behind=cone", true},
-        {"no refinement of opaque view steps", "refine=1", true},
-        {"light marches: uniform steps", "light-spacing=uniform", true},
-        {"light marches: midpoints, no jitter", "light-jitter=off", true},
-        {"light march: 3 steps", "light-steps=3", true},
-        {"light march: 12 steps", "light-steps=12", true},
-        {"naive (Riemann) integration", "integration=naive", true},
-        {"view steps: 32", "steps=32", true},
-        {"view steps: 128", "steps=128", true},
-        {"jitter off", "jitter=off", true},
-        {"empty-space skipping (base-shape probe per 4 steps)", "skip=on", true},
-        {"no cloud shadows (no shadow-map pass)", "shadows=off", true},
+        {"reference: 256 steps, light march 32 steps both ways, Mie phase", "steps=256,light=march,light-steps=32,behind=march,phase=mie"},
+        {"default: diffusion model, 64 steps refined where opaque, 6-step marches both ways (quadratic, jittered), dual-lobe HG", ""},
+        {"temporal scheme: the default on 1 of 16 pixels per frame, resolved from the reprojected history", "", true},
+        {"phase: HG", "phase=hg"},
+        {"phase: Cornette-Shanks", "phase=cs"},
+        {"phase: Mie fit", "phase=mie"},
+        {"the previous default: octaves (3, powder, cone 6 samples), flat sky light, classic field", previous_default_spec, false, true},
+        {"octaves: 3, powder, cone 6 samples, flat sky light", "lighting=octaves,powder=on,light=cone,ambient=flat"},
+        {"octaves: 1, powder, cone", "lighting=octaves,powder=on,light=cone,ambient=flat,octaves=1"},
+        {"octaves: 2, powder, cone", "lighting=octaves,powder=on,light=cone,ambient=flat,octaves=2"},
+        {"octaves: 8, powder, cone", "lighting=octaves,powder=on,light=cone,ambient=flat,octaves=8"},
+        {"sky light not occluded", "ambient=flat"},
+        {"octaves: 3, no powder, cone", "lighting=octaves,light=cone"},
+        {"octaves: 3, powder, light march 6 steps", "lighting=octaves,powder=on"},
+        {"diffusion model, cone both ways", "light=cone,behind=cone"},
+        {"diffusion model, cone behind", "behind=cone"},
+        {"diffusion model, light from the shadow map both ways (no light march)", "light=map,behind=map"},
+        {"the light march stretched to the band's end (no far steps)", "reach=band"},
+        {"no refinement of opaque view steps", "refine=1"},
+        {"light march: 3 steps", "light-steps=3"},
+        {"light march: 12 steps", "light-steps=12"},
+        {"naive (Riemann) integration", "integration=naive"},
+        {"view steps: 32", "steps=32"},
+        {"view steps: 128", "steps=128"},
+        {"view steps growing with distance", "schedule=growing"},
+        {"no cloud shadows (no shadow-map pass)", "", false, false, true},
     };
     return rows;
 }
@@ -374,12 +368,13 @@ int run_bench(const options& o) {
         if (row.temporal) gpu->reset_temporal();
         scene row_scene = o.sc;
         if (row.classic) row_scene.shape = cloud_shape::classic;
+        if (row.no_shadows) row_scene.shadows = false;
         for (int f = 0; f < warm_up + o.frames && why.empty(); ++f) {
             frame_timing ft;
             scene s = row_scene;
             s.frame = static_cast<std::uint32_t>(f);
-            if (!(row.temporal ? gpu->render_temporal(s, v, row.compile_time, o.width, o.height, img, &ft, why)
-                               : gpu->render(row_scene, v, row.compile_time, o.width, o.height, img, &ft, why)))
+            if (!(row.temporal ? gpu->render_temporal(s, v, o.width, o.height, img, &ft, why)
+                               : gpu->render(row_scene, v, o.width, o.height, img, &ft, why)))
                 break;
             if (f >= warm_up) {
                 wall.push_back(ft.wall_ms);
@@ -410,8 +405,7 @@ int run_bench(const options& o) {
         if (row.temporal) std::snprintf(p95_text, sizeof p95_text, "-");  // 15 of 16 pixels read nothing
         else std::snprintf(p95_text, sizeof p95_text, "%.0f", reads.p95);
         std::snprintf(line, sizeof line, "| %s | `%s`%s%s%s | %.1f | %.1f | %s | %.0f / %s / %.0f%% |\n", row.label,
-                      *row.spec ? row.spec : "(default)", row.compile_time ? "" : " `--run-time`",
-                      row.temporal ? " `--temporal`" : "", row.classic ? " `--shape classic`" : "", median, median_gl,
+                      *row.spec ? row.spec : "(default)", row.no_shadows ? " `--without shadows`" : "", row.temporal ? " `--temporal`" : "", row.classic ? " `--shape classic`" : "", median, median_gl,
                       psnr_text, reads.mean, p95_text, 100.0 * reads.light_share);
         table << line;
         if (!o.quiet) std::fprintf(stderr, "bench: %s: %.1f ms\n", row.label, median);
@@ -441,32 +435,25 @@ int run_bench(const options& o) {
 }
 
 // --convergence: for every preset, the variant (and the same with one setting changed per
-// row) against a converged render of the same lighting model: 1024 uniform view steps (none
-// refined) and 128-step light marches toward the sun and behind the sample, uniform steps
-// at their midpoints, no jitter. CPU
-// renders (the GPU image's twin), PSNR over the display image and over the horizon band
-// (pixels whose ray is within 5 degrees of the horizon), and the texture reads.
+// row) against a converged render of the same lighting model: 1024 view steps (none
+// refined) and 128-step light marches toward the sun and behind the sample. CPU renders (the
+// GPU image's twin), PSNR over the display image and over the horizon band (pixels whose ray
+// is within 5 degrees of the horizon), and the texture reads.
 int run_convergence(const options& o) {
     cloud_textures t;
     if (!load_textures(o, t)) return 1;
-    // Without the dither: its new noise each frame would floor the frame-to-frame column.
-    variant base = o.var;
-    base.dither = false;
-    const char* const reference_spec =
-        "steps=1024,refine=1,light=march,light-steps=128,light-spacing=uniform,behind=march,schedule=uniform,skip=off,"
-        "lod=off,jitter=off";
+    const variant base = o.var;
+    const char* const reference_spec = "steps=1024,refine=1,light=march,light-steps=128,behind=march";
     // The variant, then one change each: the other step schedule, 4x the view steps, and
     // converged light (which error dominates: the view march's or the light estimate's).
     const std::pair<std::string, std::string> rows[] = {
         {"the variant", ""},
         {"the variant, temporal scheme: frame 127 of a still camera", "temporal"},
         {"the other step schedule", o.var.schedule == step_schedule::uniform ? "schedule=growing" : "schedule=uniform"},
-        {"the other texture LOD setting", o.var.lod ? "lod=off" : "lod=on"},
-        {"the other empty-space skipping setting", o.var.skip ? "skip=off" : "skip=on"},
         {"4x the view steps", "steps=" + std::to_string(std::min(1024, 4 * o.var.view_steps))},
         {"no refinement of opaque view steps", "refine=1"},
-        {"the light marches' previous steps: uniform, at their midpoints", "light-spacing=uniform,light-jitter=off"},
         {"the cone behind the sample", "behind=cone"},
+        {"the light march stretched to the band's end", "reach=band"},
         {"light marches of 128 steps both ways", "light=march,light-steps=128,behind=march"}};
     std::ostringstream table;
     table << "| Preset | Variant | PSNR, image (dB) | PSNR, horizon band (dB) | frame to frame, horizon band (dB) | "
@@ -476,6 +463,7 @@ int run_convergence(const options& o) {
     for (const scene& preset : presets()) {
         if (o.preset_given && preset.name != o.sc.name) continue;  // --preset: that one alone
         scene s = preset;
+        s.dither = false;  // its new noise each frame would floor the frame-to-frame column
         variant reference_variant = base;
         (void)apply_variant_spec(reference_spec, reference_variant);
         const image reference = render_cpu(s, reference_variant, t, o.width, o.height);
@@ -532,7 +520,7 @@ int run_convergence(const options& o) {
         }
         if (!o.quiet) std::fprintf(stderr, "convergence: %s (%.0f s)\n", s.name.c_str(), seconds_since(t0));
     }
-    std::printf("Variant: `%s`. Reference: the same with `%s`. %d x %d, CPU renderer (the GPU image's twin); "
+    std::printf("Variant: `%s`, without the dither. Reference: the same with `%s`. %d x %d, CPU renderer (the GPU image's twin); "
                 "horizon band: pixels whose ray is within 5 degrees of the horizon; frame to frame: PSNR between two "
                 "consecutive frames of a still camera in the horizon band (their jitter differs: the flicker; the "
                 "temporal scheme: frames 127 and 128); texture reads: per frame, per pixel whose ray enters the cloud "
@@ -606,7 +594,7 @@ int main(int argc, char** argv) {
                         s.description.c_str(), double(s.camera_altitude), double(s.pitch), double(s.sun_elevation),
                         double(s.coverage), double(s.cloud_type));
         return 0;
-    case run_mode::dump_shader: std::printf("%s", fragment_shader_source(o.var, o.sc.shape, o.compile_time, static_cast<clouds_pass>(o.pass), o.sc.sky).c_str()); return 0;
+    case run_mode::dump_shader: std::printf("%s", fragment_shader_source(o.var, o.sc, static_cast<clouds_pass>(o.pass)).c_str()); return 0;
     case run_mode::print_sky: std::printf("%s", sky_json(o.sc).c_str()); return 0;
     case run_mode::headless: return run_headless(o);
     case run_mode::cpu: return run_cpu(o);

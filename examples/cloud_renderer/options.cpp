@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <optional>
+#include <sstream>
 #include <vector>
 
 namespace cloud_renderer {
@@ -45,15 +46,14 @@ const char* usage_text() {
            "options:\n"
            "  --preset NAME       scene preset (default: ground; see --list-presets)\n"
            "  --variant SPEC      lighting variant over the defaults (the diffusion model, 6-step\n"
-           "                      light marches toward the sun and away from it with quadratic,\n"
-           "                      jittered steps, opaque view steps refined), e.g.\n"
+           "                      light marches toward the sun and away from it, opaque view steps\n"
+           "                      refined, the far field toward a low sun in 12 steps), e.g.\n"
            "                      phase=mie,lighting=octaves,octaves=4,powder=on,light=cone,\n"
-           "                      behind=cone,light-steps=32,light-spacing=uniform,light-jitter=off,\n"
-           "                      cone-samples=6,integration=naive,steps=128,refine=1,jitter=off\n"
-           "  --run-time          the run-time uber-shader: the variant (and the density field's\n"
-           "                      shape) as uniforms, every path compiled in, for quick comparison;\n"
-           "                      the default compiles one permutation per variant as constants\n"
-           "  --compile-time      the default (kept for scripts that name it)\n"
+           "                      behind=cone,light-steps=32,integration=naive,steps=128,refine=1,\n"
+           "                      schedule=growing,ambient=flat,reach=band\n"
+           "  --without LIST      leave out of the picture any of sun-disc, haze (aerial perspective),\n"
+           "                      shadows (the clouds' on the ground), dither (the scene's switches),\n"
+           "                      e.g. --without haze,dither\n"
            "  --width N, --height N   image size (default 1280 x 720; 16 to 8192)\n"
            "  --out FILE          PNG to write (default clouds.png; --cpu: clouds_cpu.png;\n"
            "                      --compare: FILE and FILE with _cpu before .png)\n"
@@ -132,8 +132,9 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
         else if (a == "--dump-shader") err = set_mode(run_mode::dump_shader, a);
         else if (a == "--print-sky") err = set_mode(run_mode::print_sky, a);
         else if (a == "--help" || a == "-h") err = set_mode(run_mode::help, a);
-        else if (a == "--compile-time") o.compile_time = true;
-        else if (a == "--run-time") o.compile_time = false;
+        else if (a == "--run-time" || a == "--compile-time")
+            return a + " was removed: the renderer compiles one program per permutation, as engines ship them "
+                       "(the run-time uber-shader's numbers: docs/lighting_research.md, \"Switches removed\")";
         else if (a == "--quiet") o.quiet = true;
         else if (a == "--preset") {
             std::string v;
@@ -168,6 +169,18 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
             const std::optional<sky_model> m = sky_model_named(v);
             if (!m) return "--sky must be artistic or physical, not '" + v + "'";
             o.sc.sky = *m;
+        } else if (a == "--without") {
+            std::string v;
+            if (!value(v)) return "--without needs a list of sun-disc, haze, shadows, dither";
+            std::stringstream items(v);
+            std::string item;
+            while (std::getline(items, item, ',')) {
+                if (item == "sun-disc") o.sc.sun_disc = false;
+                else if (item == "haze") o.sc.haze = false;
+                else if (item == "shadows") o.sc.shadows = false;
+                else if (item == "dither") o.sc.dither = false;
+                else return "--without takes sun-disc, haze, shadows or dither, not '" + item + "'";
+            }
         } else if (a == "--shape") {
             std::string v;
             if (!value(v)) return "--shape needs classic or detailed";

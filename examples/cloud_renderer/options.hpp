@@ -15,7 +15,6 @@ struct options {
     scene sc = presets().front();
     bool preset_given = false;   // --preset was on the command line (--convergence: that preset alone)
     variant var;
-    bool compile_time = true;    // variant and shape as shader constants (false: the run-time uber-shader, --run-time)
     int width = 1280, height = 720;
     std::string out;             // PNG path (headless, cpu, compare); empty: the mode's default
     std::string bench_out;       // markdown table of --bench; empty: stdout only

@@ -61,6 +61,29 @@ bool parse_switch(const std::string& text, bool& out) {
     return false;
 }
 
+// The switches the renderer had and removed (issue 39), each with where its measurement
+// stays: a script that still names one gets that instead of "unknown key". The scene's
+// switches moved to scene (sun_disc, haze, shadows, dither), the others were fixed at their
+// defaults.
+const char* removed_switch(const std::string& key) {
+    static const char* const keys[][2] = {
+        {"cone-samples", "the cone always takes 6 samples (scene.hpp's cone_samples)"},
+        {"light-spacing", "the light march's steps are always quadratic (docs/lighting_research.md, \"Switches removed\")"},
+        {"light-jitter", "the light march's offsets are always jittered (docs/lighting_research.md, \"Switches removed\")"},
+        {"jitter", "the view march's offset is always jittered (docs/lighting_research.md, \"Switches removed\")"},
+        {"skip", "empty-space skipping was removed (docs/lighting_research.md, \"Switches removed\")"},
+        {"lod", "texture LOD was removed: level 0 everywhere (docs/lighting_research.md, \"Switches removed\")"},
+        {"far", "the light's far samples are always on the full density (docs/lighting_research.md, \"Switches removed\")"},
+        {"sun", "the sun disc is the scene's (scene::sun_disc; the renderer's --without sun-disc)"},
+        {"haze", "aerial perspective is the scene's (scene::haze; the renderer's --without haze)"},
+        {"dither", "the dither is the scene's (scene::dither; the renderer's --without dither)"},
+        {"shadows", "the ground's cloud shadows are the scene's (scene::shadows; the renderer's --without shadows)"},
+    };
+    for (const auto& k : keys)
+        if (key == k[0]) return k[1];
+    return nullptr;
+}
+
 }  // namespace
 
 const std::vector<scene>& presets() {
@@ -204,8 +227,7 @@ float display_exposure(const scene& s) { return make_frame_constants(s).exposure
 
 float light_reach(const variant& v, const frame_constants& k) {
     if (v.light == light_mode::cone) return k.cone_far_distance + 0.5f * k.cone_far_length;
-    if (v.light == light_mode::map || v.long_reach || v.far_steps || v.far_map) return light_long_reach;
-    return k.light_march_max;
+    return light_long_reach;
 }
 
 frame_constants make_frame_constants(const scene& s) {
@@ -317,9 +339,13 @@ std::optional<light_sources> light_sources_named(const std::string& n) {
     return std::nullopt;
 }
 
-std::string permutation_key(const variant& v, cloud_shape shape) { return variant_spec(v) + "/" + name(shape); }
+std::string permutation_key(const variant& v, const scene& s) {
+    return variant_spec(v) + "/" + name(s.shape) + "/sun=" + (s.sun_disc ? "on" : "off") + ",haze=" + (s.haze ? "on" : "off") +
+           ",shadows=" + (s.shadows ? "on" : "off") + ",dither=" + (s.dither ? "on" : "off");
+}
 
 const char* name(light_mode l) { return l == light_mode::cone ? "cone" : l == light_mode::march ? "march" : "map"; }
+const char* name(reach_mode r) { return r == reach_mode::far ? "far" : "band"; }
 const char* name(step_schedule s) { return s == step_schedule::uniform ? "uniform" : "growing"; }
 const char* name(integration_mode i) { return i == integration_mode::analytic ? "analytic" : "naive"; }
 const char* name(lighting_model l) { return l == lighting_model::octaves ? "octaves" : "diffusion"; }
@@ -385,15 +411,6 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             else if (value == "march") out.behind = light_mode::march;
             else if (value == "map") out.behind = light_mode::map;
             else return "behind must be cone, march or map, not '" + value + "'";
-        } else if (key == "cone-samples") {
-            if (!parse_int(value, 2, 16, out.cone_samples))
-                return "cone-samples must be an integer from 2 to 16, not '" + value + "'";
-        } else if (key == "light-jitter") {
-            if (!parse_switch(value, out.light_jitter)) return "light-jitter must be on or off, not '" + value + "'";
-        } else if (key == "light-spacing") {
-            if (value == "quadratic") out.light_quadratic = true;
-            else if (value == "uniform") out.light_quadratic = false;
-            else return "light-spacing must be quadratic or uniform, not '" + value + "'";
         } else if (key == "refine") {
             if (!parse_int(value, 1, 64, out.refine))
                 return "refine must be an integer from 1 to 64, not '" + value + "'";
@@ -411,38 +428,20 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
             if (value == "uniform") out.schedule = step_schedule::uniform;
             else if (value == "growing") out.schedule = step_schedule::growing;
             else return "schedule must be uniform or growing, not '" + value + "'";
-        } else if (key == "jitter") {
-            if (!parse_switch(value, out.jitter)) return "jitter must be on or off, not '" + value + "'";
-        } else if (key == "sun") {
-            if (!parse_switch(value, out.sun)) return "sun must be on or off, not '" + value + "'";
-        } else if (key == "haze") {
-            if (!parse_switch(value, out.haze)) return "haze must be on or off, not '" + value + "'";
-        } else if (key == "dither") {
-            if (!parse_switch(value, out.dither)) return "dither must be on or off, not '" + value + "'";
-        } else if (key == "skip") {
-            if (!parse_switch(value, out.skip)) return "skip must be on or off, not '" + value + "'";
         } else if (key == "ambient") {
             if (value == "flat") out.occluded_ambient = false;
             else if (value == "occluded") out.occluded_ambient = true;
             else return "ambient must be flat or occluded, not '" + value + "'";
-        } else if (key == "lod") {
-            if (!parse_switch(value, out.lod)) return "lod must be on or off, not '" + value + "'";
-        } else if (key == "far") {
-            if (value == "full") out.far_base = false;
-            else if (value == "base") out.far_base = true;
-            else return "far must be full or base, not '" + value + "'";
         } else if (key == "reach") {
-            out.long_reach = value == "band";
-            out.far_map = value == "map";
-            out.far_steps = value == "far";
-            if (value != "capped" && value != "band" && value != "map" && value != "far")
-                return "reach must be capped, far, band or map, not '" + value + "'";
-        } else if (key == "shadows") {
-            if (!parse_switch(value, out.shadows)) return "shadows must be on or off, not '" + value + "'";
+            if (value == "far") out.reach = reach_mode::far;
+            else if (value == "band") out.reach = reach_mode::band;
+            else return "reach must be far or band, not '" + value + "' (capped and map were removed: docs/lighting_research.md, \"Switches removed\")";
+        } else if (const char* where = removed_switch(key)) {
+            return "'" + key + "' is no longer a variant switch: " + where;
         } else {
             return "unknown variant key '" + key +
-                   "' (known: phase, lighting, table, octaves, powder, light, behind, cone-samples, light-steps, light-spacing, light-jitter, integration, steps, refine, schedule, skip, ambient, lod, far, reach, shadows, sun, haze, dither, "
-                   "jitter)";
+                   "' (known: phase, lighting, table, octaves, powder, light, behind, light-steps, integration, steps, "
+                   "schedule, refine, ambient, reach)";
         }
     }
     v = out;
@@ -451,11 +450,11 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
 
 std::string variant_spec(const variant& v) {
     std::ostringstream s;
-    s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",table=" << name(v.table) << ",octaves=" << v.octaves << ",powder=" << (v.powder ? "on" : "off")
-      << ",light=" << name(v.light) << ",behind=" << name(v.behind) << ",cone-samples=" << v.cone_samples << ",light-steps=" << v.light_steps
-      << ",light-spacing=" << (v.light_quadratic ? "quadratic" : "uniform") << ",light-jitter=" << (v.light_jitter ? "on" : "off")
-      << ",integration=" << name(v.integration) << ",steps=" << v.view_steps << ",refine=" << v.refine << ",schedule=" << name(v.schedule) << ",skip=" << (v.skip ? "on" : "off") << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat") << ",lod=" << (v.lod ? "on" : "off") << ",far=" << (v.far_base ? "base" : "full")
-      << ",reach=" << (v.long_reach ? "band" : v.far_map ? "map" : v.far_steps ? "far" : "capped") << ",shadows=" << (v.shadows ? "on" : "off") << ",jitter=" << (v.jitter ? "on" : "off") << ",sun=" << (v.sun ? "on" : "off") << ",haze=" << (v.haze ? "on" : "off") << ",dither=" << (v.dither ? "on" : "off");
+    s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",table=" << name(v.table) << ",octaves=" << v.octaves
+      << ",powder=" << (v.powder ? "on" : "off") << ",light=" << name(v.light) << ",behind=" << name(v.behind)
+      << ",light-steps=" << v.light_steps << ",integration=" << name(v.integration) << ",steps=" << v.view_steps
+      << ",schedule=" << name(v.schedule) << ",refine=" << v.refine << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat")
+      << ",reach=" << name(v.reach);
     return s.str();
 }
 

@@ -25,12 +25,15 @@ struct sky_view_table;  // physical_sky.hpp
 enum class phase_model { hg, dual_hg, cornette_shanks, mie };
 // How a light estimate gets its optical depth: the cone, a march over the cloud type's band,
 // or the Beer shadow map (toward the sun: its optical depth at the sample's depth; away from
-// it: the column's total minus that; the cone outside the map).
+// it: the column's total minus that; the cone outside the map). The map is the cheapest
+// (docs/peer_bench.md: no light march at all), the march the most accurate.
 enum class light_mode { cone, march, map };
 enum class integration_mode { analytic, naive };
 // Where the view march puts its steps between where the ray enters the cloud type's altitude
 // band and max_distance further: equal steps, or steps that grow with distance
-// (march_schedule_distance with frame_constants::march_near_distance).
+// (march_schedule_distance with frame_constants::march_near_distance; it gains up to 1.3 dB
+// of the image on some presets for up to 11% more reads and loses up to 1.9 dB of the horizon
+// band on others: docs/renderer.md, Convergence).
 enum class step_schedule { uniform, growing };
 // The sun term: Wrenninge's octaves (multiple_scattering.hpp) or the diffusion model
 // (diffusion_lighting.hpp), which also needs the optical depth behind the sample (a second
@@ -40,16 +43,27 @@ enum class lighting_model { octaves, diffusion };
 // The diffusion model's fitted numbers: diffusion_models::clouds (fitted to whole-cloud
 // images of this renderer against their path-traced truth, on the selection presets of
 // both fields: the default) or diffusion_models::fitted (fitted to homogeneous spheres and
-// slabs, the default before). The same cost.
+// slabs, the default before, and still the closer of the two on them). The same cost.
 enum class diffusion_table { clouds, fitted };
+// How far the light march toward the sun reaches beyond its first light_march_max (6 km; a
+// high sun's band ends sooner and both are the same): `far`, the default, marches the 6 km in
+// light_steps quadratic steps and then far_step_count(light_steps) uniform full-density
+// steps to where the band ends, up to light_long_reach (30 km); `band` stretches the
+// light_steps steps over the whole path to the band's end, up to light_long_reach: the same
+// reads as a 6 km march, further from the truth at a low sun (docs/lighting_truth.md,
+// reach_band). docs/lighting_research.md keeps the other reaches measured and removed.
+enum class reach_mode { far, band };
 
-// What the issue calls a lighting variant. Defaults: the diffusion model, which is closer to
-// the path-traced truth than the octaves on every preset (docs/lighting_truth.md), with the
-// optical depth toward the sun from a 6-step march over the cloud type's altitude band and
-// the one behind the sample from the cone: 12 density samples per view step, twice the
-// octaves' cone; sky light occluded by the optical depth above and below.
-// `lighting=octaves,powder=on,light=cone,ambient=flat` is the production octave choice it
-// replaced (cone with the far sample, 3 octaves, powder, unoccluded sky light).
+// What the issue calls a lighting variant: the switches that a current report row or test
+// shows best at something (cost or error), and the octaves, the baseline users compare
+// against. Defaults: the diffusion model, which is closer to the path-traced truth than the
+// octaves on every preset (docs/lighting_truth.md), with the optical depth toward the sun and
+// behind the sample from 6-step marches over the cloud type's altitude band (quadratic steps,
+// each light estimate's offset jittered per sample and frame), and sky light occluded by the
+// optical depth above and below. `lighting=octaves,powder=on,light=cone,ambient=flat` is the
+// production octave choice it replaced (a 6-sample cone with the far sample, 3 octaves,
+// powder, unoccluded sky light). The switches removed from the renderer, with the
+// measurements that removed them: docs/lighting_research.md, "Switches removed".
 struct variant {
     phase_model phase = phase_model::dual_hg;
     lighting_model lighting = lighting_model::diffusion;
@@ -58,14 +72,7 @@ struct variant {
     bool powder = false;             // Schneider's powder term
     light_mode light = light_mode::march;  // the optical depth toward the sun
     light_mode behind = light_mode::march;  // the one behind the sample (diffusion model only)
-    int cone_samples = 6;            // cone: samples toward the sun, the far one included (2..16)
     int light_steps = 6;             // march: steps to where the cloud type's band ends (1..256)
-    // The light march's steps: quadratic (light_march_distance: short near the sample, where
-    // the light is decided) or uniform; their sample offset: new for each view sample and
-    // frame (sample_jitter, when `jitter` is on too: the frames average the march's error
-    // away) or the steps' midpoints.
-    bool light_quadratic = true;
-    bool light_jitter = true;
     integration_mode integration = integration_mode::analytic;
     int view_steps = 64;             // steps along the view ray through the layer (8..1024)
     step_schedule schedule = step_schedule::uniform;
@@ -74,58 +81,13 @@ struct variant {
     // when it is the first step in cloud (the cloud's front lies between): the light is then
     // read near the front, not up to a step inside. 1: never (1..64).
     int refine = 16;
-    // Empty-space skipping: after skip_block empty steps, the march probes the next
-    // skip_block steps with one sample of the base shape (weather map and base volume, no
-    // detail, no light) at their end and steps over them when it is empty; a probe that finds
-    // cloud marches them in full steps. At the block's end, the probe finds every cloud that
-    // begins inside the block and reaches past it (a probe inside the block skipped the cloud
-    // fronts before it: 40-42 dB from the image without skipping, against 45-47 dB now).
-    // Off by default: a cloud that lies wholly between two probes (a chord shorter than the
-    // block, 4 steps: small clouds, grazing rays) is still stepped over, so against the
-    // converged render it loses up to 7.5 dB of the horizon band (docs/renderer.md, Convergence);
-    // it saves 13% of the reads and about a quarter of the frame. A conservative probe (a max-filtered coverage map) would be the fix.
-    bool skip = false;
-    // Cloud shadows on the ground from a Beer shadow map (shadow_map.hpp) of
-    // shadow_map_size^2 texels, each a shadow_map_steps march along the sunlight.
-    bool shadows = true;
     // The sky light (ambient) inside clouds: flat (the layer's top and bottom colours mixed by
     // height, unattenuated) or occluded: the top's light times diffuse_transmittance of the
     // optical depth above the sample, the bottom's of the depth below, both estimated from
     // the light estimates toward and away from the sun times the sun's elevation sine (with
     // the sun below the horizon the estimate away from it looks up, toward it down).
     bool occluded_ambient = true;
-    // Explicit texture LOD: every density sample reads the mip level whose texels match the
-    // pixel's footprint at the view sample (texture_lod; the light's samples inherit it; the
-    // shadow map uses its texel width); off: level 0 everywhere.
-    // Off by default, kept as a measured comparison (like integration=naive): the mips average
-    // the noise before the density's nonlinear remap (coverage, erosion, saturation), and the
-    // remap of a mean is not the mean of the remap, so coarse levels change the clouds'
-    // shapes and densities rather than only filtering them. It loses up to 11 dB of the horizon
-    // band against the converged render (docs/renderer.md, Convergence), is no closer to a 4x4
-    // supersampled render than level 0 (ground 32.45 against 32.57 dB, horizon 33.59 against
-    // 35.83), and a mipmapped filter costs llvmpipe more time, not less.
-    bool lod = false;
-    // The light estimates' far samples on the base shape only (coarse_density: no detail, no
-    // curl): the cone's far sample and the march's steps from the fourth on.
-    bool far_base = false;
-    // How far the march toward the sun reaches: capped at 6 km (light_march_max), or to where
-    // the band ends, up to 30 km (a low sun's path to the layer top).
-    bool long_reach = false;
-    // The far field toward the sun (reach=map): beyond the capped march, the Beer shadow map's
-    // optical depth from where the march ends to where the sunlight enters the band (one
-    // bilinear map read), so a low sun's light crosses the whole layer.
-    bool far_map = false;
-    // The far field toward the sun by steps (reach=far, the default): beyond the capped
-    // march, far_step_count(light_steps) uniform steps on the full density to where the band
-    // ends, up to light_long_reach, jittered like the march. At a high sun the band ends
-    // within the cap and nothing changes. The steps were on the base shape alone until the
-    // physical sky's truths measured them (docs/lighting_research.md, "The far field toward
-    // the sun" and "The far field on the full density").
-    bool far_steps = true;
-    bool jitter = true;              // per-pixel start offset (hash of the pixel), else midpoints
-    bool haze = true;                // aerial perspective: air_optical_depth to the cloud, horizon haze
-    bool sun = true;                 // draw the sun disc (sun_disc_radiance) in the background
-    bool dither = true;              // triangular dither of the display colour before 8-bit output
+    reach_mode reach = reach_mode::far;  // the light march toward a low sun (above)
 };
 
 // The density field. classic: the weather map's coverage (R) with the scene's one cloud type
@@ -186,6 +148,17 @@ struct scene {
     enum sky_model sky = sky_model::physical;
     float ev100 = -100.0f;           // the physical sky's exposure value; below -50: from the sky (auto_ev100)
     light_sources light = light_sources::all;  // the tools' split by source (above); the exposure stays the whole's
+    // What the picture draws besides the clouds' light (the path-traced truths draw none of
+    // them, so their tools turn them off; the renderer's --without): the sun disc at its
+    // physical radiance in the background; aerial perspective (the air between the camera and
+    // the cloud, and the horizon's haze); the clouds' shadows on the ground, from a Beer shadow
+    // map (shadow_map.hpp) of shadow_map_size^2 texels, each a shadow_map_steps march along
+    // the sunlight; a triangular dither of one 8-bit step on the display colour (no banding in
+    // the sky's slow gradients; the convergence measurements turn it off to compare images).
+    bool sun_disc = true;
+    bool haze = true;
+    bool shadows = true;
+    bool dither = true;
 };
 
 // The exposure the tonemap uses (frame_constants::exposure): scene::exposure with the artistic
@@ -201,20 +174,19 @@ float luminance(const glm::vec3& c);
 
 // The default before the renderer's rework (issue 15's baseline, with --shape classic): the
 // octaves with powder, the cone toward the sun, flat sky light, no refinement.
-inline constexpr const char* previous_default_spec = "lighting=octaves,powder=on,light=cone,ambient=flat,refine=1,reach=capped";
+inline constexpr const char* previous_default_spec = "lighting=octaves,powder=on,light=cone,ambient=flat,refine=1";
 
-// The first light-march step that variant::far_base reads on the base shape only.
-inline constexpr int light_far_step = 3;
-// variant::long_reach's cap on the light march (metres); also where variant::far_steps end.
+// The cone's samples toward the sun, its far one included (cone_light.hpp).
+inline constexpr int cone_samples = 6;
+// reach_mode's cap on the light march toward the sun (metres): the far steps end here, and
+// reach=band's stretched march.
 inline constexpr float light_long_reach = 30000.0f;
-// variant::far_steps: twice as many far steps as the near march has (12 for 6), so a
-// converged reference (light-steps=128) converges the far field too. Twelve full-density
-// steps, not four base-shape ones (docs/lighting_research.md, "The far field on the full
-// density"): closer to the path-traced truth at a low sun and converging in fewer steps.
+// reach=far: twice as many far steps as the near march has (12 for 6), so a converged
+// reference (light-steps=128) converges the far field too. Twelve full-density steps
+// (docs/lighting_research.md, "The far field on the full density"): closer to the
+// path-traced truth at a low sun and converging in fewer steps.
 inline constexpr int far_step_count(int light_steps) { return light_steps < 2 ? 1 : 2 * light_steps; }
 
-// Steps per empty-space probe (variant::skip).
-inline constexpr int skip_block = 4;
 // The march records the view samples in cloud, up to this many, and then lights them in a
 // loop of its own (the light pass), out of the view loop; when the buffer fills, the light
 // pass runs and the march goes on from where it stopped (no sample is dropped: the image is
@@ -229,7 +201,7 @@ inline constexpr float temporal_reprojection_tolerance = 1.0f;
 // Chosen on a held-out sequence (cumulus, pan -0.3 degrees and 20 m of wind a frame), not
 // the documented one: 0.1 gave 36.2 dB, 0.2 36.0, 0.3 35.9, 0 34.8.
 inline constexpr float temporal_fill_blend = 0.1f;
-// The Beer shadow map (variant::shadows): texels per side, midpoint steps per texel, and the
+// The Beer shadow map (scene::shadows): texels per side, midpoint steps per texel, and the
 // share of the ground's light that comes from the sky (what a full shadow leaves).
 inline constexpr int shadow_map_size = 128;
 inline constexpr int shadow_map_steps = 24;
@@ -250,10 +222,10 @@ inline glm::ivec2 temporal_shadow_rows(std::uint32_t frame, bool whole) {
     return {slice * shadow_map_size / temporal_shadow_slices, (slice + 1) * shadow_map_size / temporal_shadow_slices};
 }
 
-// True when the variant draws the Beer shadow map: for the ground's shadows or a light
+// True when the frame draws the Beer shadow map: for the ground's shadows or a light
 // estimate (light_mode::map).
-inline bool needs_shadow_map(const variant& v) {
-    return v.shadows || v.light == light_mode::map || v.behind == light_mode::map || v.far_map;
+inline bool needs_shadow_map(const variant& v, const scene& s) {
+    return s.shadows || v.light == light_mode::map || v.behind == light_mode::map;
 }
 
 // Every preset, in the order --list-presets prints them; the first is the default.
@@ -301,9 +273,8 @@ struct frame_constants {
 
 frame_constants make_frame_constants(const scene& s);
 // Where variant v's light estimate toward the sun ends, metres along the sun's path (unless
-// the band ends first): the march's light_long_reach (reach=far, band or map) or
-// light_march_max (reach=capped), the cone's far sample's end, the shadow map's
-// light_long_reach. The physical sky's far shadow (far_shadow.hpp) begins there.
+// the band ends first): the march's and the shadow map's light_long_reach, the cone's far
+// sample's end. The physical sky's far shadow (far_shadow.hpp) begins there.
 float light_reach(const variant& v, const frame_constants& k);
 // Entries of frame_constants::sun_by_height.
 inline constexpr int sun_heights = 8;
@@ -329,16 +300,19 @@ std::optional<light_sources> light_sources_named(const std::string& name);
 glm::vec3 pixel_direction(const frame_constants& k, int x, int y, int width, int height);
 
 // "phase=mie,lighting=diffusion,octaves=4,powder=off,light=march,light-steps=32,
-// integration=naive,steps=128,jitter=off" (any subset, applied over `v`). Returns an empty string on success, else the
-// message for the user.
+// integration=naive,steps=128,reach=band" (any subset, applied over `v`). Returns an empty
+// string on success, else the message for the user (a removed switch's names where it was
+// measured).
 std::string apply_variant_spec(const std::string& spec, variant& v);
 // The same notation back, every field.
 std::string variant_spec(const variant& v);
-// The variant and the density field's shape as one key, "<variant_spec>/<shape>": what a
-// compiled-in permutation, and what is drawn for it (the temporal scheme's shadow map), is for.
-std::string permutation_key(const variant& v, cloud_shape shape);
+// The variant and the scene's permutation switches as one key,
+// "<variant_spec>/<shape>/sun=on,haze=on,shadows=on,dither=on": what a compiled-in permutation, and what
+// is drawn for it (the temporal scheme's shadow map), is for.
+std::string permutation_key(const variant& v, const scene& s);
 const char* name(phase_model p);
 const char* name(light_mode l);
+const char* name(reach_mode r);
 const char* name(step_schedule s);
 const char* name(integration_mode i);
 const char* name(lighting_model l);

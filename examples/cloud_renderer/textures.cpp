@@ -103,7 +103,6 @@ bool load_or_bake_textures(const std::string& cache_dir, bool quiet, cloud_textu
     const std::string path = cache_dir.empty() ? std::string() : cache_path(cache_dir, t);
     if (!path.empty() && read_cache(path, t)) {
         if (!quiet) std::fprintf(stderr, "textures: read from %s\n", path.c_str());
-        build_mipmaps(t);
         return true;
     }
 
@@ -154,56 +153,7 @@ bool load_or_bake_textures(const std::string& cache_dir, bool quiet, cloud_textu
             std::fprintf(stderr, "textures: warning: could not write the cache: %s\n", error.c_str());
         }
     }
-    build_mipmaps(t);
     return true;
-}
-
-namespace {
-
-// Level k + 1 of a size^dims texture with `channels` interleaved channels (dims 2 or 3).
-std::vector<std::uint8_t> half_level(const std::vector<std::uint8_t>& src, int size, int channels, int dims) {
-    const int half = size / 2;
-    const std::size_t n = static_cast<std::size_t>(half);
-    std::vector<std::uint8_t> out((dims == 3 ? n * n * n : n * n) * static_cast<std::size_t>(channels));
-    const int depth = dims == 3 ? half : 1;
-    const unsigned count = dims == 3 ? 8U : 4U;
-    const auto at = [&](int x, int y, int z, int c) {
-        return src[((static_cast<std::size_t>(z) * static_cast<std::size_t>(size) + static_cast<std::size_t>(y)) *
-                        static_cast<std::size_t>(size) + static_cast<std::size_t>(x)) * static_cast<std::size_t>(channels) +
-                   static_cast<std::size_t>(c)];
-    };
-    for (int z = 0; z < depth; ++z)
-        for (int y = 0; y < half; ++y)
-            for (int x = 0; x < half; ++x)
-                for (int c = 0; c < channels; ++c) {
-                    unsigned sum = 0;
-                    for (int dz = 0; dz < (dims == 3 ? 2 : 1); ++dz)
-                        for (int dy = 0; dy < 2; ++dy)
-                            for (int dx = 0; dx < 2; ++dx) sum += at(2 * x + dx, 2 * y + dy, 2 * z + dz, c);
-                    out[((static_cast<std::size_t>(z) * n + static_cast<std::size_t>(y)) * n + static_cast<std::size_t>(x)) *
-                            static_cast<std::size_t>(channels) + static_cast<std::size_t>(c)] =
-                        static_cast<std::uint8_t>((sum + count / 2U) / count);
-                }
-    return out;
-}
-
-void build_chain(const std::vector<std::uint8_t>& level0, int size, int channels, int dims,
-                 std::vector<std::vector<std::uint8_t>>& mips) {
-    mips.clear();
-    const std::vector<std::uint8_t>* src = &level0;
-    for (int s = size; s > 1; s /= 2) {
-        mips.push_back(half_level(*src, s, channels, dims));
-        src = &mips.back();
-    }
-}
-
-}  // namespace
-
-void build_mipmaps(cloud_textures& t) {
-    build_chain(t.base, t.base_size, 4, 3, t.base_mips);
-    build_chain(t.detail, t.detail_size, 3, 3, t.detail_mips);
-    build_chain(t.weather, t.weather_size, 3, 2, t.weather_mips);
-    build_chain(t.weather_wide, t.weather_wide_size, 3, 2, t.weather_wide_mips);
 }
 
 }  // namespace cloud_renderer

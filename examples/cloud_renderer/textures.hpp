@@ -18,15 +18,7 @@ struct cloud_textures {
     int weather_wide_size = 0;
     int curl_size = 0;     // curl texture: curl_size^2 RGB (curl_bake_encode)
     std::vector<std::uint8_t> base, detail, weather, weather_wide, curl;
-    // Mip levels 1, 2, ... down to one texel (build_mipmaps), the same layout; empty: none.
-    std::vector<std::vector<std::uint8_t>> base_mips, detail_mips, weather_mips, weather_wide_mips;
 };
-
-// Fills the mip levels of every texture: each texel of level k + 1 the rounded mean of its
-// 2^3 (volumes) or 2^2 (weather map) texels of level k, (sum + n / 2) / n in UNORM8 (the box
-// filter, here rather than glGenerateMipmap so that the CPU twin samples the very bytes the
-// GPU does). Sizes must be powers of two.
-void build_mipmaps(cloud_textures& t);
 
 // Reads the textures from `cache_dir` if a cache file with the same sizes, seed and format is
 // there and its checksum matches; otherwise bakes them with every core (a progress line on

@@ -12,9 +12,9 @@ namespace {
 const char* const key_help =
     "keys: mouse drag or arrows look around; W/S altitude up/down; Q/E sun azimuth; R/F sun elevation;\n"
     "      1-7 presets; M diffusion/octaves; P phase model; O octaves; B powder; L cone/march toward\n"
-    "      the sun; K cone/march behind; I integration; J jitter; [ ] view steps;\n"
+    "      the sun; K cone/march behind; I integration; [ ] view steps;\n"
     "      T temporal scheme on/off (1 of 16 pixels per frame, reprojected history; on at start);\n"
-    "      C compile-time/run-time uber-shader; H this help; Esc quit\n";
+    "      H this help; Esc quit\n";
 
 struct window_state {
     options o;
@@ -52,10 +52,8 @@ void on_key(GLFWwindow* w, int key, int, int action, int) {
     case GLFW_KEY_I:
         v.integration = v.integration == integration_mode::analytic ? integration_mode::naive : integration_mode::analytic;
         break;
-    case GLFW_KEY_J: v.jitter = !v.jitter; break;
     case GLFW_KEY_LEFT_BRACKET: v.view_steps = v.view_steps / 2 < 8 ? 8 : v.view_steps / 2; break;
     case GLFW_KEY_RIGHT_BRACKET: v.view_steps = v.view_steps * 2 > 1024 ? 1024 : v.view_steps * 2; break;
-    case GLFW_KEY_C: st.o.compile_time = !st.o.compile_time; break;
     case GLFW_KEY_T: st.temporal = !st.temporal; break;
     case GLFW_KEY_H: std::printf("%s", key_help); break;
     default:
@@ -140,9 +138,9 @@ int run_window(const options& o, const cloud_textures& textures) {
                     // the camera (a new size starts a new history).
                     scene s = st.o.sc;
                     s.frame = static_cast<std::uint32_t>(total_frames);
-                    ok = gpu->draw_temporal(s, st.o.var, st.o.compile_time, fw, fh, &ft, why) && gpu->show_temporal(0, why);
+                    ok = gpu->draw_temporal(s, st.o.var, fw, fh, &ft, why) && gpu->show_temporal(0, why);
                 } else if (fw > 0 && fh > 0) {
-                    ok = gpu->draw(st.o.sc, st.o.var, st.o.compile_time, 0, fw, fh, &ft, why);
+                    ok = gpu->draw(st.o.sc, st.o.var, 0, fw, fh, &ft, why);
                 }
                 if (!ok) {
                     std::fprintf(stderr, "error: %s\n", why.c_str());
@@ -158,8 +156,7 @@ int run_window(const options& o, const cloud_textures& textures) {
                 ++total_frames;
                 if (o.frames_given && total_frames >= o.frames) glfwSetWindowShouldClose(w, GLFW_TRUE);
                 if (st.changed) {
-                    std::printf("variant %s%s%s\n", variant_spec(st.o.var).c_str(), st.o.compile_time ? "" : " (run-time uber-shader)",
-                                st.temporal ? " (temporal)" : "");
+                    std::printf("variant %s%s\n", variant_spec(st.o.var).c_str(), st.temporal ? " (temporal)" : "");
                     st.changed = false;
                 }
                 const double now = glfwGetTime();

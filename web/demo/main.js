@@ -225,10 +225,9 @@ function cloudUniforms(state) {
   return {
     u_phase_model: v.phase, u_lighting: v.lighting, u_octaves: state.ms === 'production' ? v.octaves : msN, u_powder: v.powder,
     u_light_mode: v.light, u_behind_mode: v.behind, u_phase_mean_cosine: phaseMeanCosine(f, v.phase),
-    u_cone_samples: v.coneSamples, u_light_steps: v.lightSteps, u_integration: v.integration,
-    u_light_quadratic: v.lightQuadratic, u_light_jitter: v.lightJitter, u_refine: v.refine,
-    u_view_steps: v.viewSteps, u_schedule: v.schedule, u_jitter: v.jitter, u_sun_disc: v.sun, u_haze: v.haze, u_dither: v.dither,
-    u_skip: v.skip, u_occluded_ambient: v.ambient, u_long_reach: v.reach, u_shadows: v.shadows, u_pass: 0,
+    u_light_steps: v.lightSteps, u_integration: v.integration, u_refine: v.refine,
+    u_view_steps: v.viewSteps, u_schedule: v.schedule, u_sun_disc: v.sun, u_haze: v.haze, u_dither: v.dither,
+    u_occluded_ambient: v.ambient, u_reach: v.reach, u_shadows: v.shadows, u_pass: 0,
     u_shape: 0,  // the classic density field: the demo bakes no wide weather map or curl texture
     u_resolution: [canvas.width, canvas.height],
     u_forward: f.forward, u_right: f.right, u_up: f.up, u_tan_half_fov: f.tanHalfFov,

@@ -215,7 +215,7 @@ export function bakePhysicalSky(gl, sky, s, sunDir) {
 // where every path from the band's top meets the ground to where the march reaches the band's
 // end, and the field's period (the classic field's weather tile).
 export function farShadowParams(s, band, v, f) {
-  const reach = v.light === 0 ? f.coneFarDistance + 0.5 * f.coneFarLength : v.light === 2 || v.reach !== 0 ? 30000 : f.lightMarchMax;
+  const reach = v.light === 0 ? f.coneFarDistance + 0.5 * f.coneFarLength : 30000;
   const R = s.planetRadius, top = R + band[1];
   const muLo = -Math.sqrt(Math.max(1 - (R / top) * (R / top), 0));
   const muHi = Math.min((band[1] - band[0]) / Math.max(reach, 1), 1);

@@ -22,15 +22,15 @@ export const scenePresets = [
   maxDistance: 35000, baseTile: 12000, detailTile: 1500, weatherTile: 60000, wind: [1200, -800], exposure: 1,
 }));
 
-// Lighting variants (scene.hpp's `variant`; the names of scripts/render-docs.sh). The default
-// is the diffusion model with 6-step marches toward the sun and away from it (quadratic steps,
-// jittered offsets), opaque view steps refined into sub-steps, and the sky light occluded
-// inside the clouds, and toward a low sun the far field beyond the capped march in base-shape
-// steps (reach 3, scene.hpp's far_steps); `octaves` is the production octave choice it
-// replaced. The demo draws one full frame per change: no Beer shadow map (shadows: 0, so no
-// ground shadows), no temporal scheme.
-const standard = { lighting: 1, phase: 1, octaves: 3, powder: 0, light: 1, behind: 1, coneSamples: 6, lightSteps: 6, lightQuadratic: 1, lightJitter: 1, refine: 16, integration: 0, viewSteps: 64, schedule: 0, skip: 0, ambient: 1, reach: 3, shadows: 0, jitter: 1, sun: 1, haze: 1, dither: 1 };
-const octaves = { ...standard, lighting: 0, powder: 1, light: 0, behind: 0, lightQuadratic: 0, lightJitter: 0, refine: 1, ambient: 0, reach: 0 };
+// Lighting variants (scene.hpp's `variant`, and its scene's sun, haze, shadows and dither switches; the
+// names of scripts/render-docs.sh). The default is the diffusion model with 6-step marches
+// toward the sun and away from it, opaque view steps refined into sub-steps, and the sky light
+// occluded inside the clouds, and toward a low sun the far field beyond the capped march in
+// full-density steps (reach 0, scene.hpp's reach_mode::far); `octaves` is the production octave
+// choice it replaced. The demo draws one full frame per change: no Beer shadow map (shadows:
+// 0, so no ground shadows), no temporal scheme.
+const standard = { lighting: 1, phase: 1, octaves: 3, powder: 0, light: 1, behind: 1, lightSteps: 6, refine: 16, integration: 0, viewSteps: 64, schedule: 0, ambient: 1, reach: 0, shadows: 0, sun: 1, haze: 1, dither: 1 };
+const octaves = { ...standard, lighting: 0, powder: 1, light: 0, behind: 0, refine: 1, ambient: 0 };
 export const variants = {
   default: { ...standard },
   octaves: { ...octaves },

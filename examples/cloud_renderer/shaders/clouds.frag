@@ -5,17 +5,17 @@
 //
 // The host (gl_renderer.cpp) prepends, in this order:
 //   #version 410 core
-//   the permutation block: by default (what engines ship) one permutation per variant,
-//     shape and pass, `const int u_phase_model = 3;` ... and an empty CR_PARAM, so that the
-//     compiler folds every switch and keeps only the variant's and the pass's own paths (a
-//     pass that returns early does not carry the others' code: on SIMD hardware, llvmpipe
-//     too, code after a uniform early return can still be paid for); for the run-time
-//     uber-shader (--run-time, quick comparison) `#define CR_PARAM(type, name) uniform type name;`;
+//   the permutation block (what engines ship: one program per variant, scene switches and
+//     pass): `const int u_phase_model = 3;` ... for every CR_PARAM below and an empty
+//     CR_PARAM, so that the compiler folds every switch and keeps only the permutation's own
+//     paths (a pass that returns early does not carry the others' code: on SIMD hardware,
+//     llvmpipe too, code after a uniform early return can still be paid for);
 // and replaces the line `#include "cloudmath.glsl"` below with cloudmath::glsl_source().
 // Frame and units: see scene.hpp (camera at the origin, +y up, metres).
 
 // The permutation: the pass (below), the density field's shape (scene.hpp's cloud_shape: 0
-// classic, 1 detailed) and the lighting variant (values in scene.hpp's `variant`).
+// classic, 1 detailed), the lighting variant (values in scene.hpp's `variant`) and what the
+// picture draws besides the clouds (scene.hpp's sun_disc, haze, dither).
 CR_PARAM(int, u_pass)
 CR_PARAM(int, u_shape)
 CR_PARAM(int, u_phase_model)      // 0 HG, 1 dual-lobe HG, 2 Cornette-Shanks, 3 Mie fit
@@ -25,23 +25,16 @@ CR_PARAM(int, u_octaves)          // Wrenninge octaves
 CR_PARAM(int, u_powder)           // 0 off, 1 on
 CR_PARAM(int, u_light_mode)       // toward the sun: 0 cone, 1 march over the cloud type's band, 2 shadow map
 CR_PARAM(int, u_behind_mode)      // behind the sample (diffusion model): 0 cone, 1 march, 2 shadow map
-CR_PARAM(int, u_cone_samples)
-CR_PARAM(int, u_light_steps)
-CR_PARAM(int, u_light_quadratic)  // light march steps: 0 uniform, 1 quadratic (cm_light_march_distance)
-CR_PARAM(int, u_light_jitter)     // light march offset: 0 midpoints, 1 cm_sample_jitter (with u_jitter)
+CR_PARAM(int, u_light_steps)      // light march steps, quadratic (cm_light_march_distance), jittered
 CR_PARAM(int, u_refine)           // at most this many sub-steps for a view step thicker than optical depth 1
 CR_PARAM(int, u_integration)      // 0 energy-conserving (analytic), 1 naive Riemann sum
 CR_PARAM(int, u_view_steps)
 CR_PARAM(int, u_schedule)         // view steps: 0 uniform, 1 growing with distance
-CR_PARAM(int, u_skip)             // empty-space skipping: 0 off, 1 probe CR_SKIP_BLOCK steps with the base shape
-CR_PARAM(int, u_shadows)          // 0 off, 1 cloud shadows on the ground from the Beer shadow map
+CR_PARAM(int, u_shadows)          // 0 off, 1 cloud shadows on the ground from the Beer shadow map (the scene's)
 CR_PARAM(int, u_occluded_ambient) // sky light inside clouds: 0 flat, 1 through the optical depth above / below
-CR_PARAM(int, u_lod)              // 0 level 0 everywhere, 1 the mip level of the pixel's footprint (cm_texture_lod)
-CR_PARAM(int, u_far_base)         // 1: the light's far samples on the base shape only (cr_coarse_density)
-CR_PARAM(int, u_long_reach)       // the march toward the sun: 0 capped at u_light_march_max, 1 to the band's end (30 km),
-                                  // 2 capped, and the shadow map's optical depth beyond (the far field),
-                                  // 3 capped, and cr_far_steps(u_light_steps) full-density steps beyond to the band's end
-CR_PARAM(int, u_jitter)
+CR_PARAM(int, u_reach)            // the march toward the sun: 0 (far) capped at u_light_march_max, then
+                                  // cr_far_steps(u_light_steps) full-density steps to the band's end
+                                  // (30 km at most); 1 (band) its steps stretched to the band's end
 CR_PARAM(int, u_sun_disc)         // 0 no sun disc, 1 the disc at its physical radiance
 CR_PARAM(int, u_haze)             // 0 off, 1 aerial perspective (air between camera and cloud)
 CR_PARAM(int, u_dither)           // 0 off, 1 triangular dither before the 8-bit store
@@ -153,18 +146,16 @@ float cr_far_shadow(vec3 p, float altitude) { return 1.0; }
 float cr_sky_depth_toward_sun(float whole, float near) { return whole; }
 #endif
 
-const int CR_SKIP_BLOCK = 4;  // steps per empty-space probe (scene.hpp's skip_block)
-const int CR_LIGHT_FAR_STEP = 3;          // scene.hpp's light_far_step
+const int CR_CONE_SAMPLES = 6;             // scene.hpp's cone_samples
 const float CR_LIGHT_LONG_REACH = 30000.0;  // ... light_long_reach
 
-// scene.hpp's far_step_count: twice as many far steps as the near march (u_long_reach 3).
+// scene.hpp's far_step_count: twice as many far steps as the near march (u_reach 0).
 int cr_far_steps(int light_steps) { return light_steps < 2 ? 1 : 2 * light_steps; }
 const int CR_SHADOW_MAP_SIZE = 128;      // scene.hpp's shadow_map_size
 const int CR_SHADOW_MAP_STEPS = 24;      // ... shadow_map_steps
 const float CR_GROUND_SKY_SHARE = 0.4;   // ... ground_sky_share
 
 CmMieApproxParams cr_mie;  // set once per pixel in main()
-float cr_footprint = 0.0;  // the pixel's width at the current view sample (u_lod), read by cr_density
 vec2 cr_band;              // altitudes of the cloud type's band (no density outside), set in main()
 
 // Altitude of a camera-relative point, without |p - centre| - R's cancellation.
@@ -177,15 +168,12 @@ float cr_base_density(vec3 p, float altitude) {
     if (h <= 0.0 || h >= 1.0) return 0.0;
     vec3 q = vec3(p.x + u_wind.x, altitude, p.z + u_wind.y);
     if (u_shape == 1) {
-        vec3 w = textureLod(u_weather_wide, q.xz / u_weather_wide_tile,
-                            cm_texture_lod(cr_footprint, u_weather_wide_tile / float(textureSize(u_weather_wide, 0).x))).rgb;
-        vec4 b = textureLod(u_base, q / u_base_tile, cm_texture_lod(cr_footprint, u_base_tile / float(textureSize(u_base, 0).x)));
+        vec3 w = textureLod(u_weather_wide, q.xz / u_weather_wide_tile, 0.0).rgb;
+        vec4 b = textureLod(u_base, q / u_base_tile, 0.0);
         return cm_cloud_shape_density(b, w, h, u_coverage, u_cloud_type, u_type_spread, u_top_rounding);
     }
-    float weather_lod = cm_texture_lod(cr_footprint, u_weather_tile / float(textureSize(u_weather, 0).x));
-    float base_lod = cm_texture_lod(cr_footprint, u_base_tile / float(textureSize(u_base, 0).x));
-    float coverage = cm_saturate(textureLod(u_weather, q.xz / u_weather_tile, weather_lod).r - 0.5 + u_coverage);
-    vec4 base = textureLod(u_base, q / u_base_tile, base_lod);
+    float coverage = cm_saturate(textureLod(u_weather, q.xz / u_weather_tile, 0.0).r - 0.5 + u_coverage);
+    vec4 base = textureLod(u_base, q / u_base_tile, 0.0);
     float shaped = cm_nubis_base_cloud(base) * cm_height_gradient_for_type(h, u_cloud_type);
     return cm_apply_coverage(shaped, coverage);
 }
@@ -196,35 +184,21 @@ float cr_detail_density(vec3 p, float altitude, float covered) {
     if (covered <= 0.0) return 0.0;
     float h = cm_height_fraction(altitude, u_layer_bottom, u_layer_top);
     vec3 q = vec3(p.x + u_wind.x, altitude, p.z + u_wind.y);
-    float detail_lod = cm_texture_lod(cr_footprint, u_detail_tile / float(textureSize(u_detail, 0).x));
     if (u_shape == 1) {
         // Curl noise displaces the detail, most at the cloud's base (wispy bases, billowy tops).
         vec3 curl = (2.0 * textureLod(u_curl, q.xz / u_curl_tile, 0.0).rgb - 1.0) * 4.0;  // curl_bake_decode
         q += curl * (u_curl_strength * (1.0 - h));
-        vec3 d = textureLod(u_detail, q / u_detail_tile, detail_lod).rgb;
+        vec3 d = textureLod(u_detail, q / u_detail_tile, 0.0).rgb;
         return cm_saturate(cm_erode(covered, cm_nubis_detail_erosion(d, h)) * u_density_scale);
     }
-    vec3 detail = textureLod(u_detail, q / u_detail_tile, detail_lod).rgb;
+    vec3 detail = textureLod(u_detail, q / u_detail_tile, 0.0).rgb;
     return cm_erode(covered, cm_nubis_detail_erosion(detail, h));
 }
 
 // Nubis density at p (what cm_nubis_density computes in one call), base then detail.
 float cr_density(vec3 p, float altitude) { return cr_detail_density(p, altitude, cr_base_density(p, altitude)); }
 
-// The base shape alone, scaled and saturated like cr_density: a cheap upper bound of it.
-float cr_coarse_density(vec3 p, float altitude) {
-    float covered = cr_base_density(p, altitude);
-    return u_shape == 1 ? cm_saturate(covered * u_density_scale) : covered;
-}
-
-// The first light sample index read on the base shape alone (u_far_base): the cone's far
-// sample or the march's fourth step, set by cr_light_optical_depth.
-int cr_far_index = 1 << 30;
-
-float cr_cone_extinction(vec3 p, int i) {
-    if (u_far_base != 0 && i >= cr_far_index) return u_extinction * cr_coarse_density(p, cr_altitude(p));
-    return u_extinction * cr_density(p, cr_altitude(p));
-}
+float cr_cone_extinction(vec3 p, int i) { return u_extinction * cr_density(p, cr_altitude(p)); }
 
 // The phase model with eccentricities scaled by `scale` (c^i of octave i).
 float cr_phase(float mu, float scale) {
@@ -249,10 +223,10 @@ vec3 cr_shadow_lookup(vec2 uv) {
     return texel;
 }
 
-// Distance of fraction u of a light march of `length`: quadratic or uniform steps.
-float cr_light_distance(float u, float length) { return u_light_quadratic != 0 ? cm_light_march_distance(u, length) : u * length; }
+// Distance of fraction u of a light march of `length`: quadratic steps, short near the sample.
+float cr_light_distance(float u, float length) { return cm_light_march_distance(u, length); }
 
-// The last cr_light_optical_depth's depth without the far field (u_long_reach 2 and 3): the
+// The last cr_light_optical_depth's depth without the far field (u_reach 0): the
 // physical sky's occluded sky light reads it (cr_sky_depth_toward_sun).
 float cr_light_near_tau = 0.0;
 
@@ -260,8 +234,8 @@ bool cr_on_map(vec3 uvd) { return uvd.x >= 0.0 && uvd.x <= 1.0 && uvd.y >= 0.0 &
 
 // Optical depth from p along the unit vector `toward` (the sun, or away from it for the
 // diffusion model's tau_behind) by the cone (mode 0), a march (mode 1) to where the cloud
-// type's altitude band ends (no density beyond it; steps uniform or quadratic, sampled at
-// light_offset within each), or the shadow map (mode 2: toward the sun its optical depth at
+// type's altitude band ends (no density beyond it; quadratic steps, sampled at light_offset
+// within each), or the shadow map (mode 2: toward the sun its optical depth at
 // p's depth, away from it the rest of the column; off the map the cone). It sets
 // cr_light_near_tau.
 float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode, float light_offset) {
@@ -276,16 +250,14 @@ float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode, floa
         mode = 0;
     }
     if (mode == 0) {
-        CmConeLightConfig cone = CmConeLightConfig(u_cone_samples, u_cone_step, u_cone_spread,
+        CmConeLightConfig cone = CmConeLightConfig(CR_CONE_SAMPLES, u_cone_step, u_cone_spread,
                                                    u_cone_far_distance, u_cone_far_length);
-        cr_far_index = u_cone_samples - 1;
         cr_light_near_tau = cm_cone_optical_depth(p, toward, cone);
         return cr_light_near_tau;
     }
     // March: midpoint steps up to where the ray leaves the cloud type's band.
-    cr_far_index = CR_LIGHT_FAR_STEP;
     vec2 seg = cm_cloud_layer_segment(altitude, dot(toward, cr_up(p)), u_planet_radius, cr_band.x, cr_band.y);
-    float reach = u_long_reach == 1 ? CR_LIGHT_LONG_REACH : u_light_march_max;
+    float reach = u_reach == 1 ? CR_LIGHT_LONG_REACH : u_light_march_max;
     float length_to_exit = seg.y > seg.x ? min(seg.y, reach) : 0.0;
     float n = float(u_light_steps);
     float tau = 0.0;
@@ -294,22 +266,15 @@ float cr_light_optical_depth(vec3 p, float altitude, vec3 toward, int mode, floa
         tau += cr_cone_extinction(p + toward * cr_light_distance((float(i) + light_offset) / n, length_to_exit), i) * ds;
     }
     cr_light_near_tau = tau;
-    // The far field by steps (u_long_reach 3): toward the sun, the rest of the band beyond the
+    // The far field by steps (u_reach 0): toward the sun, the rest of the band beyond the
     // capped march, uniform steps on the full density.
-    if (u_long_reach == 3 && seg.y > length_to_exit && dot(toward, u_sun_dir) > 0.0) {
+    if (u_reach == 0 && seg.y > length_to_exit && dot(toward, u_sun_dir) > 0.0) {
         int nf = cr_far_steps(u_light_steps);
         float span = (min(seg.y, CR_LIGHT_LONG_REACH) - length_to_exit) / float(nf);
         for (int j = 0; j < nf; ++j) {
             vec3 q = p + toward * (length_to_exit + (float(j) + light_offset) * span);
             tau += u_extinction * cr_density(q, cr_altitude(q)) * span;
         }
-    }
-    // The far field (u_long_reach 2): toward the sun, what lies beyond the capped march, from
-    // the map (its optical depth from the map's plane down to where the march ended).
-    if (u_long_reach == 2 && seg.y > length_to_exit && dot(toward, u_sun_dir) > 0.0) {
-        vec3 uvd = cm_shadow_map_project(p + toward * length_to_exit, u_shadow_origin, u_shadow_right, u_shadow_up,
-                                         u_sun_dir, u_shadow_half_extent);
-        if (cr_on_map(uvd)) tau += cm_beer_shadow_optical_depth(cr_shadow_lookup(uvd.xy), uvd.z);
     }
     return tau;
 }
@@ -489,9 +454,8 @@ void cr_light_samples(inout vec3 luminance, int count, vec3 dir, float mu, uint 
     for (int k = 0; k < count; ++k) {
         CrLitSample q = cr_lit[k];
         float alts = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, q.t);
-        cr_footprint = u_lod != 0 ? cm_pixel_footprint(q.t, u_tan_half_fov, u_resolution.y) : 0.0;
         // The light march's offset: new for each light estimate and frame.
-        float lo = u_jitter != 0 && u_light_jitter != 0 ? cm_sample_jitter(pixel_hash, u_frame, light_index++) : 0.5;
+        float lo = cm_sample_jitter(pixel_hash, u_frame, light_index++);
         float tau_light = cr_light_optical_depth(dir * q.t, alts, u_sun_dir, u_light_mode, lo);
         float tau_sky = cr_sky_depth_toward_sun(tau_light, cr_light_near_tau);
         float tau_behind = u_lighting != 0 ? cr_light_optical_depth(dir * q.t, alts, -u_sun_dir, u_behind_mode, lo) : 0.0;
@@ -527,14 +491,12 @@ void main() {
     // for it, computed here so that hosts without u_band, the web demo, need not).
     cr_band = u_shape == 1 ? u_band : cm_height_range_for_type(u_cloud_type) * (u_layer_top - u_layer_bottom) + u_layer_bottom;
     if (u_pass == 2) {
-        cr_footprint = u_lod != 0 ? 2.0 * u_shadow_half_extent / float(CR_SHADOW_MAP_SIZE) : 0.0;
         out_color = vec4(cr_shadow_texel(floor(gl_FragCoord.xy)), 0.0);
         out_depth = 0.0;
         return;
     }
 #ifdef CR_PHYSICAL_SKY
     if (u_pass == 4) {
-        cr_footprint = 0.0;  // the full field, as far_shadow.cpp's density
         out_color = vec4(cr_far_shadow_texel(ivec2(gl_FragCoord.xy)), 0.0, 0.0, 0.0);
         out_depth = 0.0;
         return;
@@ -562,55 +524,34 @@ void main() {
     if (seg.y > seg.x) {
         float t1 = seg.y;
         uint pixel_hash = cr_pixel_hash(pixel);
-        float offset = u_jitter != 0 ? cm_frame_jitter(pixel_hash, u_frame) : 0.5;
+        float offset = cm_frame_jitter(pixel_hash, u_frame);
         float mu = dot(dir, u_sun_dir);
         float n = float(u_view_steps);
         float tau_view = 0.0;  // optical depth from the camera to the start of the step
         float depth_sum = 0.0;      // sum of each step's opacity times its distance
-        float step_begin = seg.x;   // = cr_march_distance(0), for both schedules
+        float step_begin = seg.x;   // = cr_march_distance(0)
         float step_end = seg.x;     // the end of view step i, once its sample is taken
-        int empty_steps = CR_SKIP_BLOCK;  // empty-space skipping starts by probing
-        float last_empty = -1.0;    // the last view sample (or skipped block's end) with no cloud
+        bool after_empty = true;    // no cloud since the last empty sample (or the start)
+        float last_empty = -1.0;    // the last view sample with no cloud
         uint light_index = 0u;      // light estimates so far (their jitter's index)
-        // The march is one flat loop with one density sample per turn: view step i's sample,
-        // a probe of the next block (u_skip), or sub-step m of the refined step i (u_refine:
-        // a step thicker than optical depth 1 is marched again in `sub` sub-steps of length
-        // sub_ds from sub_from, the last empty sample when it is the first step in cloud; its
-        // own sample then only told that it has cloud). No loop is nested in it.
+        // The march is one flat loop with one density sample per turn: view step i's sample
+        // or sub-step m of the refined step i (u_refine: a step thicker than optical depth 1 is
+        // marched again in `sub` sub-steps of length sub_ds from sub_from, the last empty sample
+        // when it is the first step in cloud; its own sample then only told that it has cloud).
+        // No loop is nested in it.
         int i = 0, m = 0, sub = 0;
         float sub_from = 0.0, sub_ds = 0.0;
         bool opaque = false;
-        bool resumed = false;  // the last probe found cloud: the steps before it were empty
         for (;;) {
             // March, recording the samples in cloud, until the buffer is full, the ray has
             // left the band or the cloud is opaque; then light them; go on if the buffer was full.
             int count = 0;
             while (!opaque && count < CR_LIT_SAMPLES && (m < sub || i < u_view_steps)) {
                 bool refining = m < sub;
-                bool probe = !refining && u_skip != 0 && empty_steps >= CR_SKIP_BLOCK;
-                int j = min(i + CR_SKIP_BLOCK, u_view_steps);  // the probed block's end
-                float t = refining ? sub_from + (float(m) + offset) * sub_ds
-                        : probe    ? cr_march_distance(float(j) / n, seg.x, t1)
-                                   : cr_march_distance((float(i) + offset) / n, seg.x, t1);
+                float t = refining ? sub_from + (float(m) + offset) * sub_ds : cr_march_distance((float(i) + offset) / n, seg.x, t1);
                 float altitude = cm_altitude_along_ray(u_cam_altitude, dir.y, u_planet_radius, t);
-                cr_footprint = u_lod != 0 ? cm_pixel_footprint(t, u_tan_half_fov, u_resolution.y) : 0.0;
-                // The probe reads the base shape alone at the block's end: a cloud that begins
-                // inside the block and reaches past it is found, its front marched in full steps
-                // (a probe inside the block skipped the fronts that lay before it).
-                float covered = cr_base_density(dir * t, altitude);
-                float density = probe ? covered : cr_detail_density(dir * t, altitude, covered);
+                float density = cr_density(dir * t, altitude);
                 float ds;
-                if (probe) {
-                    if (density <= 0.0) {  // empty: step over the block
-                        step_begin = cr_march_distance(float(j) / n, seg.x, t1);
-                        last_empty = step_begin;
-                        i = j;
-                    } else {  // cloud: march the block, refining from the last empty sample
-                        empty_steps = 0;
-                        resumed = true;
-                    }
-                    continue;
-                }
                 if (refining) {
                     ds = sub_ds;
                     if (++m == sub) {
@@ -623,14 +564,13 @@ void main() {
                     if (density <= 0.0) {
                         last_empty = t;
                         step_begin = step_end;
-                        ++empty_steps;
+                        after_empty = true;
                         ++i;
                         continue;
                     }
-                    float r0 = (empty_steps > 0 || resumed) && last_empty >= 0.0 ? last_empty : step_begin;
-                    resumed = false;
+                    float r0 = after_empty && last_empty >= 0.0 ? last_empty : step_begin;
                     int n_sub = cm_refine_substeps(u_extinction * density * (step_end - r0), u_refine);
-                    empty_steps = 0;
+                    after_empty = false;
                     if (n_sub > 1) {  // march the step again in sub-steps, from the next turn
                         sub = n_sub;
                         m = 0;

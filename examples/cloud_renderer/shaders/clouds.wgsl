@@ -42,21 +42,14 @@ override u_octaves: i32;
 override u_powder: i32;
 override u_light_mode: i32;
 override u_behind_mode: i32;
-override u_cone_samples: i32;
 override u_light_steps: i32;
-override u_light_quadratic: i32;
-override u_light_jitter: i32;
 override u_refine: i32;
 override u_integration: i32;
 override u_view_steps: i32;
 override u_schedule: i32;
-override u_skip: i32;
 override u_shadows: i32;
 override u_occluded_ambient: i32;
-override u_lod: i32;
-override u_far_base: i32;
-override u_long_reach: i32;
-override u_jitter: i32;
+override u_reach: i32;
 override u_sun_disc: i32;
 override u_haze: i32;
 override u_dither: i32;
@@ -151,8 +144,7 @@ fn cr_far_shadow(p: vec3f, altitude: f32) -> f32 {
 
 fn cr_sky_depth_toward_sun(whole: f32, near: f32) -> f32 { return select(whole, near, u_physical_sky != 0); }
 
-const CR_SKIP_BLOCK = 4;
-const CR_LIGHT_FAR_STEP = 3;
+const CR_CONE_SAMPLES = 6;
 const CR_LIGHT_LONG_REACH = 30000.0;
 fn cr_far_steps(light_steps: i32) -> i32 { return select(2 * light_steps, 1, light_steps < 2); }
 const CR_SHADOW_MAP_SIZE = 128;
@@ -160,7 +152,6 @@ const CR_SHADOW_MAP_STEPS = 24;
 const CR_GROUND_SKY_SHARE = 0.4;
 
 var<private> cr_mie: CmMieApproxParams;
-var<private> cr_footprint: f32 = 0.0;
 var<private> cr_band: vec2f;
 
 fn cr_altitude(p: vec3f) -> f32 { return cm_point_altitude(p, U.u_cam_altitude, U.u_planet_radius); }
@@ -170,15 +161,12 @@ fn cr_base_density(p: vec3f, altitude: f32) -> f32 {
     if (h <= 0.0 || h >= 1.0) { return 0.0; }
     let q = vec3f(p.x + U.u_wind.x, altitude, p.z + U.u_wind.y);
     if (u_shape == 1) {
-        let w = textureSampleLevel(u_weather_wide, u_weather_wide_sampler, q.xz / U.u_weather_wide_tile,
-                                   cm_texture_lod(cr_footprint, U.u_weather_wide_tile / f32(textureDimensions(u_weather_wide).x))).rgb;
-        let b = textureSampleLevel(u_base, u_base_sampler, q / U.u_base_tile, cm_texture_lod(cr_footprint, U.u_base_tile / f32(textureDimensions(u_base).x)));
+        let w = textureSampleLevel(u_weather_wide, u_weather_wide_sampler, q.xz / U.u_weather_wide_tile, 0.0).rgb;
+        let b = textureSampleLevel(u_base, u_base_sampler, q / U.u_base_tile, 0.0);
         return cm_cloud_shape_density(b, w, h, U.u_coverage, U.u_cloud_type, U.u_type_spread, U.u_top_rounding);
     }
-    let weather_lod = cm_texture_lod(cr_footprint, U.u_weather_tile / f32(textureDimensions(u_weather).x));
-    let base_lod = cm_texture_lod(cr_footprint, U.u_base_tile / f32(textureDimensions(u_base).x));
-    let coverage = cm_saturate(textureSampleLevel(u_weather, u_weather_sampler, q.xz / U.u_weather_tile, weather_lod).r - 0.5 + U.u_coverage);
-    let base = textureSampleLevel(u_base, u_base_sampler, q / U.u_base_tile, base_lod);
+    let coverage = cm_saturate(textureSampleLevel(u_weather, u_weather_sampler, q.xz / U.u_weather_tile, 0.0).r - 0.5 + U.u_coverage);
+    let base = textureSampleLevel(u_base, u_base_sampler, q / U.u_base_tile, 0.0);
     let shaped = cm_nubis_base_cloud(base) * cm_height_gradient_for_type(h, U.u_cloud_type);
     return cm_apply_coverage(shaped, coverage);
 }
@@ -187,30 +175,19 @@ fn cr_detail_density(p: vec3f, altitude: f32, covered: f32) -> f32 {
     if (covered <= 0.0) { return 0.0; }
     let h = cm_height_fraction(altitude, U.u_layer_bottom, U.u_layer_top);
     var q = vec3f(p.x + U.u_wind.x, altitude, p.z + U.u_wind.y);
-    let detail_lod = cm_texture_lod(cr_footprint, U.u_detail_tile / f32(textureDimensions(u_detail).x));
     if (u_shape == 1) {
         let curl = (2.0 * textureSampleLevel(u_curl, u_curl_sampler, q.xz / U.u_curl_tile, 0.0).rgb - 1.0) * 4.0;  // curl_bake_decode
         q += curl * (U.u_curl_strength * (1.0 - h));
-        let d = textureSampleLevel(u_detail, u_detail_sampler, q / U.u_detail_tile, detail_lod).rgb;
+        let d = textureSampleLevel(u_detail, u_detail_sampler, q / U.u_detail_tile, 0.0).rgb;
         return cm_saturate(cm_erode(covered, cm_nubis_detail_erosion(d, h)) * U.u_density_scale);
     }
-    let detail = textureSampleLevel(u_detail, u_detail_sampler, q / U.u_detail_tile, detail_lod).rgb;
+    let detail = textureSampleLevel(u_detail, u_detail_sampler, q / U.u_detail_tile, 0.0).rgb;
     return cm_erode(covered, cm_nubis_detail_erosion(detail, h));
 }
 
 fn cr_density(p: vec3f, altitude: f32) -> f32 { return cr_detail_density(p, altitude, cr_base_density(p, altitude)); }
 
-fn cr_coarse_density(p: vec3f, altitude: f32) -> f32 {
-    let covered = cr_base_density(p, altitude);
-    return select(covered, cm_saturate(covered * U.u_density_scale), u_shape == 1);
-}
-
-var<private> cr_far_index: i32 = 1 << 30;
-
-fn cr_cone_extinction(p: vec3f, i: i32) -> f32 {
-    if (u_far_base != 0 && i >= cr_far_index) { return U.u_extinction * cr_coarse_density(p, cr_altitude(p)); }
-    return U.u_extinction * cr_density(p, cr_altitude(p));
-}
+fn cr_cone_extinction(p: vec3f, i: i32) -> f32 { return U.u_extinction * cr_density(p, cr_altitude(p)); }
 
 fn cr_phase(mu: f32, scale: f32) -> f32 {
     if (u_phase_model == 0) { return cm_phase_hg(mu, scale * U.u_phase_g); }
@@ -234,7 +211,7 @@ fn cr_shadow_lookup(uv: vec2f) -> vec3f {
     return texel;
 }
 
-fn cr_light_distance(u: f32, length: f32) -> f32 { return select(u * length, cm_light_march_distance(u, length), u_light_quadratic != 0); }
+fn cr_light_distance(u: f32, length: f32) -> f32 { return cm_light_march_distance(u, length); }
 
 fn cr_on_map(uvd: vec3f) -> bool { return uvd.x >= 0.0 && uvd.x <= 1.0 && uvd.y >= 0.0 && uvd.y <= 1.0; }
 
@@ -253,15 +230,13 @@ fn cr_light_optical_depth(p: vec3f, altitude: f32, toward: vec3f, mode_in: i32, 
         mode = 0;
     }
     if (mode == 0) {
-        let cone = CmConeLightConfig(u_cone_samples, U.u_cone_step, U.u_cone_spread,
+        let cone = CmConeLightConfig(CR_CONE_SAMPLES, U.u_cone_step, U.u_cone_spread,
                                      U.u_cone_far_distance, U.u_cone_far_length);
-        cr_far_index = u_cone_samples - 1;
         cr_light_near_tau = cm_cone_optical_depth(p, toward, cone);
         return cr_light_near_tau;
     }
-    cr_far_index = CR_LIGHT_FAR_STEP;
     let seg = cm_cloud_layer_segment(altitude, dot(toward, cr_up(p)), U.u_planet_radius, cr_band.x, cr_band.y);
-    let reach = select(U.u_light_march_max, CR_LIGHT_LONG_REACH, u_long_reach == 1);
+    let reach = select(U.u_light_march_max, CR_LIGHT_LONG_REACH, u_reach == 1);
     let length_to_exit = select(0.0, min(seg.y, reach), seg.y > seg.x);
     let n = f32(u_light_steps);
     var tau = 0.0;
@@ -270,18 +245,13 @@ fn cr_light_optical_depth(p: vec3f, altitude: f32, toward: vec3f, mode_in: i32, 
         tau += cr_cone_extinction(p + toward * cr_light_distance((f32(i) + light_offset) / n, length_to_exit), i) * ds;
     }
     cr_light_near_tau = tau;
-    if (u_long_reach == 3 && seg.y > length_to_exit && dot(toward, U.u_sun_dir) > 0.0) {
+    if (u_reach == 0 && seg.y > length_to_exit && dot(toward, U.u_sun_dir) > 0.0) {
         let nf = cr_far_steps(u_light_steps);
         let span = (min(seg.y, CR_LIGHT_LONG_REACH) - length_to_exit) / f32(nf);
         for (var j = 0; j < nf; j++) {
             let q = p + toward * (length_to_exit + (f32(j) + light_offset) * span);
             tau += U.u_extinction * cr_density(q, cr_altitude(q)) * span;
         }
-    }
-    if (u_long_reach == 2 && seg.y > length_to_exit && dot(toward, U.u_sun_dir) > 0.0) {
-        let uvd = cm_shadow_map_project(p + toward * length_to_exit, U.u_shadow_origin, U.u_shadow_right, U.u_shadow_up,
-                                        U.u_sun_dir, U.u_shadow_half_extent);
-        if (cr_on_map(uvd)) { tau += cm_beer_shadow_optical_depth(cr_shadow_lookup(uvd.xy), uvd.z); }
     }
     return tau;
 }
@@ -393,12 +363,8 @@ fn cr_light_samples(luminance: ptr<function, vec3f>, count: i32, dir: vec3f, mu:
     for (var k = 0; k < count; k++) {
         let q = cr_lit[k];
         let alts = cm_altitude_along_ray(U.u_cam_altitude, dir.y, U.u_planet_radius, q.t);
-        cr_footprint = select(0.0, cm_pixel_footprint(q.t, U.u_tan_half_fov, U.u_resolution.y), u_lod != 0);
-        var lo = 0.5;
-        if (u_jitter != 0 && u_light_jitter != 0) {
-            lo = cm_sample_jitter(pixel_hash, U.u_frame, *light_index);
-            *light_index += 1u;
-        }
+        let lo = cm_sample_jitter(pixel_hash, U.u_frame, *light_index);
+        *light_index += 1u;
         let tau_light = cr_light_optical_depth(dir * q.t, alts, U.u_sun_dir, u_light_mode, lo);
         let tau_sky = cr_sky_depth_toward_sun(tau_light, cr_light_near_tau);
         var tau_behind = 0.0;
@@ -439,7 +405,6 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
     let dir = normalize(U.u_forward + U.u_right * (ndc.x * aspect * U.u_tan_half_fov) + U.u_up * (ndc.y * U.u_tan_half_fov));
     cr_band = select(cm_height_range_for_type(U.u_cloud_type) * (U.u_layer_top - U.u_layer_bottom) + U.u_layer_bottom, U.u_band, u_shape == 1);
     if (u_pass == 2) {
-        cr_footprint = select(0.0, 2.0 * U.u_shadow_half_extent / f32(CR_SHADOW_MAP_SIZE), u_lod != 0);
         out.out_color = vec4f(cr_shadow_texel(floor(frag_coord)), 0.0);
         out.out_depth = 0.0;
         return out;
@@ -460,14 +425,14 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
     if (seg.y > seg.x) {
         let t1 = seg.y;
         let pixel_hash = cr_pixel_hash(pixel);
-        let offset = select(0.5, cm_frame_jitter(pixel_hash, U.u_frame), u_jitter != 0);
+        let offset = cm_frame_jitter(pixel_hash, U.u_frame);
         let mu = dot(dir, U.u_sun_dir);
         let n = f32(u_view_steps);
         var tau_view = 0.0;
         var depth_sum = 0.0;
         var step_begin = seg.x;
         var step_end = seg.x;
-        var empty_steps = CR_SKIP_BLOCK;
+        var after_empty = true;
         var last_empty = -1.0;
         var light_index = 0u;
         var i = 0;
@@ -476,38 +441,19 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
         var sub_from = 0.0;
         var sub_ds = 0.0;
         var opaque = false;
-        var resumed = false;
         loop {
             var count = 0;
             while (!opaque && count < CR_LIT_SAMPLES && (m < sub || i < u_view_steps)) {
                 let refining = m < sub;
-                let probe = !refining && u_skip != 0 && empty_steps >= CR_SKIP_BLOCK;
-                let j = min(i + CR_SKIP_BLOCK, u_view_steps);
                 var t: f32;
                 if (refining) {
                     t = sub_from + (f32(m) + offset) * sub_ds;
-                } else if (probe) {
-                    t = cr_march_distance(f32(j) / n, seg.x, t1);
                 } else {
                     t = cr_march_distance((f32(i) + offset) / n, seg.x, t1);
                 }
                 let altitude = cm_altitude_along_ray(U.u_cam_altitude, dir.y, U.u_planet_radius, t);
-                cr_footprint = select(0.0, cm_pixel_footprint(t, U.u_tan_half_fov, U.u_resolution.y), u_lod != 0);
-                let covered = cr_base_density(dir * t, altitude);
-                var density = covered;
-                if (!probe) { density = cr_detail_density(dir * t, altitude, covered); }
+                let density = cr_density(dir * t, altitude);
                 var ds: f32;
-                if (probe) {
-                    if (density <= 0.0) {
-                        step_begin = cr_march_distance(f32(j) / n, seg.x, t1);
-                        last_empty = step_begin;
-                        i = j;
-                    } else {
-                        empty_steps = 0;
-                        resumed = true;
-                    }
-                    continue;
-                }
                 if (refining) {
                     ds = sub_ds;
                     m++;
@@ -521,14 +467,13 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
                     if (density <= 0.0) {
                         last_empty = t;
                         step_begin = step_end;
-                        empty_steps++;
+                        after_empty = true;
                         i++;
                         continue;
                     }
-                    let r0 = select(step_begin, last_empty, (empty_steps > 0 || resumed) && last_empty >= 0.0);
-                    resumed = false;
+                    let r0 = select(step_begin, last_empty, after_empty && last_empty >= 0.0);
                     let n_sub = cm_refine_substeps(U.u_extinction * density * (step_end - r0), u_refine);
-                    empty_steps = 0;
+                    after_empty = false;
                     if (n_sub > 1) {
                         sub = n_sub;
                         m = 0;

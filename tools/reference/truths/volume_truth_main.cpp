@@ -142,7 +142,8 @@ cr::cloud_textures load_textures(const flags& f, bool quiet) {
 }
 
 // The preset with the density field `shape` (--shape: classic unless asked, the field the
-// stored docs/data/truth_*.csv.gz were traced over).
+// stored docs/data/truth_*.csv.gz were traced over), drawn as the truth is: no air between the
+// camera and the clouds, no sun disc, no cloud shadows on its ground (cloud_medium.cpp).
 cr::scene preset(const std::string& name, cr::cloud_shape shape = cr::cloud_shape::classic) {
     const cr::scene* s = cr::find_preset(name);
     if (s == nullptr) {
@@ -152,6 +153,9 @@ cr::scene preset(const std::string& name, cr::cloud_shape shape = cr::cloud_shap
     }
     cr::scene out = *s;
     out.shape = shape;
+    out.haze = false;
+    out.sun_disc = false;
+    out.shadows = false;
     return out;
 }
 
@@ -755,9 +759,6 @@ int run_report(int argc, char** argv) {
         cr::variant v;
         const std::string why = cr::apply_variant_spec(spec.substr(eq + 1), v);
         if (!why.empty()) throw usage_error("--variant " + spec + ": " + why);
-        v.haze = false;  // the truth has no air between the camera and the clouds,
-        v.sun = false;   // no sun disc (cloud_medium.cpp)
-        v.shadows = false;  // and no cloud shadows on its ground
         variants.emplace_back(spec.substr(0, eq), v);
     }
     const std::string data = f.get("--data", "docs/data"), docs = f.get("--docs", "docs");
@@ -855,9 +856,10 @@ int run_report(int argc, char** argv) {
           "also writes truth_PRESET_VARIANT.png for the others): truth | model | difference\n"
           "of the display images, 0.5 + 2 (model - truth) per channel (mid-grey: no difference,\n"
           "brighter: the model is too bright).\n\n";
-    md << "Variants (the renderer's `--variant` notation over the defaults; `sun=off,haze=off,shadows=off` in all of\n"
-          "them, as the truth has no sun disc (18,000 times the irradiance, it would dominate any metric where it\n"
-          "is in view), no air between the camera and the clouds and a constant ground):\n\n";
+    md << "Variants (the renderer's `--variant` notation over the defaults; the scene's sun disc, aerial perspective\n"
+          "and cloud shadows on the ground off in all of them (scene::sun_disc, haze, shadows), as the truth has no\n"
+          "sun disc (18,000 times the irradiance, it would dominate any metric where it is in view), no air between\n"
+          "the camera and the clouds and a constant ground):\n\n";
     for (const auto& v : variants) md << "- `" << v.first << "`: `" << cr::variant_spec(v.second) << "`\n";
     md << '\n';
 
@@ -1080,7 +1082,6 @@ int run_fit_clouds(int argc, char** argv) {
     const std::string why = cr::apply_variant_spec(spec, v);
     if (!why.empty()) throw usage_error("--variant: " + why);
     if (v.lighting != cr::lighting_model::diffusion) throw usage_error("--variant: fit-clouds fits the diffusion model (lighting=diffusion)");
-    v.haze = v.sun = v.shadows = false;  // as the report: the truth has none of them
     std::vector<double> ridges;
     for (const std::string& r : split_list(f.get("--ridge", "1e-4,3e-4,1e-3,3e-3,1e-2,3e-2,1e-1,1"))) {
         const std::optional<double> value = cloudmath::tools::parse_finite(r);
