@@ -1,8 +1,9 @@
 // web/build.mjs: generates the cloudmath-glsl package's dist/index.js and its TypeScript
 // declarations dist/index.d.ts from the GLSL twins in include/cloudmath/glsl/*.glsl and the
 // WGSL twins in include/cloudmath/wgsl/*.wgsl (for WebGPU), and
-// demo/clouds_frag.js from the example renderer's shader
-// (examples/cloud_renderer/shaders/clouds.frag), so the browser code is never a hand copy.
+// demo/clouds_frag.js and demo/sky_tables_frag.js from the example renderer's shaders
+// (examples/cloud_renderer/shaders/clouds.frag, sky_tables.frag), so the browser code is never
+// a hand copy.
 // (src/resolve.d.ts, the declarations of the hand-written src/resolve.js, is hand-written.)
 //
 //   node web/build.mjs           write the generated files
@@ -109,11 +110,15 @@ declarations += `\n/** Resolves #include lines of your shader against cloudmath'
 const clouds = readFileSync(join(root, 'examples', 'cloud_renderer', 'shaders', 'clouds.frag'), 'utf8');
 const demo = banner('examples/cloud_renderer/shaders/clouds.frag') +
   `export const cloudsFrag = ${JSON.stringify(clouds)};\n`;
+const skyTables = readFileSync(join(root, 'examples', 'cloud_renderer', 'shaders', 'sky_tables.frag'), 'utf8');
+const skyDemo = banner('examples/cloud_renderer/shaders/sky_tables.frag') +
+  `export const skyTablesFrag = ${JSON.stringify(skyTables)};\n`;
 
 const outputs = [
   [join(web, 'dist', 'index.js'), index],
   [join(web, 'dist', 'index.d.ts'), declarations],
   [join(web, 'demo', 'clouds_frag.js'), demo],
+  [join(web, 'demo', 'sky_tables_frag.js'), skyDemo],
 ];
 if (process.argv.includes('--check')) {
   let stale = 0;

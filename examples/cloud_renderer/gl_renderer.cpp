@@ -2,6 +2,7 @@
 
 #include "far_shadow.hpp"
 #include "physical_sky.hpp"
+#include "sky_tables_gl.hpp"
 
 #include "clouds_frag.hpp"
 
@@ -85,6 +86,8 @@ std::string fragment_shader_source(const variant& v, const scene& sc, clouds_pas
 
 std::string temporal_resolve_shader_source() { return "#version 410 core\n" + with_cloudmath(temporal_resolve_frag_text); }
 
+std::string sky_tables_shader_source() { return "#version 410 core\n" + with_cloudmath(sky_tables_frag_text); }
+
 // The GL entry points (tools/egl's table, loaded at run time: no loader library).
 using gl_api = cloudmath_egl::gl_functions;
 
@@ -96,10 +99,7 @@ struct gl_renderer::state {
     GLuint vao = 0, queries[2] = {0, 0};  // GL_TIMESTAMP before and after the draw
     GLuint textures[5] = {0, 0, 0, 0, 0};  // base, detail, weather, weather_wide, curl
     GLuint fbo = 0, target = 0;      // offscreen float target for render()
-    GLuint haze = 0;                 // the physical sky's aerial-perspective table (physical_sky.hpp)
-    const void* haze_uploaded = nullptr;  // the table `haze` holds
-    GLuint sky_view = 0;             // ... its sky-view table at the camera
-    const void* sky_view_uploaded = nullptr;  // the table `sky_view` holds
+    gpu_sky_tables sky;              // the physical sky's tables, drawn on the GPU (sky_tables_gl.hpp)
     // ... and its clouds' shadow beyond the light march (far_shadow.hpp): an RGBA32F n_alt x n_mu
     // target that clouds.frag's pass 4 draws (ensure_far_shadow), its framebuffer, a 1 x 1
     // stand-in bound while it is drawn, and what it was drawn for (empty: not yet).
@@ -165,11 +165,10 @@ struct gl_renderer::state {
         gl.DeleteTextures(5, textures);
         if (target) gl.DeleteTextures(1, &target);
         release_shadow(shadow);
-        if (haze) gl.DeleteTextures(1, &haze);
+        sky.release(gl);
         if (far_shadow) gl.DeleteTextures(1, &far_shadow);
         if (far_shadow_stand_in) gl.DeleteTextures(1, &far_shadow_stand_in);
         if (far_shadow_fbo) gl.DeleteFramebuffers(1, &far_shadow_fbo);
-        if (sky_view) gl.DeleteTextures(1, &sky_view);
         if (fbo) gl.DeleteFramebuffers(1, &fbo);
         if (vao) gl.DeleteVertexArrays(1, &vao);
         if (queries[0]) gl.DeleteQueries(2, queries);
@@ -287,15 +286,9 @@ bool gl_renderer::upload_textures(const cloud_textures& t, std::string& why) {
 
 namespace {
 
-// A float texture of the given format for a render target (nearest filtering: read with
-// texelFetch).
+// A float render target (sky_tables_gl.hpp's float_texture without texels).
 void make_target(const gl_api& gl, GLuint tex, GLenum internal_format, GLenum format, int width, int height) {
-    gl.BindTexture(GL_TEXTURE_2D, tex);
-    gl.TexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal_format), width, height, 0, format, GL_FLOAT, nullptr);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    float_texture(gl, tex, internal_format, format, width, height, nullptr);
 }
 
 // GL_LINEAR filtering for a make_target texture that a pass reads between texels (texture());
@@ -318,19 +311,16 @@ struct uniform_setter {
     void u2(const char* n, glm::uvec2 x) const { gl.Uniform2ui(loc(n), x.x, x.y); }
 };
 
-// Binds a float table of the physical sky (haze, far shadow, sky view) as texture `tex` on unit
-// `unit`, uploading it when `table` is not the one `uploaded` holds: nearest filtering, as
-// clouds.frag reads these with texelFetch and interpolates them as the CPU lookups do.
-void bind_float_table(const gl_api& gl, int unit, GLuint& tex, const void*& uploaded, const void* table, GLenum internal,
-                      GLenum format, int width, int height, const void* texels) {
-    gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
-    if (tex == 0) gl.GenTextures(1, &tex);
-    gl.BindTexture(GL_TEXTURE_2D, tex);
-    if (uploaded == table) return;
-    gl.TexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal), width, height, 0, format, GL_FLOAT, texels);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    uploaded = table;
+// The frame's constants: with the physical sky, from its tables drawn on the GPU (drawn first
+// when the sun or the geometry changed); false and `why` on a GL error.
+bool frame_for(gl_renderer::state& st, const scene& sc, frame_constants& k, std::string& why) {
+    if (sc.sky != sky_model::physical) {
+        k = make_frame_constants(sc);
+        return true;
+    }
+    if (!st.sky.update(st.gl, vertex_shader_source(), st.vao, sc, why)) return false;
+    k = make_frame_constants(sc, st.sky.inputs());
+    return true;
 }
 
 GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, int width, int height, clouds_pass pass,
@@ -343,7 +333,7 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, in
 // its own table (far_shadow()), which this one matches to test_cloud_renderer's bounds.
 bool ensure_far_shadow(gl_renderer::state& st, const scene& sc, const variant& v, std::string& why) {
     const gl_api& gl = st.gl;
-    const frame_constants k = make_frame_constants(sc);
+    const frame_constants k = geometry_constants(sc);
     const float reach = light_reach(v, k);
     std::vector<float> key = far_shadow_scene_key(sc, k.sun_dir, reach);
     key.push_back(st.textures_uploaded);
@@ -398,11 +388,13 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, in
     // The physical sky's far shadow, drawn on the GPU when what it depends on changes (pass 4
     // binds its own program through this function: it draws no far shadow itself).
     if (sc.sky == sky_model::physical && pass != clouds_pass::far_shadow && !ensure_far_shadow(st, sc, v, why)) return 0;
+    // First the frame's constants: drawing the sky tables binds their own program and target.
+    frame_constants k;
+    if (!frame_for(st, sc, k, why)) return 0;
     const GLuint program = st.program_for(v, sc, pass, why);
     if (program == 0) return 0;
     gl.UseProgram(program);
     const uniform_setter u{gl, program};
-    const frame_constants k = make_frame_constants(sc);
     u.v2("u_resolution", glm::vec2(float(width), float(height)));
     u.v3("u_forward", k.forward);
     u.v3("u_right", k.right);
@@ -477,10 +469,11 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, in
     u.f1("u_density_scale", sc.density_scale);
     u.v2("u_band", k.band);
     if (sc.sky == sky_model::physical) {
-        // The aerial-perspective table on unit 6, uploaded when it changes (RGB32F, no filtering:
+        // The aerial-perspective table on unit 6 (drawn on the GPU by frame_for; no filtering:
         // clouds.frag interpolates it as haze_lookup does).
-        const haze_table& t = physical_haze(sc.camera_altitude, k.sun_dir);
-        bind_float_table(gl, 6, st.haze, st.haze_uploaded, &t, GL_RGB32F, GL_RGB, t.n_d * t.n_az, t.n_el, t.texels.data());
+        const haze_table& t = st.sky.haze_layout();
+        gl.ActiveTexture(GL_TEXTURE6);
+        gl.BindTexture(GL_TEXTURE_2D, st.sky.haze_texture());
         u.i1("u_haze_table", 6);
         u.v3("u_haze_table_size", glm::vec3(float(t.n_d), float(t.n_az), float(t.n_el)));
         u.f1("u_haze_table_distance", t.max_distance);
@@ -497,8 +490,8 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, in
         // field's period (far_shadow.cpp's make_table).
         u.f1("u_far_shadow_reach", f.reach);
         u.f1("u_far_shadow_period", sc.shape == cloud_shape::classic ? sc.weather_tile : sc.weather_wide_tile);
-        const sky_view_table& sv = *k.sky_view;
-        bind_float_table(gl, 8, st.sky_view, st.sky_view_uploaded, &sv, GL_RGB32F, GL_RGB, sv.n_az, sv.n_el, sv.texels.data());
+        gl.ActiveTexture(GL_TEXTURE8);
+        gl.BindTexture(GL_TEXTURE_2D, st.sky.sky_view_texture());
         u.i1("u_sky_view", 8);
     }
     return program;
@@ -691,9 +684,11 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, int width, in
     const GLuint r = t.resolve_program;
     gl.UseProgram(r);
     const uniform_setter u{gl, r};
-    const frame_constants k = make_frame_constants(sc);
+    frame_constants k;
+    if (!frame_for(*s_, sc, k, why)) return false;
+    gl.UseProgram(r);
     const scene& prev = t.has_history ? t.previous : sc;
-    const frame_constants pk = make_frame_constants(prev);
+    const frame_constants pk = geometry_constants(prev);  // its camera
     u.v2("u_resolution", glm::vec2(float(width), float(height)));
     u.v3("u_forward", k.forward);
     u.v3("u_right", k.right);
@@ -805,7 +800,7 @@ bool gl_renderer::far_shadow_gpu(const scene& sc, const variant& v, std::vector<
     }
     state& st = *s_;
     if (!ensure_far_shadow(st, sc, v, why)) return false;
-    const far_shadow_table f = far_shadow_nodes(sc, light_reach(v, make_frame_constants(sc)));
+    const far_shadow_table f = far_shadow_nodes(sc, light_reach(v, geometry_constants(sc)));
     std::vector<float> rgba(static_cast<std::size_t>(f.n_alt * f.n_mu) * 4u);
     st.gl.BindFramebuffer(GL_FRAMEBUFFER, st.far_shadow_fbo);
     st.gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
@@ -816,6 +811,23 @@ bool gl_renderer::far_shadow_gpu(const scene& sc, const variant& v, std::vector<
     out.resize(static_cast<std::size_t>(f.n_alt * f.n_mu));
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = rgba[4 * i];
     return true;
+}
+
+bool gl_renderer::sky_tables_gpu(const scene& sc, gpu_sky_readback& out, std::string& why) {
+    if (sc.sky != sky_model::physical) {
+        why = "the sky tables are the physical sky's";
+        return false;
+    }
+    state& st = *s_;
+    if (!st.sky.update(st.gl, vertex_shader_source(), st.vao, sc, why)) return false;
+    const physical_sky_inputs in = st.sky.inputs();
+    out.sky_view = in.at_camera->texels;
+    out.sky_top = in.at_top->texels;
+    out.samples = in.samples;
+    out.band = st.sky.band();
+    out.build_ms = st.sky.last_build_ms();
+    out.builds = st.sky.builds();
+    return st.sky.read_haze(st.gl, out.haze, why);
 }
 
 bool gl_renderer::render(const scene& sc, const variant& v, int width, int height, image& out,

@@ -85,6 +85,20 @@ public:
     // False and `why` without the physical sky or on a GL error.
     bool far_shadow_gpu(const scene& s, const variant& v, std::vector<float>& out, std::string& why);
 
+    // The physical sky's tables as the frame reads them, drawn on the GPU (sky_tables.frag,
+    // sky_tables_gl.hpp) for the scene's sun and geometry: the sky-view tables at the camera and
+    // at the layer's top and the aerial-perspective table (physical_sky.hpp's layouts), the
+    // values row and its band, the last draw's host time and how many draws this renderer made; for a test
+    // against the CPU's tables. False and `why` without the physical sky or on a GL error.
+    struct gpu_sky_readback {
+        std::vector<glm::vec3> sky_view, sky_top, haze;
+        physical_sky_samples samples{};
+        glm::vec2 band{0.0f};
+        double build_ms = 0.0;
+        int builds = 0;
+    };
+    bool sky_tables_gpu(const scene& s, gpu_sky_readback& out, std::string& why);
+
     struct state;
 
 private:

@@ -4,12 +4,15 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace cloud_renderer {
 namespace {
 
 constexpr float pi = 3.14159265358979f;
+
+std::atomic<int> cpu_builds{0};  // cpu_sky_table_builds
 
 // The haze table's coordinates of a direction and distance (physical_sky.hpp), as clouds.frag's
 // cr_haze computes them.
@@ -35,6 +38,7 @@ glm::vec3 sun_at_azimuth_zero(const glm::vec3& sun_dir) {
 
 haze_table make_table(float camera_altitude, const glm::vec3& sun_dir) {
     const physical_air& a = earth_air();
+    ++cpu_builds;
     haze_table t;
     t.texels.resize(static_cast<std::size_t>(t.n_d * t.n_az * t.n_el));
     const glm::vec3 sun = sun_at_azimuth_zero(sun_dir);
@@ -56,6 +60,7 @@ haze_table make_table(float camera_altitude, const glm::vec3& sun_dir) {
 
 sky_view_table make_sky_view(float altitude, const glm::vec3& sun_dir) {
     const physical_air& a = earth_air();
+    ++cpu_builds;
     sky_view_table t;
     t.texels.resize(static_cast<std::size_t>(t.n_az * t.n_el));
     const glm::vec3 sun = sun_at_azimuth_zero(sun_dir);
@@ -67,6 +72,8 @@ sky_view_table make_sky_view(float altitude, const glm::vec3& sun_dir) {
 }
 
 }  // namespace
+
+int cpu_sky_table_builds() { return cpu_builds.load(); }
 
 glm::vec2 sky_coordinates(const glm::vec3& dir, const glm::vec3& sun_dir) {
     const float mu = std::clamp(dir.y, -1.0f, 1.0f);

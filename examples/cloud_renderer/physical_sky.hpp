@@ -11,6 +11,9 @@
 // sun_lux x atmosphere_inscatter's radiance (cd/m^2). Stored as a width n_d n_az by height n_el
 // image (x = d + n_d az, y = el) that clouds.frag reads with texelFetch and interpolates
 // exactly as haze_lookup does.
+//
+// These are the CPU renderer's tables, made on the CPU. The GL renderer draws the same nodes on
+// the GPU with shaders/sky_tables.frag (sky_tables_gl.hpp), within 2.5e-6 relative of these.
 #ifndef CLOUD_RENDERER_PHYSICAL_SKY_HPP
 #define CLOUD_RENDERER_PHYSICAL_SKY_HPP
 
@@ -82,6 +85,9 @@ struct sky_view_table {
 // The table at `altitude` for a sun in direction sun_dir (camera frame, +y up); made once per
 // pair and kept (made_once; about 0.1 s each).
 const sky_view_table& physical_sky_view(float altitude, const glm::vec3& sun_dir);
+// How many sky-view and aerial-perspective tables this process has made on the CPU (a test's
+// proof that the GL renderer builds its own on the GPU).
+int cpu_sky_table_builds();
 // The sky's radiance (cd/m^2) in the unit direction dir, bilinear between the 4 nearest nodes.
 glm::vec3 sky_view_lookup(const sky_view_table& t, const glm::vec3& dir, const glm::vec3& sun_dir);
 

@@ -149,54 +149,63 @@ void artistic_sky(const scene& s, frame_constants& f) {
     f.aureole = 0.05f;
 }
 
-// The physical sky (scene.hpp's sky_model::physical), from cloudmath's atmosphere: two sky-view
-// tables (physical_sky_view, kept) and 9 sky marches, so physical_sky keeps it per sun and geometry.
-void compute_physical_sky(const scene& s, frame_constants& f) {
+// The physical sky's samples (scene.hpp's physical_sky_samples) on the CPU: 12 sun and 9 sky
+// marches, the rays of sky_tables.frag's values row.
+physical_sky_samples cpu_sky_samples(const scene& s, const glm::vec3& sun_dir, glm::vec2 band) {
     const physical_air& a = earth_air();
-    const float band_middle = 0.5f * (f.band.x + f.band.y);
     const float camera = std::fmax(s.camera_altitude, 0.0f);
-    const auto sky = [&](float altitude, glm::vec3 dir) {
-        return sun_lux * cloudmath::atmosphere_sky_radiance(a.air, a.ms, altitude, dir, f.sun_dir);
-    };
-    // The sun: its illuminance at the band's middle (the drawn disc), and on the
-    // clouds by height in the layer.
-    f.sun_radiance = cloudmath::atmosphere_sun_illuminance(a.air, band_middle, f.sun_dir.y, glm::vec3(sun_lux));
-    for (int i = 0; i < sun_heights; ++i) {
-        const float altitude = s.layer_bottom + (s.layer_top - s.layer_bottom) * float(i) / float(sun_heights - 1);
-        f.sun_by_height[i] = cloudmath::atmosphere_sun_illuminance(a.air, altitude, f.sun_dir.y, glm::vec3(sun_lux));
-    }
-    // The sky gradient: the zenith, and the horizon (2 degrees up) averaged over 8 azimuths.
-    f.sky_zenith = sky(camera, glm::vec3(0.0f, 1.0f, 0.0f));
-    glm::vec3 horizon(0.0f);
+    const auto sky = [&](glm::vec3 dir) { return sun_lux * cloudmath::atmosphere_sky_radiance(a.air, a.ms, camera, dir, sun_dir); };
+    const auto sun = [&](float altitude) { return cloudmath::atmosphere_sun_illuminance(a.air, altitude, sun_dir.y, glm::vec3(sun_lux)); };
+    physical_sky_samples p{};
+    for (int i = 0; i < sun_heights; ++i)
+        p.sun_by_height[i] = sun(s.layer_bottom + (s.layer_top - s.layer_bottom) * float(i) / float(sun_heights - 1));
+    p.sun_band_middle = sun(0.5f * (band.x + band.y));
+    p.sun_camera = sun(camera);
+    p.zenith = sky(glm::vec3(0.0f, 1.0f, 0.0f));
     for (int i = 0; i < 8; ++i) {
         const float az = float(i) * 45.0f * degrees;
-        horizon += sky(camera, glm::vec3(std::cos(az) * std::cos(2.0f * degrees), std::sin(2.0f * degrees),
-                                         std::sin(az) * std::cos(2.0f * degrees)));
+        p.horizon += sky(glm::vec3(std::cos(az) * std::cos(2.0f * degrees), std::sin(2.0f * degrees),
+                                   std::sin(az) * std::cos(2.0f * degrees)));
     }
-    f.sky_horizon = horizon / 8.0f;
+    p.horizon /= 8.0f;
+    return p;
+}
+
+// The physical sky's fields of f from its samples and sky-view tables (make_frame_constants).
+void apply_physical_sky(frame_constants& f, const physical_sky_samples& p, const sky_view_table& at_camera,
+                        const sky_view_table& at_top) {
+    // The sun: its illuminance at the band's middle (the drawn disc), and on the clouds by
+    // height in the layer.
+    f.sun_radiance = p.sun_band_middle;
+    std::copy(std::begin(p.sun_by_height), std::end(p.sun_by_height), std::begin(f.sun_by_height));
+    // The sky gradient (the exposure's): the zenith, and the horizon (2 degrees up) averaged
+    // over 8 azimuths.
+    f.sky_zenith = p.zenith;
+    f.sky_horizon = p.horizon;
     // The background: the sky-view table at the camera (no gradient, no glow: the table has the
     // sky's own brightening toward the sun).
-    f.sky_view = &physical_sky_view(camera, f.sun_dir);
+    f.sky_view = &at_camera;
     f.aureole = 0.0f;
     // The sky's light on the clouds from above: the mean radiance of the upper hemisphere seen
     // from the layer's top (the table there: what the whole-cloud truth's paths meet when they
     // leave through the top); and the sky's irradiance on the ground at the camera.
-    const sky_hemisphere top = upper_hemisphere(physical_sky_view(s.layer_top, f.sun_dir), f.sun_dir);
-    const sky_hemisphere below = upper_hemisphere(*f.sky_view, f.sun_dir);
+    const sky_hemisphere top = upper_hemisphere(at_top, f.sun_dir);
+    const sky_hemisphere below = upper_hemisphere(at_camera, f.sun_dir);
     // The ground: Lambertian with the air's albedo, lit by the sun at the camera and the sky.
-    const glm::vec3 sun_ground = cloudmath::atmosphere_sun_illuminance(a.air, camera, f.sun_dir.y, glm::vec3(sun_lux));
-    f.ground = a.air.ground_albedo / 3.14159265f * (sun_ground * std::fmax(f.sun_dir.y, 0.0f) + below.irradiance);
+    f.ground = earth_air().air.ground_albedo / 3.14159265f * (p.sun_camera * std::fmax(f.sun_dir.y, 0.0f) + below.irradiance);
     f.ambient_top = top.mean_radiance;
     f.ambient_bottom = f.ground;
 }
 
-// compute_physical_sky's fields of f, made once per sun direction and scene geometry.
+// apply_physical_sky with the CPU's samples and tables, made once per sun direction and scene
+// geometry (the tables: physical_sky_view, kept).
 void physical_sky(const scene& s, frame_constants& f) {
     const frame_constants& sky = made_once<frame_constants>(
         {s.camera_altitude, s.sun_elevation, f.sun_dir.x, f.sun_dir.y, f.sun_dir.z, f.band.x, f.band.y, s.layer_bottom, s.layer_top},
         [&] {
             frame_constants g = f;
-            compute_physical_sky(s, g);
+            apply_physical_sky(g, cpu_sky_samples(s, f.sun_dir, f.band), physical_sky_view(std::fmax(s.camera_altitude, 0.0f), f.sun_dir),
+                               physical_sky_view(s.layer_top, f.sun_dir));
             return g;
         });
     f.sun_radiance = sky.sun_radiance;
@@ -210,27 +219,9 @@ void physical_sky(const scene& s, frame_constants& f) {
     f.ground = sky.ground;
 }
 
-}  // namespace
-
-float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
-float auto_ev100(const scene& s) { return make_frame_constants(s).ev100; }
-
-glm::vec3 sun_at_height(const frame_constants& k, bool physical, float h) {
-    if (!physical) return k.sun_radiance;
-    const float x = cloudmath::saturate(h) * float(sun_heights - 1);
-    const int i = cloudmath::detail::floor_to_int(x, 0, sun_heights - 2);  // a NaN height reads node 0
-    return glm::mix(k.sun_by_height[i], k.sun_by_height[i + 1], x - float(i));
-}
-
-float display_exposure(const scene& s) { return make_frame_constants(s).exposure; }
-
-float light_reach(const variant& v, const frame_constants& k) {
-    if (v.light == light_mode::cone) return k.cone_far_distance + 0.5f * k.cone_far_length;
-    return light_long_reach;
-}
-
-frame_constants make_frame_constants(const scene& s) {
+// make_frame_constants' body: the physical sky from `gpu` (its samples and tables made on the
+// GPU) or, when null, from the CPU's.
+frame_constants frame_constants_for(const scene& s, const physical_sky_inputs* gpu) {
     frame_constants f{};
     const float pitch = s.pitch > 89.0f ? 89.0f : (s.pitch < -89.0f ? -89.0f : s.pitch);
     f.forward = direction(s.yaw, pitch);
@@ -241,7 +232,10 @@ frame_constants make_frame_constants(const scene& s) {
 
     f.band = cloud_band(s);
     if (s.sky == sky_model::physical) {
-        physical_sky(s, f);
+        if (gpu)
+            apply_physical_sky(f, gpu->samples, *gpu->at_camera, *gpu->at_top);
+        else
+            physical_sky(s, f);
         // EV100: the scene's, or the one that exposes the sky's mean luminance to middle grey.
         f.ev100 = s.ev100 > -50.0f ? s.ev100
                                    : cloudmath::ev100_from_luminance(
@@ -292,6 +286,41 @@ frame_constants make_frame_constants(const scene& s) {
     f.shadow_half_extent = 24000.0f;
     return f;
 }
+
+}  // namespace
+
+float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+float auto_ev100(const scene& s) { return make_frame_constants(s).ev100; }
+
+glm::vec3 sun_at_height(const frame_constants& k, bool physical, float h) {
+    if (!physical) return k.sun_radiance;
+    const float x = cloudmath::saturate(h) * float(sun_heights - 1);
+    const int i = cloudmath::detail::floor_to_int(x, 0, sun_heights - 2);  // a NaN height reads node 0
+    return glm::mix(k.sun_by_height[i], k.sun_by_height[i + 1], x - float(i));
+}
+
+float display_exposure(const scene& s) { return make_frame_constants(s).exposure; }
+
+frame_constants make_frame_constants(const scene& s) { return frame_constants_for(s, nullptr); }
+
+frame_constants geometry_constants(const scene& s) {
+    scene no_sky = s;
+    no_sky.sky = sky_model::artistic;
+    return frame_constants_for(no_sky, nullptr);
+}
+
+frame_constants make_frame_constants(const scene& s, const physical_sky_inputs& gpu) { return frame_constants_for(s, &gpu); }
+
+physical_sky_samples physical_sky_samples_cpu(const scene& s) {
+    return cpu_sky_samples(s, direction(s.sun_azimuth, s.sun_elevation), cloud_band(s));
+}
+
+float light_reach(const variant& v, const frame_constants& k) {
+    if (v.light == light_mode::cone) return k.cone_far_distance + 0.5f * k.cone_far_length;
+    return light_long_reach;
+}
+
 
 glm::vec3 pixel_direction(const frame_constants& k, int x, int y, int width, int height) {
     const glm::vec2 ndc = glm::vec2(float(x) + 0.5f, float(y) + 0.5f) / glm::vec2(float(width), float(height)) * 2.0f - 1.0f;

@@ -235,7 +235,8 @@ const scene* find_preset(const std::string& name);
 
 // Derived values both renderers use, computed once on the CPU in float (so the GPU gets the
 // very same numbers as uniforms): the camera basis, the sun direction and colours, and the
-// light and phase parameters.
+// light and phase parameters. The physical sky's sun and sky light come from its tables: the
+// CPU's (make_frame_constants(s)) or the GPU's (make_frame_constants(s, physical_sky_inputs)).
 struct frame_constants {
     glm::vec3 forward, right, up;    // camera basis (camera frame as described above)
     float tan_half_fov;
@@ -250,9 +251,10 @@ struct frame_constants {
     // (at sunset the layer's bottom lies in the Earth's shadow while its top is lit); unused
     // with the artistic sky, whose clouds see sun_radiance everywhere.
     glm::vec3 sun_by_height[8];
-    // The physical sky's background: its sky-view table at the camera (physical_sky.hpp; kept for
-    // the process's life), which sky_radiance and clouds.frag's cr_background read in place of
-    // the gradient and glow; null with the artistic sky.
+    // The physical sky's background: its sky-view table at the camera (physical_sky.hpp; the
+    // CPU's, kept for the process's life, or physical_sky_inputs' at_camera), which
+    // sky_radiance and clouds.frag's cr_background read in place of the gradient and glow; null
+    // with the artistic sky.
     const sky_view_table* sky_view = nullptr;
     float exposure;                  // the tonemap's (display_exposure)
     float ev100;                     // the physical sky's EV100 (0 with the artistic sky)
@@ -271,7 +273,13 @@ struct frame_constants {
     float shadow_half_extent;
 };
 
+// The frame's constants, the physical sky's from the CPU (its sky marches and sky-view tables,
+// made once per sun and geometry and kept).
 frame_constants make_frame_constants(const scene& s);
+// The frame's constants that need no sky light: the camera, the sun's direction, the light
+// and phase parameters, the shadow map's frame (its sky and sun fields are the artistic
+// sky's): make_frame_constants with no physical sky's tables built.
+frame_constants geometry_constants(const scene& s);
 // Where variant v's light estimate toward the sun ends, metres along the sun's path (unless
 // the band ends first): the march's and the shadow map's light_long_reach, the cone's far
 // sample's end. The physical sky's far shadow (far_shadow.hpp) begins there.
@@ -281,6 +289,27 @@ inline constexpr int sun_heights = 8;
 // The sun on a cloud at height fraction h of the layer: sun_by_height interpolated with the
 // physical sky, sun_radiance with the artistic one (clouds.frag's cr_sun_at).
 glm::vec3 sun_at_height(const frame_constants& k, bool physical, float h);
+
+// What the physical sky gives a frame besides its tables, sampled from the atmosphere: the
+// rays of shaders/sky_tables.frag's values row, which the GL renderer draws on the GPU.
+struct physical_sky_samples {
+    glm::vec3 sun_by_height[sun_heights];  // the sun on the clouds (frame_constants::sun_by_height)
+    glm::vec3 sun_band_middle;             // the sun at the band's middle: the drawn disc
+    glm::vec3 sun_camera;                  // the sun at the camera: the ground's
+    glm::vec3 zenith, horizon;             // the sky at the zenith, and 2 degrees up (mean of 8 azimuths)
+};
+// The samples on the CPU (12 sun and 9 sky marches), for the scene's sun.
+physical_sky_samples physical_sky_samples_cpu(const scene& s);
+// The physical sky made elsewhere (on the GPU): its samples and its sky-view tables at the
+// camera (the background, the ground's sky light) and at the layer's top (the clouds' sky light).
+struct physical_sky_inputs {
+    physical_sky_samples samples;
+    const sky_view_table* at_camera;
+    const sky_view_table* at_top;
+};
+// The frame's constants with the physical sky from `sky` (the scene's sky must be physical):
+// the same fields as make_frame_constants(s) gives from the CPU's.
+frame_constants make_frame_constants(const scene& s, const physical_sky_inputs& sky);
 
 // The altitudes (bottom, top) outside which the scene's field has no density: the cloud
 // type's height_range_for_type, or with the detailed shape the union over the types the

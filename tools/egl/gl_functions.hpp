@@ -35,6 +35,7 @@ namespace cloudmath_egl {
     X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)          \
     X(PFNGLUNIFORM1IPROC, Uniform1i)                            \
     X(PFNGLUNIFORM2IPROC, Uniform2i)                            \
+    X(PFNGLUNIFORM3IPROC, Uniform3i)                            \
     X(PFNGLUNIFORM1UIPROC, Uniform1ui)                          \
     X(PFNGLUNIFORM2UIPROC, Uniform2ui)                          \
     X(PFNGLUNIFORM1FPROC, Uniform1f)                            \

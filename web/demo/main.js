@@ -6,6 +6,7 @@ import { modules, resolve } from '../dist/index.js';
 import { cases, defaultBudget, floor } from './parity.js';
 import { scenePresets, variants, msPresets, frameConstants, phaseMeanCosine } from './scene.js';
 import { cloudsFrag } from './clouds_frag.js';
+import { skyTablesFrag } from './sky_tables_frag.js';
 import { imageStats, compareImages, shiftImage } from './image.js';
 import { initWebGPU, createClouds, renderClouds, setPhysicalTables } from './webgpu.js';
 import { createPhysicalSky, bakePhysicalSky, farShadowParams, farShadowSize, hazeSize, hazeDistance } from './physical_sky.js';
@@ -363,8 +364,7 @@ async function loadPhysicalSky() {
   status('the physical sky: its table...');
   const response = await fetch('sky_table.bin');
   if (!response.ok) throw new Error(`sky_table.bin: HTTP ${response.status}`);
-  const skyLibrary = resolve('#include "cloudmath/glsl/atmosphere.glsl"\n#include "cloudmath/glsl/density.glsl"\n');
-  physicalSky.sky = createPhysicalSky(gl, header, skyLibrary, program, await response.arrayBuffer());
+  physicalSky.sky = createPhysicalSky(gl, header, resolve(skyTablesFrag), program, await response.arrayBuffer());
 }
 
 // The physical sky's tables for WebGPU: the bake a frame was drawn with (its job's), uploaded
