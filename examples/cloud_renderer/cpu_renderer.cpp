@@ -472,12 +472,34 @@ struct pixel_program {
     vec2 view_stretch(vec3 dir) const {
         const vec2 layer = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, s.layer_bottom, s.layer_top);
         const vec2 in_band = cm::cloud_layer_segment(s.camera_altitude, dir.y, s.planet_radius, band.x, band.y);
-        return vec2(std::max(layer.x, in_band.x), std::min(std::min(layer.y, layer.x + s.max_distance), in_band.y));
+        vec2 seg(std::max(layer.x, in_band.x), std::min(std::min(layer.y, layer.x + s.max_distance), in_band.y));
+        const float scene_t = terrain_distance(s, dir, nullptr);
+        if (scene_t > 0.0f) seg.y = std::min(seg.y, scene_t);  // the scene's geometry hides what lies behind it
+        return seg;
     }
 
     // What lies behind the cloud layer along dir: the sky, or the ground with the clouds'
     // shadows (cr_background).
-    vec3 behind(vec3 dir) const { return background(s, k, dir, s.sun_disc) * (s.shadows ? ground_shadow(dir) : 1.0f); }
+    vec3 behind(vec3 dir) const {
+        vec3 normal;
+        const float scene_t = terrain_distance(s, dir, &normal);
+        if (scene_t > 0.0f) return terrain_radiance(dir * scene_t, normal);
+        return background(s, k, dir, s.sun_disc) * (s.shadows ? ground_shadow(dir) : 1.0f);
+    }
+
+    // The sun's transmittance through the clouds at p from the shadow map (1 outside it).
+    float sun_transmittance(vec3 p) const {
+        const vec3 uvd = cm::shadow_map_project(p, k.shadow_origin, k.shadow_right, k.shadow_up, k.sun_dir, k.shadow_half_extent);
+        return on_map(uvd) ? cm::beer_shadow_transmittance(shadow_lookup(vec2(uvd)), uvd.z) : 1.0f;
+    }
+
+    // A terrain box's radiance at p, face normal n (clouds.frag's cr_terrain): Lambertian rock
+    // of albedo 0.25 lit by the sun through the clouds (with scene shadows) and by the sky light
+    // above and the ground's below, in the shares of the hemisphere the face sees.
+    vec3 terrain_radiance(vec3 p, vec3 n) const {
+        const float sun = std::max(glm::dot(n, k.sun_dir), 0.0f) * (s.shadows ? sun_transmittance(p) : 1.0f);
+        return (0.25f / 3.14159265f) * (k.sun_radiance * sun + 3.14159265f * glm::mix(k.ground, k.ambient_top, 0.5f + 0.5f * n.y));
+    }
 
     // main() of the shader: the display colour, dithered for the 8-bit store.
     vec4 shade(int x, int y, int width, int height) const {
@@ -657,6 +679,10 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
                                                 k.tan_half_fov, aspect);
             const vec2 miss(now.x * float(w) - (float(x) + 0.5f), now.y * float(h) - (float(y) + 0.5f));
             valid = now.z > 0.0f && glm::dot(miss, miss) <= temporal_reprojection_tolerance * temporal_reprojection_tolerance;
+            // ... and lie in front of the scene there: a cloud the terrain now hides is not this
+            // pixel's (the composite's use of the scene's depth; the march itself ends there).
+            const float scene_t = terrain_distance(s, dir, nullptr);
+            valid = valid && !(scene_t > 0.0f && stored > scene_t);
         }
         vec4 hc(0.0f);
         vec2 ha(0.0f);

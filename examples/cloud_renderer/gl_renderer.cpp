@@ -60,7 +60,8 @@ std::vector<shader_int> permutation_values(const variant& v, const scene& sc) {
             {"u_sun_disc", sc.sun_disc ? 1 : 0},
             {"u_haze", sc.haze ? 1 : 0},
             {"u_shadows", sc.shadows ? 1 : 0},
-            {"u_dither", sc.dither ? 1 : 0}};
+            {"u_dither", sc.dither ? 1 : 0},
+            {"u_terrain", sc.terrain ? 1 : 0}};
 }
 
 // `body` with its line `#include "cloudmath.glsl"` (the line itself, not a comment that names
@@ -121,6 +122,7 @@ struct gl_renderer::state {
         int width = 0, height = 0;
         GLuint fresh_fbo = 0, fresh[2] = {0, 0};
         GLuint background_fbo = 0, background = 0;  // clouds.frag's pass 3: what lies behind the layer
+        GLuint scene_depth = 0;                      // ... and the scene's (the terrain's) depth
         GLuint history_fbo[2] = {0, 0}, history[2][2] = {{0, 0}, {0, 0}}, display = 0;
         GLuint resolve_program = 0;
         // Its own shadow map, a slice a frame: a full frame in between (another variant, another
@@ -183,6 +185,7 @@ struct gl_renderer::state {
         if (t.fresh[0]) gl.DeleteTextures(2, t.fresh);
         if (t.background_fbo) gl.DeleteFramebuffers(1, &t.background_fbo);
         if (t.background) gl.DeleteTextures(1, &t.background);
+        if (t.scene_depth) gl.DeleteTextures(1, &t.scene_depth);
         for (GLuint* h : t.history)
             if (h[0]) gl.DeleteTextures(2, h);
         if (t.display) gl.DeleteTextures(1, &t.display);
@@ -444,6 +447,10 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, in
     u.v3("u_shadow_right", k.shadow_right);
     u.v3("u_shadow_up", k.shadow_up);
     u.f1("u_shadow_half_extent", k.shadow_half_extent);
+    for (int i = 0; i < 4; ++i) {
+        const terrain_box& b = terrain_boxes[i];
+        gl.Uniform4f(u.loc(("u_terrain_boxes[" + std::to_string(i) + "]").c_str()), b.x, b.z, b.half_width, b.top);
+    }
     // Units 0-2 and 4-5 (3 is the shadow map's, bound by shadow_pass).
     struct unit {
         const char* sampler;
@@ -595,6 +602,7 @@ bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std:
         gl.GenTextures(1, &t.display);
         gl.GenFramebuffers(1, &t.background_fbo);
         gl.GenTextures(1, &t.background);
+        gl.GenTextures(1, &t.scene_depth);
     }
     const int lw = (width + 3) / 4, lh = (height + 3) / 4;
     make_target(gl, t.fresh[0], GL_RGBA32F, GL_RGBA, lw, lh);
@@ -608,6 +616,9 @@ bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std:
     make_target(gl, t.background, GL_RGBA32F, GL_RGBA, width, height);
     gl.BindFramebuffer(GL_FRAMEBUFFER, t.background_fbo);
     gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.background, 0);
+    make_target(gl, t.scene_depth, GL_R32F, GL_RED, width, height);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, t.background_fbo);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, t.scene_depth, 0);
     complete = complete && gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
     for (int i = 0; i < 2; ++i) {
         make_target(gl, t.history[i][0], GL_RGBA32F, GL_RGBA, width, height);
@@ -707,8 +718,8 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, int width, in
     u.f1("u_exposure", k.exposure);
     gl.Uniform1ui(u.loc("u_frame"), sc.frame);
     u.i1("u_dither", sc.dither ? 1 : 0);
-    const char* samplers[5] = {"u_fresh", "u_fresh_depth", "u_history", "u_history_aux", "u_background"};
-    const GLuint inputs[5] = {t.fresh[0], t.fresh[1], t.history[t.current][0], t.history[t.current][1], t.background};
+    const char* samplers[6] = {"u_fresh", "u_fresh_depth", "u_history", "u_history_aux", "u_background", "u_scene_depth"};
+    const GLuint inputs[6] = {t.fresh[0], t.fresh[1], t.history[t.current][0], t.history[t.current][1], t.background, t.scene_depth};
     const int out = 1 - t.current;
 
     bool shadow_ok = true;
@@ -736,12 +747,12 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, int width, in
         // The background pass (clouds.frag's pass 3) at full resolution.
         gl.UseProgram(background);
         gl.BindFramebuffer(GL_FRAMEBUFFER, t.background_fbo);
-        gl.DrawBuffers(1, two);
+        gl.DrawBuffers(2, two);
         gl.Viewport(0, 0, width, height);
         gl.DrawArrays(GL_TRIANGLES, 0, 3);
         lap(&background_ms);
         gl.UseProgram(r);
-        for (int i = 0; i < 5; ++i) {
+        for (int i = 0; i < 6; ++i) {
             gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + i));
             gl.BindTexture(GL_TEXTURE_2D, inputs[i]);
             u.i1(samplers[i], i);

@@ -52,8 +52,8 @@ const char* usage_text() {
            "                      behind=cone,light-steps=32,integration=naive,steps=128,refine=1,\n"
            "                      schedule=growing,ambient=flat,reach=band\n"
            "  --without LIST      leave out of the picture any of sun-disc, haze (aerial perspective),\n"
-           "                      shadows (the clouds' on the ground), dither (the scene's switches),\n"
-           "                      e.g. --without haze,dither\n"
+           "                      shadows (the clouds' on the ground), dither, terrain (the mountains\n"
+           "                      preset's boxes; the scene's switches), e.g. --without haze,dither\n"
            "  --width N, --height N   image size (default 1280 x 720; 16 to 8192)\n"
            "  --out FILE          PNG to write (default clouds.png; --cpu: clouds_cpu.png;\n"
            "                      --compare: FILE and FILE with _cpu before .png)\n"
@@ -171,7 +171,7 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
             o.sc.sky = *m;
         } else if (a == "--without") {
             std::string v;
-            if (!value(v)) return "--without needs a list of sun-disc, haze, shadows, dither";
+            if (!value(v)) return "--without needs a list of sun-disc, haze, shadows, dither, terrain";
             std::stringstream items(v);
             std::string item;
             while (std::getline(items, item, ',')) {
@@ -179,7 +179,8 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
                 else if (item == "haze") o.sc.haze = false;
                 else if (item == "shadows") o.sc.shadows = false;
                 else if (item == "dither") o.sc.dither = false;
-                else return "--without takes sun-disc, haze, shadows or dither, not '" + item + "'";
+                else if (item == "terrain") o.sc.terrain = false;
+                else return "--without takes sun-disc, haze, shadows, dither or terrain, not '" + item + "'";
             }
         } else if (a == "--shape") {
             std::string v;

@@ -117,6 +117,11 @@ const std::vector<scene>& presets() {
         sunset.layer_top = 9000.0f;
         sunset.max_distance = 60000.0f;
         v.push_back(sunset);
+        // The terrain (scene::terrain): above a cloud sea, the boxes rising through it, their
+        // feet hidden in the clouds, their tops in the sun (docs/integration.md).
+        scene mountains = make("mountains", "above a cloud sea, the terrain's boxes rising through it", 4700, 0, -6, 20, 120, 0.5f, 0.5f);
+        mountains.terrain = true;
+        v.push_back(mountains);
         return v;
     }();
     return all;
@@ -370,7 +375,30 @@ std::optional<light_sources> light_sources_named(const std::string& n) {
 
 std::string permutation_key(const variant& v, const scene& s) {
     return variant_spec(v) + "/" + name(s.shape) + "/sun=" + (s.sun_disc ? "on" : "off") + ",haze=" + (s.haze ? "on" : "off") +
-           ",shadows=" + (s.shadows ? "on" : "off") + ",dither=" + (s.dither ? "on" : "off");
+           ",shadows=" + (s.shadows ? "on" : "off") + ",dither=" + (s.dither ? "on" : "off") + (s.terrain ? ",terrain" : "");
+}
+
+float terrain_distance(const scene& s, glm::vec3 dir, glm::vec3* normal) {
+    if (normal) *normal = glm::vec3(0.0f, 1.0f, 0.0f);
+    float nearest = -1.0f;
+    if (!s.terrain) return nearest;
+    // Slabs from the camera (at the origin); a zero component is a tiny one of its sign.
+    const glm::vec3 inv = glm::vec3(dir.x < 0.0f ? -1.0f : 1.0f, dir.y < 0.0f ? -1.0f : 1.0f, dir.z < 0.0f ? -1.0f : 1.0f) /
+                          glm::max(glm::abs(dir), glm::vec3(1e-8f));
+    for (const terrain_box& b : terrain_boxes) {
+        const glm::vec3 t0 = glm::vec3(b.x - b.half_width, -s.camera_altitude - 1000.0f, b.z - b.half_width) * inv;
+        const glm::vec3 t1 = glm::vec3(b.x + b.half_width, b.top - s.camera_altitude, b.z + b.half_width) * inv;
+        const glm::vec3 near = glm::min(t0, t1), far = glm::max(t0, t1);
+        const float enter = std::max(std::max(near.x, near.y), near.z), leave = std::min(std::min(far.x, far.y), far.z);
+        if (enter > 0.0f && enter < leave && (nearest < 0.0f || enter < nearest)) {
+            nearest = enter;
+            if (normal)
+                *normal = enter == near.x ? glm::vec3(-glm::sign(dir.x), 0.0f, 0.0f)
+                          : enter == near.y ? glm::vec3(0.0f, -glm::sign(dir.y), 0.0f)
+                                            : glm::vec3(0.0f, 0.0f, -glm::sign(dir.z));
+        }
+    }
+    return nearest;
 }
 
 const char* name(light_mode l) { return l == light_mode::cone ? "cone" : l == light_mode::march ? "march" : "map"; }

@@ -159,7 +159,28 @@ struct scene {
     bool haze = true;
     bool shadows = true;
     bool dither = true;
+    // The example's terrain (terrain_boxes, the `mountains` preset): opaque boxes standing in
+    // the view, some into the cloud layer. The cloud march ends at them, the background draws
+    // them, and the temporal resolve keeps no history the terrain now hides: what an engine's
+    // depth buffer does (docs/integration.md).
+    bool terrain = false;
 };
+
+// The terrain's boxes, camera-relative: the (x, z) of each centre (m; the camera at x = z = 0,
+// looking along -z at yaw 0), its half width and its top's altitude. From below the ground
+// (the curvature drops it 8 m at 10 km) to the top; shaded as Lambertian rock (terrain_radiance).
+struct terrain_box {
+    float x, z, half_width, top;
+};
+inline constexpr terrain_box terrain_boxes[4] = {
+    {-3500.0f, -9000.0f, 1200.0f, 3300.0f},
+    {1500.0f, -12500.0f, 1600.0f, 4500.0f},
+    {5200.0f, -7500.0f, 900.0f, 2600.0f},
+    {-800.0f, -16000.0f, 1400.0f, 5400.0f}};
+// The distance along the unit direction dir to the nearest box (the scene's depth; its
+// outward normal in *normal), or -1 where the ray meets none or the scene has no terrain
+// (clouds.frag's cr_scene_distance).
+float terrain_distance(const scene& s, glm::vec3 dir, glm::vec3* normal);
 
 // The exposure the tonemap uses (frame_constants::exposure): scene::exposure with the artistic
 // sky; with the physical one exposure_from_ev100(ev100) = 1 / (1.2 2^EV100) for luminance in

@@ -69,6 +69,14 @@ image render_gpu(const scene& s, const variant& v, int width = 160, int height =
     return img;
 }
 
+// Frame f of the motion the temporal tests follow: a pan of 0.7 degrees and 60 m of wind a frame.
+scene moving(scene s, std::uint32_t f) {
+    s.frame = f;
+    s.yaw += 0.7f * float(f);
+    s.wind.x += 60.0f * float(f);
+    return s;
+}
+
 // The default variant's GPU and CPU images of a preset at 160 x 90, which must agree to 35 dB.
 struct both_renderers {
     image gpu, cpu;
@@ -430,10 +438,7 @@ TEST_CASE("temporal scheme: a still camera's 16 frames are the full frame; GPU a
     image ca, cb, g;
     std::string why;
     for (std::uint32_t f = 0; f < 24; ++f) {
-        scene s = preset;
-        s.frame = f;
-        s.yaw += 0.7f * float(f);
-        s.wind.x += 60.0f * float(f);
+        const scene s = moving(preset, f);
         ca = a.frame(s, v, shared().textures);
         cb = b.frame(s, v, shared().textures, 1);  // one thread: the same image
         REQUIRE_MESSAGE(shared().gpu->render_temporal(s, v, w, h, g, nullptr, why), why);
@@ -709,7 +714,7 @@ TEST_CASE("command-line errors are clear") {
         CHECK(parse({"--variant", (std::string(key) + "=on").c_str()}).find("--variant: '" + std::string(key) + "' is no longer a variant switch: ") == 0);
     }
     CHECK(parse({"--run-time"}).find("--run-time was removed") == 0);
-    CHECK(parse({"--without", "haze,fog"}) == "--without takes sun-disc, haze, shadows or dither, not 'fog'");
+    CHECK(parse({"--without", "haze,fog"}) == "--without takes sun-disc, haze, shadows, dither or terrain, not 'fog'");
     {
         options w;
         const char* without[] = {"x", "--without", "haze,dither", "--preset", "horizon"};
@@ -1171,4 +1176,82 @@ TEST_CASE("the physical sky's tables on the GPU (sky_tables.frag) against the CP
             for (int c = 0; c < 3; ++c) CHECK(std::fabs(double(a[c]) - double(b[c])) <= 1e-3 * std::max(double(std::fabs(b[c])), 1e-3));
         CHECK(std::fabs(double(g.ev100) - double(cpu.ev100)) <= 1e-3);
     }
+}
+
+TEST_CASE("the terrain (scene::terrain): the cloud march ends at the scene's depth, clouds in front of it stay, GPU and CPU alike") {
+    scene with = *find_preset("mountains");
+    with.dither = false;
+    scene without = with;
+    without.terrain = false;
+    const variant v;
+    const int w = 160, h = 90;
+    const image a = render_cpu_linear(with, v, shared().textures, w, h), b = render_cpu_linear(without, v, shared().textures, w, h);
+    const frame_constants k = make_frame_constants(with);
+    // Each pixel by where its ray meets a box (terrain_distance) against where it enters the
+    // cloud band: no box, a box in front of the band, a box behind some of it.
+    int sky = 0, sky_changed = 0, in_front = 0, in_front_cloud = 0, hidden = 0, behind = 0, behind_cloud = 0;
+    double opacity_with = 0.0, opacity_without = 0.0;  // summed over the pixels with a box behind some of the band
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const glm::vec3 dir = pixel_direction(k, x, y, w, h);
+            const float box = terrain_distance(with, dir, nullptr);
+            const glm::vec2 band = cloudmath::cloud_layer_segment(with.camera_altitude, dir.y, with.planet_radius, k.band.x, k.band.y);
+            const glm::vec4 pa = a.pixels[std::size_t(y * w + x)], pb = b.pixels[std::size_t(y * w + x)];
+            if (box < 0.0f) {
+                ++sky;
+                sky_changed += pa != pb ? 1 : 0;  // the terrain changes nothing where it is not
+            } else if (!(band.y > band.x) || box <= band.x) {
+                ++in_front;
+                in_front_cloud += pa.a != 0.0f ? 1 : 0;  // no cloud over a box in front of the band
+                hidden += pb.a > 0.05f ? 1 : 0;          // ... where clouds were without it
+            } else {
+                ++behind;
+                behind_cloud += pa.a > 0.05f ? 1 : 0;  // the clouds in front of the box stay
+                opacity_with += double(pa.a);
+                opacity_without += double(pb.a);
+            }
+        }
+    MESSAGE("mountains at " << w << " x " << h << ": " << sky << " pixels without a box, " << in_front << " with a box in front of the band ("
+                            << hidden << " of them hiding clouds), " << behind << " with a box behind some of it (" << behind_cloud
+                            << " with clouds in front of it); their opacity summed: " << opacity_with << " with the box, "
+                            << opacity_without << " without");
+    CHECK(sky_changed == 0);
+    CHECK(in_front_cloud == 0);
+    CHECK(hidden > 20);
+    CHECK(behind > 100);
+    CHECK(behind_cloud > behind / 2);
+    // The march ends at the box: less cloud than along the whole ray (a pixel alone can have
+    // more: the same steps over a shorter stretch sample its front finer).
+    CHECK(opacity_with < opacity_without);
+    if (!shared().gpu) return;
+    // The GPU: the same frame, and the same order in its temporal scheme in motion (the resolve
+    // keeps no history that the terrain now hides).
+    const both_renderers r = render_both("mountains");
+    CHECK(statistics(r.gpu).nan_pixels == 0);
+    cpu_temporal_renderer cpu(w, h, temporal_max_samples);
+    shared().gpu->reset_temporal();
+    image c, g;
+    std::string why;
+    for (std::uint32_t f = 0; f < 24; ++f) {
+        const scene s = moving(with, f);
+        c = cpu.frame(s, v, shared().textures);
+        REQUIRE_MESSAGE(shared().gpu->render_temporal(s, v, w, h, g, nullptr, why), why);
+    }
+    const image_difference d = compare(g, c);
+    MESSAGE("mountains, temporal, 24 frames in motion: GPU against CPU PSNR " << d.psnr_db << " dB");
+    CHECK(d.psnr_db >= 35.0);
+    // After the pan, no cloud over a box in front of the band, on either.
+    scene last = with;
+    last.yaw += 0.7f * 23.0f;
+    const frame_constants kl = make_frame_constants(last);
+    int over = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const glm::vec3 dir = pixel_direction(kl, x, y, w, h);
+            const float box = terrain_distance(last, dir, nullptr);
+            const glm::vec2 band = cloudmath::cloud_layer_segment(last.camera_altitude, dir.y, last.planet_radius, kl.band.x, kl.band.y);
+            if (box > 0.0f && (!(band.y > band.x) || box <= band.x))
+                over += (g.pixels[std::size_t(y * w + x)].a != 0.0f ? 1 : 0) + (c.pixels[std::size_t(y * w + x)].a != 0.0f ? 1 : 0);
+        }
+    CHECK(over == 0);
 }

@@ -227,7 +227,7 @@ function cloudUniforms(state) {
     u_phase_model: v.phase, u_lighting: v.lighting, u_octaves: state.ms === 'production' ? v.octaves : msN, u_powder: v.powder,
     u_light_mode: v.light, u_behind_mode: v.behind, u_phase_mean_cosine: phaseMeanCosine(f, v.phase),
     u_light_steps: v.lightSteps, u_integration: v.integration, u_refine: v.refine,
-    u_view_steps: v.viewSteps, u_schedule: v.schedule, u_sun_disc: v.sun, u_haze: v.haze, u_dither: v.dither,
+    u_view_steps: v.viewSteps, u_schedule: v.schedule, u_sun_disc: v.sun, u_haze: v.haze, u_dither: v.dither, u_terrain: 0,
     u_occluded_ambient: v.ambient, u_reach: v.reach, u_shadows: v.shadows, u_pass: 0,
     u_shape: 0,  // the classic density field: the demo bakes no wide weather map or curl texture
     u_resolution: [canvas.width, canvas.height],

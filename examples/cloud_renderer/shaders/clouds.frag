@@ -38,6 +38,7 @@ CR_PARAM(int, u_reach)            // the march toward the sun: 0 (far) capped at
 CR_PARAM(int, u_sun_disc)         // 0 no sun disc, 1 the disc at its physical radiance
 CR_PARAM(int, u_haze)             // 0 off, 1 aerial perspective (air between camera and cloud)
 CR_PARAM(int, u_dither)           // 0 off, 1 triangular dither before the 8-bit store
+CR_PARAM(int, u_terrain)          // 0 none, 1 the example's terrain (u_terrain_boxes): the march ends at it
 
 // The scene (scene.hpp's `scene` and `frame_constants`).
 uniform vec2 u_resolution;
@@ -63,6 +64,9 @@ uniform float u_light_march_max, u_min_transmittance;
 uniform float u_march_near_distance;  // growing view steps: nearly uniform closer than this
 uniform vec3 u_shadow_origin, u_shadow_right, u_shadow_up;  // the Beer shadow map's frame (scene.hpp)
 uniform float u_shadow_half_extent;
+// The example's terrain (scene.hpp's terrain_boxes, with u_terrain): boxes standing on the
+// ground, each (x, z) of its centre relative to the camera's foot, half width, top altitude.
+uniform vec4 u_terrain_boxes[4];
 
 uniform sampler3D u_base;      // 128^3 RGBA8: Perlin-Worley + Worley fBm (noise_bake.hpp)
 uniform sampler3D u_detail;    // 32^3 RGB8: Worley fBm
@@ -101,7 +105,8 @@ uniform uvec2 u_update_offset;
 
 layout(location = 0) out vec4 out_color;   // rgb: display colour in [0, 1] (pass 1: the layer's linear radiance,
                                            // pass 3: what lies behind it); a: cloud opacity (pass 3: 1 where the ray meets the band)
-layout(location = 1) out float out_depth;  // pass 1: the cloud's transmittance-weighted distance, 0 for none
+layout(location = 1) out float out_depth;  // pass 1: the cloud's transmittance-weighted distance, 0 for none;
+                                           // pass 3: the scene's (the terrain's) distance, 0 for none
 
 // cloudmath calls these back (declared before the include, defined below).
 float cr_cone_extinction(vec3 p, int i);
@@ -376,6 +381,45 @@ float cr_far_shadow_texel(ivec2 node) {
 }
 #endif
 
+// The scene's opaque geometry along dir, what an engine's depth buffer holds: the distance to
+// the nearest terrain box and its outward normal, or -1 (scene.cpp's terrain_distance). The
+// cloud march ends there, and the background pass draws the box. An engine reads its depth
+// buffer here instead (docs/integration.md).
+float cr_scene_distance(vec3 dir, out vec3 normal) {
+    normal = vec3(0.0, 1.0, 0.0);
+    float nearest = -1.0;
+    if (u_terrain == 0) return nearest;
+    // Slabs from the camera (at the origin); a zero component is a tiny one of its sign.
+    vec3 inv = vec3(dir.x < 0.0 ? -1.0 : 1.0, dir.y < 0.0 ? -1.0 : 1.0, dir.z < 0.0 ? -1.0 : 1.0) / max(abs(dir), vec3(1e-8));
+    for (int i = 0; i < 4; ++i) {
+        vec4 b = u_terrain_boxes[i];
+        // From below the ground (the planet's curvature drops it 8 m at 10 km) to the top.
+        vec3 t0 = vec3(b.x - b.z, -u_cam_altitude - 1000.0, b.y - b.z) * inv;
+        vec3 t1 = vec3(b.x + b.z, b.w - u_cam_altitude, b.y + b.z) * inv;
+        vec3 near = min(t0, t1), far = max(t0, t1);
+        float enter = max(max(near.x, near.y), near.z), leave = min(min(far.x, far.y), far.z);
+        if (enter > 0.0 && enter < leave && (nearest < 0.0 || enter < nearest)) {
+            nearest = enter;
+            normal = enter == near.x ? vec3(-sign(dir.x), 0.0, 0.0) : enter == near.y ? vec3(0.0, -sign(dir.y), 0.0) : vec3(0.0, 0.0, -sign(dir.z));
+        }
+    }
+    return nearest;
+}
+
+// The sun's transmittance through the clouds at p from the shadow map (1 outside it).
+float cr_sun_transmittance(vec3 p) {
+    vec3 uvd = cm_shadow_map_project(p, u_shadow_origin, u_shadow_right, u_shadow_up, u_sun_dir, u_shadow_half_extent);
+    return cr_on_map(uvd) ? cm_beer_shadow_transmittance(cr_shadow_lookup(uvd.xy), uvd.z) : 1.0;
+}
+
+// A terrain box's radiance at p, face normal n: Lambertian rock of albedo 0.25 lit by the sun
+// through the clouds (with scene shadows) and by the sky light above and the ground's below,
+// in the shares of the hemisphere the face sees (scene.cpp's terrain_radiance).
+vec3 cr_terrain(vec3 p, vec3 n) {
+    float sun = max(dot(n, u_sun_dir), 0.0) * (u_shadows != 0 ? cr_sun_transmittance(p) : 1.0);
+    return (0.25 / CM_PI) * (u_sun_radiance * sun + CM_PI * mix(u_ground, u_ambient_top, 0.5 + 0.5 * n.y));
+}
+
 // What the shadow map leaves of the ground's light at ground point g: the sky's share plus
 // the sun's times the clouds' transmittance (1 outside the map).
 float cr_ground_shadow(vec3 g) {
@@ -422,6 +466,9 @@ vec3 cr_sky_view(vec3 dir) {
 #endif
 
 vec3 cr_background(vec3 dir) {
+    vec3 normal;
+    float scene = cr_scene_distance(dir, normal);
+    if (scene > 0.0) return cr_terrain(dir * scene, normal);
     vec2 ground = cm_ray_sphere_intersect_altitude(u_cam_altitude, dir.y, u_planet_radius, 0.0);
     if (ground.x >= 0.0 && ground.y > ground.x) return u_shadows != 0 ? u_ground * cr_ground_shadow(dir * ground.x) : u_ground;
     float mu = dot(dir, u_sun_dir);
@@ -508,13 +555,16 @@ void main() {
     vec2 layer = cm_cloud_layer_segment(u_cam_altitude, dir.y, u_planet_radius, u_layer_bottom, u_layer_top);
     vec2 in_band = cm_cloud_layer_segment(u_cam_altitude, dir.y, u_planet_radius, cr_band.x, cr_band.y);
     vec2 seg = vec2(max(layer.x, in_band.x), min(min(layer.y, layer.x + u_max_distance), in_band.y));
+    vec3 scene_normal;
+    float scene = cr_scene_distance(dir, scene_normal);
+    if (scene > 0.0) seg.y = min(seg.y, scene);  // the scene's geometry hides what lies behind it
     if (u_pass == 3) {
         // The temporal scheme's background, at full resolution every frame: what lies behind
         // the cloud layer, and whether the ray meets the band at all (a ray that does not
         // carries no cloud). The resolve composites the reprojected layer over it, so the sky,
         // the ground and the clouds' moving shadows on it never lag.
         out_color = vec4(cr_background(dir), seg.y > seg.x ? 1.0 : 0.0);
-        out_depth = 0.0;
+        out_depth = max(scene, 0.0);  // the scene's depth (0: none), for the resolve
         return;
     }
 

@@ -53,6 +53,9 @@ override u_reach: i32;
 override u_sun_disc: i32;
 override u_haze: i32;
 override u_dither: i32;
+// clouds.frag's terrain (u_terrain: cr_scene_distance, cr_terrain) is not ported: the web demo
+// draws no terrain, so this override is 0 in every pipeline and nothing reads it.
+override u_terrain: i32;
 // clouds.frag's #define CR_PHYSICAL_SKY (the host's sky_model::physical): 1 the physical sky's
 // tables and sun by height, 0 the artistic sky.
 override u_physical_sky: i32;

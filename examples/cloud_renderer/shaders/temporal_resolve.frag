@@ -29,6 +29,7 @@ uniform sampler2D u_fresh_depth;   // quarter resolution: cloud depth (0: none)
 uniform sampler2D u_history;       // full resolution: rgb linear radiance, a opacity
 uniform sampler2D u_history_aux;   // full resolution: depth, samples in the running mean
 uniform sampler2D u_background;    // full resolution: rgb what lies behind the layer, a 1 where the ray meets the band
+uniform sampler2D u_scene_depth;   // full resolution: the scene's distance (the terrain's; 0: none)
 
 layout(location = 0) out vec4 out_history;
 layout(location = 1) out vec2 out_aux;
@@ -109,6 +110,10 @@ void main() {
         vec3 now = cm_camera_project(was * (stored >= 1.0 ? stored : 1e7) - u_motion, u_forward, u_right, u_up, u_tan_half_fov, aspect);
         vec2 miss = now.xy * u_resolution - (vec2(p) + 0.5);
         valid = now.z > 0.0 && dot(miss, miss) <= u_tolerance * u_tolerance;
+        // ... and lie in front of the scene there: a cloud the terrain now hides is not this
+        // pixel's (the composite's use of the scene's depth; the march itself ends there).
+        float scene = texelFetch(u_scene_depth, p, 0).r;
+        valid = valid && !(scene > 0.0 && stored > scene);
     }
     vec4 hc = vec4(0.0);
     vec2 ha = vec2(0.0);
