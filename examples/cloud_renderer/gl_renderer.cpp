@@ -35,35 +35,6 @@ std::string vertex_shader_source() {
 
 namespace {
 
-// The permutation's values under the shader's names (the CR_PARAM declarations of
-// clouds.frag): the variant's and the scene's switches, compiled in as constants.
-struct shader_int {
-    const char* name;
-    int value;
-};
-std::vector<shader_int> permutation_values(const variant& v, const scene& sc) {
-    return {{"u_shape", static_cast<int>(sc.shape)},
-            {"u_phase_model", static_cast<int>(v.phase)},
-            // 0 octaves, 1 diffusion with diffusion_models::clouds, 2 with ::fitted
-            {"u_lighting", v.lighting == lighting_model::octaves ? 0 : v.table == diffusion_table::clouds ? 1 : 2},
-            {"u_octaves", v.octaves},
-            {"u_powder", v.powder ? 1 : 0},
-            {"u_light_mode", static_cast<int>(v.light)},
-            {"u_behind_mode", static_cast<int>(v.behind)},
-            {"u_light_steps", v.light_steps},
-            {"u_refine", v.refine},
-            {"u_integration", static_cast<int>(v.integration)},
-            {"u_view_steps", v.view_steps},
-            {"u_schedule", static_cast<int>(v.schedule)},
-            {"u_occluded_ambient", v.occluded_ambient ? 1 : 0},
-            {"u_reach", static_cast<int>(v.reach)},
-            {"u_sun_disc", sc.sun_disc ? 1 : 0},
-            {"u_haze", sc.haze ? 1 : 0},
-            {"u_shadows", sc.shadows ? 1 : 0},
-            {"u_dither", sc.dither ? 1 : 0},
-            {"u_terrain", sc.terrain ? 1 : 0}};
-}
-
 // `body` with its line `#include "cloudmath.glsl"` (the line itself, not a comment that names
 // it) replaced by the library's GLSL.
 std::string with_cloudmath(std::string body) {
@@ -80,8 +51,11 @@ std::string fragment_shader_source(const variant& v, const scene& sc, clouds_pas
     if (sc.sky == sky_model::physical) head += "#define CR_PHYSICAL_SKY 1\n";
     head += "#define CR_PARAM(type, name)\n";
     head += "const int u_pass = " + std::to_string(static_cast<int>(pass)) + ";\n";
-    for (const shader_int& c : permutation_values(v, sc))
-        head += std::string("const int ") + c.name + " = " + std::to_string(c.value) + ";\n";
+    // The permutation's values under the shader's names (clouds.frag's CR_PARAM lines): the
+    // variant's and the scene's tables (scene.hpp).
+    std::vector<shader_constant> constants = scene_constants(sc);
+    for (const shader_constant& c : variant_constants(v)) constants.push_back(c);
+    for (const shader_constant& c : constants) head += std::string("const int ") + c.name + " = " + std::to_string(c.value) + ";\n";
     return head + with_cloudmath(clouds_frag_text);
 }
 

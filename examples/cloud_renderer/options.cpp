@@ -171,17 +171,11 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
             o.sc.sky = *m;
         } else if (a == "--without") {
             std::string v;
-            if (!value(v)) return "--without needs a list of sun-disc, haze, shadows, dither, terrain";
+            if (!value(v)) return "--without needs a list of " + scene_switch_names();
             std::stringstream items(v);
             std::string item;
-            while (std::getline(items, item, ',')) {
-                if (item == "sun-disc") o.sc.sun_disc = false;
-                else if (item == "haze") o.sc.haze = false;
-                else if (item == "shadows") o.sc.shadows = false;
-                else if (item == "dither") o.sc.dither = false;
-                else if (item == "terrain") o.sc.terrain = false;
-                else return "--without takes sun-disc, haze, shadows, dither or terrain, not '" + item + "'";
-            }
+            while (std::getline(items, item, ','))
+                if (!turn_off_scene_switch(o.sc, item)) return "--without takes " + scene_switch_names() + ", not '" + item + "'";
         } else if (a == "--shape") {
             std::string v;
             if (!value(v)) return "--shape needs classic or detailed";

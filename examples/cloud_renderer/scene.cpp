@@ -61,6 +61,80 @@ bool parse_switch(const std::string& text, bool& out) {
     return false;
 }
 
+// The words of each enum's values, in order (the variant table's and name()'s).
+template <class E>
+struct value_names;
+template <>
+struct value_names<phase_model> {
+    static constexpr const char* names[] = {"hg", "dual_hg", "cs", "mie"};
+};
+template <>
+struct value_names<lighting_model> {
+    static constexpr const char* names[] = {"octaves", "diffusion"};
+};
+template <>
+struct value_names<diffusion_table> {
+    static constexpr const char* names[] = {"clouds", "fitted"};
+};
+template <>
+struct value_names<light_mode> {
+    static constexpr const char* names[] = {"cone", "march", "map"};
+};
+template <>
+struct value_names<integration_mode> {
+    static constexpr const char* names[] = {"analytic", "naive"};
+};
+template <>
+struct value_names<step_schedule> {
+    static constexpr const char* names[] = {"uniform", "growing"};
+};
+template <>
+struct value_names<reach_mode> {
+    static constexpr const char* names[] = {"far", "band"};
+};
+
+// Where a key's removed values went (appended to its error).
+std::string removed_values(const std::string& key) {
+    return key == "reach" ? " (capped and map were removed: docs/lighting_research.md, \"Switches removed\")" : "";
+}
+
+// One variant value from its text: empty, or the error. An enum takes its value_names, an
+// integer the range [lo, hi], a bool its two words (on and off also 1, true, 0, false).
+template <class E>
+std::string parse_value(const char* key, const std::string& text, int, int, const char*, const char*, E& out) {
+    const auto& names = value_names<E>::names;
+    std::string choices;
+    const int n = int(std::size(names));
+    for (int i = 0; i < n; ++i) {
+        if (text == names[i]) {
+            out = static_cast<E>(i);
+            return {};
+        }
+        choices += std::string(i == 0 ? "" : i + 1 == n ? " or " : ", ") + names[i];
+    }
+    return std::string(key) + " must be " + choices + ", not '" + text + "'" + removed_values(key);
+}
+std::string parse_value(const char* key, const std::string& text, int lo, int hi, const char*, const char*, int& out) {
+    if (parse_int(text, lo, hi, out)) return {};
+    return std::string(key) + " must be an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ", not '" + text + "'";
+}
+std::string parse_value(const char* key, const std::string& text, int, int, const char* off, const char* on, bool& out) {
+    const bool on_off = std::string(off) == "off";
+    if (on_off ? parse_switch(text, out) : text == on || text == off) {
+        if (!on_off) out = text == on;
+        return {};
+    }
+    return std::string(key) + " must be " + (on_off ? "on or off" : std::string(off) + " or " + on) + ", not '" + text + "'";
+}
+
+// A variant value's text (variant_spec).
+template <class E>
+std::string value_text(E e, const char*, const char*) {
+    return value_names<E>::names[int(e)];
+}
+std::string value_text(int x, const char*, const char*) { return std::to_string(x); }
+std::string value_text(bool x, const char* off, const char* on) { return x ? on : off; }
+
 // The switches the renderer had and removed (issue 39), each with where its measurement
 // stays: a script that still names one gets that instead of "unknown key". The scene's
 // switches moved to scene (sun_disc, haze, shadows, dither), the others were fixed at their
@@ -333,15 +407,6 @@ glm::vec3 pixel_direction(const frame_constants& k, int x, int y, int width, int
     return glm::normalize(k.forward + k.right * (ndc.x * aspect * k.tan_half_fov) + k.up * (ndc.y * k.tan_half_fov));
 }
 
-const char* name(phase_model p) {
-    switch (p) {
-    case phase_model::hg: return "hg";
-    case phase_model::dual_hg: return "dual_hg";
-    case phase_model::cornette_shanks: return "cs";
-    case phase_model::mie: return "mie";
-    }
-    return "?";
-}
 glm::vec2 cloud_band(const scene& s) {
     glm::vec2 range = cloudmath::height_range_for_type(s.cloud_type);
     if (s.shape == cloud_shape::detailed) {
@@ -374,8 +439,37 @@ std::optional<light_sources> light_sources_named(const std::string& n) {
 }
 
 std::string permutation_key(const variant& v, const scene& s) {
-    return variant_spec(v) + "/" + name(s.shape) + "/sun=" + (s.sun_disc ? "on" : "off") + ",haze=" + (s.haze ? "on" : "off") +
-           ",shadows=" + (s.shadows ? "on" : "off") + ",dither=" + (s.dither ? "on" : "off") + (s.terrain ? ",terrain" : "");
+    std::string key = variant_spec(v) + "/" + name(s.shape) + "/";
+#define CLOUD_RENDERER_SWITCH_KEY(member, item, shader) key += std::string(item) + (s.member ? "=on," : "=off,");
+    CLOUD_RENDERER_SCENE_SWITCHES(CLOUD_RENDERER_SWITCH_KEY)
+#undef CLOUD_RENDERER_SWITCH_KEY
+    return key;
+}
+
+std::vector<shader_constant> scene_constants(const scene& s) {
+    std::vector<shader_constant> out = {{"u_shape", static_cast<int>(s.shape)}};
+#define CLOUD_RENDERER_SWITCH_CONSTANT(member, item, shader) out.push_back({shader, s.member ? 1 : 0});
+    CLOUD_RENDERER_SCENE_SWITCHES(CLOUD_RENDERER_SWITCH_CONSTANT)
+#undef CLOUD_RENDERER_SWITCH_CONSTANT
+    return out;
+}
+
+bool turn_off_scene_switch(scene& s, const std::string& item) {
+#define CLOUD_RENDERER_SWITCH_OFF(member, item_text, shader) \
+    if (item == item_text) return s.member = false, true;
+    CLOUD_RENDERER_SCENE_SWITCHES(CLOUD_RENDERER_SWITCH_OFF)
+#undef CLOUD_RENDERER_SWITCH_OFF
+    return false;
+}
+
+std::string scene_switch_names() {
+    std::vector<const char*> items;
+#define CLOUD_RENDERER_SWITCH_NAME(member, item, shader) items.push_back(item);
+    CLOUD_RENDERER_SCENE_SWITCHES(CLOUD_RENDERER_SWITCH_NAME)
+#undef CLOUD_RENDERER_SWITCH_NAME
+    std::string out;
+    for (std::size_t i = 0; i < items.size(); ++i) out += std::string(i == 0 ? "" : i + 1 == items.size() ? " or " : ", ") + items[i];
+    return out;
 }
 
 float terrain_distance(const scene& s, glm::vec3 dir, glm::vec3* normal) {
@@ -401,12 +495,13 @@ float terrain_distance(const scene& s, glm::vec3 dir, glm::vec3* normal) {
     return nearest;
 }
 
-const char* name(light_mode l) { return l == light_mode::cone ? "cone" : l == light_mode::march ? "march" : "map"; }
-const char* name(reach_mode r) { return r == reach_mode::far ? "far" : "band"; }
-const char* name(step_schedule s) { return s == step_schedule::uniform ? "uniform" : "growing"; }
-const char* name(integration_mode i) { return i == integration_mode::analytic ? "analytic" : "naive"; }
-const char* name(lighting_model l) { return l == lighting_model::octaves ? "octaves" : "diffusion"; }
-const char* name(diffusion_table t) { return t == diffusion_table::clouds ? "clouds" : "fitted"; }
+const char* name(phase_model p) { return value_names<phase_model>::names[int(p)]; }
+const char* name(light_mode l) { return value_names<light_mode>::names[int(l)]; }
+const char* name(reach_mode r) { return value_names<reach_mode>::names[int(r)]; }
+const char* name(step_schedule s) { return value_names<step_schedule>::names[int(s)]; }
+const char* name(integration_mode i) { return value_names<integration_mode>::names[int(i)]; }
+const char* name(lighting_model l) { return value_names<lighting_model>::names[int(l)]; }
+const char* name(diffusion_table t) { return value_names<diffusion_table>::names[int(t)]; }
 
 float phase_mean_cosine(const frame_constants& k, phase_model p) {
     switch (p) {
@@ -438,81 +533,45 @@ std::string apply_variant_spec(const std::string& spec, variant& v) {
         const std::size_t eq = item.find('=');
         if (eq == std::string::npos) return "variant item '" + item + "' is not key=value";
         const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
-        bool ok = true;
-        if (key == "lighting") {
-            if (value == "octaves") out.lighting = lighting_model::octaves;
-            else if (value == "diffusion") out.lighting = lighting_model::diffusion;
-            else return "lighting must be octaves or diffusion, not '" + value + "'";
-        } else if (key == "table") {
-            if (value == "clouds") out.table = diffusion_table::clouds;
-            else if (value == "fitted") out.table = diffusion_table::fitted;
-            else return "table must be clouds or fitted, not '" + value + "'";
-        } else if (key == "phase") {
-            if (value == "hg") out.phase = phase_model::hg;
-            else if (value == "dual_hg" || value == "dual") out.phase = phase_model::dual_hg;
-            else if (value == "cs" || value == "cornette_shanks") out.phase = phase_model::cornette_shanks;
-            else if (value == "mie") out.phase = phase_model::mie;
-            else return "phase must be hg, dual_hg, cs or mie, not '" + value + "'";
-        } else if (key == "octaves") {
-            ok = parse_int(value, 1, 8, out.octaves);
-            if (!ok) return "octaves must be an integer from 1 to 8, not '" + value + "'";
-        } else if (key == "powder") {
-            if (!parse_switch(value, out.powder)) return "powder must be on or off, not '" + value + "'";
-        } else if (key == "light") {
-            if (value == "cone") out.light = light_mode::cone;
-            else if (value == "march") out.light = light_mode::march;
-            else if (value == "map") out.light = light_mode::map;
-            else return "light must be cone, march or map, not '" + value + "'";
-        } else if (key == "behind") {
-            if (value == "cone") out.behind = light_mode::cone;
-            else if (value == "march") out.behind = light_mode::march;
-            else if (value == "map") out.behind = light_mode::map;
-            else return "behind must be cone, march or map, not '" + value + "'";
-        } else if (key == "refine") {
-            if (!parse_int(value, 1, 64, out.refine))
-                return "refine must be an integer from 1 to 64, not '" + value + "'";
-        } else if (key == "light-steps") {
-            if (!parse_int(value, 1, 256, out.light_steps))
-                return "light-steps must be an integer from 1 to 256, not '" + value + "'";
-        } else if (key == "integration") {
-            if (value == "analytic") out.integration = integration_mode::analytic;
-            else if (value == "naive") out.integration = integration_mode::naive;
-            else return "integration must be analytic or naive, not '" + value + "'";
-        } else if (key == "steps") {
-            if (!parse_int(value, 8, 1024, out.view_steps))
-                return "steps must be an integer from 8 to 1024, not '" + value + "'";
-        } else if (key == "schedule") {
-            if (value == "uniform") out.schedule = step_schedule::uniform;
-            else if (value == "growing") out.schedule = step_schedule::growing;
-            else return "schedule must be uniform or growing, not '" + value + "'";
-        } else if (key == "ambient") {
-            if (value == "flat") out.occluded_ambient = false;
-            else if (value == "occluded") out.occluded_ambient = true;
-            else return "ambient must be flat or occluded, not '" + value + "'";
-        } else if (key == "reach") {
-            if (value == "far") out.reach = reach_mode::far;
-            else if (value == "band") out.reach = reach_mode::band;
-            else return "reach must be far or band, not '" + value + "' (capped and map were removed: docs/lighting_research.md, \"Switches removed\")";
-        } else if (const char* where = removed_switch(key)) {
-            return "'" + key + "' is no longer a variant switch: " + where;
-        } else {
-            return "unknown variant key '" + key +
-                   "' (known: phase, lighting, table, octaves, powder, light, behind, light-steps, integration, steps, "
-                   "schedule, refine, ambient, reach)";
-        }
+        bool known = false;
+        std::string error;
+#define CLOUD_RENDERER_VARIANT_PARSE(member, default_value, key_text, lo, hi, off, on, shader, constant) \
+    if (key == key_text) {                                                                           \
+        known = true;                                                                                \
+        error = parse_value(key_text, value, lo, hi, off, on, out.member);                           \
+    }
+        CLOUD_RENDERER_VARIANT_TABLE(CLOUD_RENDERER_VARIANT_PARSE)
+#undef CLOUD_RENDERER_VARIANT_PARSE
+        if (!error.empty()) return error;
+        if (known) continue;
+        if (const char* where = removed_switch(key)) return "'" + key + "' is no longer a variant switch: " + where;
+        std::string keys;
+#define CLOUD_RENDERER_VARIANT_KEY(member, default_value, key_text, lo, hi, off, on, shader, constant) \
+    keys += std::string(keys.empty() ? "" : ", ") + key_text;
+        CLOUD_RENDERER_VARIANT_TABLE(CLOUD_RENDERER_VARIANT_KEY)
+#undef CLOUD_RENDERER_VARIANT_KEY
+        return "unknown variant key '" + key + "' (known: " + keys + ")";
     }
     v = out;
     return {};
 }
 
 std::string variant_spec(const variant& v) {
-    std::ostringstream s;
-    s << "phase=" << name(v.phase) << ",lighting=" << name(v.lighting) << ",table=" << name(v.table) << ",octaves=" << v.octaves
-      << ",powder=" << (v.powder ? "on" : "off") << ",light=" << name(v.light) << ",behind=" << name(v.behind)
-      << ",light-steps=" << v.light_steps << ",integration=" << name(v.integration) << ",steps=" << v.view_steps
-      << ",schedule=" << name(v.schedule) << ",refine=" << v.refine << ",ambient=" << (v.occluded_ambient ? "occluded" : "flat")
-      << ",reach=" << name(v.reach);
-    return s.str();
+    std::string spec;
+#define CLOUD_RENDERER_VARIANT_PRINT(member, default_value, key_text, lo, hi, off, on, shader, constant) \
+    spec += std::string(spec.empty() ? "" : ",") + key_text + "=" + value_text(v.member, off, on);
+    CLOUD_RENDERER_VARIANT_TABLE(CLOUD_RENDERER_VARIANT_PRINT)
+#undef CLOUD_RENDERER_VARIANT_PRINT
+    return spec;
+}
+
+std::vector<shader_constant> variant_constants(const variant& v) {
+    std::vector<shader_constant> out;
+#define CLOUD_RENDERER_VARIANT_CONSTANT(member, default_value, key_text, lo, hi, off, on, shader, constant) \
+    if (*shader != '\0') out.push_back({shader, constant});
+    CLOUD_RENDERER_VARIANT_TABLE(CLOUD_RENDERER_VARIANT_CONSTANT)
+#undef CLOUD_RENDERER_VARIANT_CONSTANT
+    return out;
 }
 
 }  // namespace cloud_renderer

@@ -64,31 +64,71 @@ enum class reach_mode { far, band };
 // production octave choice it replaced (a 6-sample cone with the far sample, 3 octaves,
 // powder, unoccluded sky light). The switches removed from the renderer, with the
 // measurements that removed them: docs/lighting_research.md, "Switches removed".
+// The variant's switches in one table, the one place a switch is listed. Each row: the member,
+// its default (the member's type is the default's), its --variant key, the range of an
+// integer, the words of a bool (off, on), the shader's permutation constant (clouds.frag's
+// CR_PARAM line, clouds.wgsl's override; empty: none of its own) and that constant's value for
+// variant v (an enum's is its index). The struct below, apply_variant_spec, variant_spec and the
+// permutation block of fragment_shader_source are made from it; an enum's words are
+// value_names' (scene.cpp). ctest cloud_renderer.variant_table (test_variant_table.cpp)
+// checks that clouds.frag's CR_PARAM lines, clouds.wgsl's overrides and the web demo's
+// permutation values (web/demo/main.js) name the same constants: a switch added in one place
+// alone fails it.
+//  member            default                        key            range    bool words          shader constant       its value
+#define CLOUD_RENDERER_VARIANT_TABLE(X)                                                                                                                \
+    X(phase,            phase_model::dual_hg,          "phase",       0, 0,    "", "",             "u_phase_model",      int(v.phase))              \
+    X(lighting,         lighting_model::diffusion,     "lighting",    0, 0,    "", "",             "u_lighting",         lighting_constant(v))      \
+    X(table,            diffusion_table::clouds,       "table",       0, 0,    "", "",             "",                   0)                         \
+    X(octaves,          3,                             "octaves",     1, 8,    "", "",             "u_octaves",          v.octaves)                 \
+    X(powder,           false,                         "powder",      0, 0,    "off", "on",        "u_powder",           v.powder ? 1 : 0)          \
+    X(light,            light_mode::march,             "light",       0, 0,    "", "",             "u_light_mode",       int(v.light))              \
+    X(behind,           light_mode::march,             "behind",      0, 0,    "", "",             "u_behind_mode",      int(v.behind))             \
+    X(light_steps,      6,                             "light-steps", 1, 256,  "", "",             "u_light_steps",      v.light_steps)             \
+    X(integration,      integration_mode::analytic,    "integration", 0, 0,    "", "",             "u_integration",      int(v.integration))        \
+    X(view_steps,       64,                            "steps",       8, 1024, "", "",             "u_view_steps",       v.view_steps)              \
+    X(schedule,         step_schedule::uniform,        "schedule",    0, 0,    "", "",             "u_schedule",         int(v.schedule))           \
+    X(refine,           16,                            "refine",      1, 64,   "", "",             "u_refine",           v.refine)                  \
+    X(occluded_ambient, true,                          "ambient",     0, 0,    "flat", "occluded", "u_occluded_ambient", v.occluded_ambient ? 1 : 0) \
+    X(reach,            reach_mode::far,               "reach",       0, 0,    "", "",             "u_reach",            int(v.reach))
+
+// The members (CLOUD_RENDERER_VARIANT_TABLE's rows, in order):
+// - phase: the phase function;
+// - lighting, table: the octaves or the diffusion model, and the diffusion model's numbers;
+// - octaves, powder: Wrenninge's octaves (1..8) and Schneider's powder term;
+// - light, behind: the optical depth toward the sun and the one behind the sample (diffusion
+//   model only);
+// - light_steps: the light march's steps to where the cloud type's band ends (1..256);
+// - integration: energy-conserving or the naive Riemann sum;
+// - view_steps, schedule: the view march's steps through the layer (8..1024) and their spacing;
+// - refine: a view step whose sample gives it an optical depth above 1 is marched again in up
+//   to `refine` sub-steps of optical depth <= 1 (refine_substeps), from the last empty sample
+//   when it is the first step in cloud (the cloud's front lies between): the light is then
+//   read near the front, not up to a step inside. 1: never (1..64);
+// - occluded_ambient: the sky light (ambient) inside clouds, flat (the layer's top and bottom
+//   colours mixed by height, unattenuated) or occluded: the top's light times
+//   diffuse_transmittance of the optical depth above the sample, the bottom's of the depth
+//   below, both estimated from the light estimates toward and away from the sun times the
+//   sun's elevation sine (with the sun below the horizon the estimate away from it looks up,
+//   toward it down);
+// - reach: the light march toward a low sun (reach_mode).
 struct variant {
-    phase_model phase = phase_model::dual_hg;
-    lighting_model lighting = lighting_model::diffusion;
-    diffusion_table table = diffusion_table::clouds;  // the diffusion model's numbers
-    int octaves = 3;                 // Wrenninge octaves, 1..8
-    bool powder = false;             // Schneider's powder term
-    light_mode light = light_mode::march;  // the optical depth toward the sun
-    light_mode behind = light_mode::march;  // the one behind the sample (diffusion model only)
-    int light_steps = 6;             // march: steps to where the cloud type's band ends (1..256)
-    integration_mode integration = integration_mode::analytic;
-    int view_steps = 64;             // steps along the view ray through the layer (8..1024)
-    step_schedule schedule = step_schedule::uniform;
-    // A view step whose sample gives it an optical depth above 1 is marched again in up to
-    // `refine` sub-steps of optical depth <= 1 (refine_substeps), from the last empty sample
-    // when it is the first step in cloud (the cloud's front lies between): the light is then
-    // read near the front, not up to a step inside. 1: never (1..64).
-    int refine = 16;
-    // The sky light (ambient) inside clouds: flat (the layer's top and bottom colours mixed by
-    // height, unattenuated) or occluded: the top's light times diffuse_transmittance of the
-    // optical depth above the sample, the bottom's of the depth below, both estimated from
-    // the light estimates toward and away from the sun times the sun's elevation sine (with
-    // the sun below the horizon the estimate away from it looks up, toward it down).
-    bool occluded_ambient = true;
-    reach_mode reach = reach_mode::far;  // the light march toward a low sun (above)
+#define CLOUD_RENDERER_VARIANT_MEMBER(member, default_value, key, lo, hi, off, on, shader, value) \
+    decltype(default_value) member = default_value;
+    CLOUD_RENDERER_VARIANT_TABLE(CLOUD_RENDERER_VARIANT_MEMBER)
+#undef CLOUD_RENDERER_VARIANT_MEMBER
 };
+// clouds.frag's u_lighting: 0 the octaves, 1 the diffusion model with diffusion_models::clouds,
+// 2 with diffusion_models::fitted.
+inline int lighting_constant(const variant& v) {
+    return v.lighting == lighting_model::octaves ? 0 : v.table == diffusion_table::clouds ? 1 : 2;
+}
+// The permutation's constants from the table (name, value), in its order: the shader's
+// CR_PARAM constants of variant v (fragment_shader_source adds the scene's and the pass).
+struct shader_constant {
+    const char* name;
+    int value;
+};
+std::vector<shader_constant> variant_constants(const variant& v);
 
 // The density field. classic: the weather map's coverage (R) with the scene's one cloud type
 // and height profile everywhere, a 60 km weather period. detailed: per-cloud type (G, within
@@ -165,6 +205,22 @@ struct scene {
     // depth buffer does (docs/integration.md).
     bool terrain = false;
 };
+
+// The scene's switches in one table: X(member, --without item, the shader's permutation
+// constant). The --without list, permutation_key and fragment_shader_source's permutation
+// block are made from it.
+#define CLOUD_RENDERER_SCENE_SWITCHES(X)  \
+    X(sun_disc, "sun-disc", "u_sun_disc") \
+    X(haze, "haze", "u_haze")             \
+    X(shadows, "shadows", "u_shadows")    \
+    X(dither, "dither", "u_dither")       \
+    X(terrain, "terrain", "u_terrain")
+// The scene's permutation constants: its density field's shape (u_shape) and its switches.
+std::vector<shader_constant> scene_constants(const scene& s);
+// Turns off the scene switch named `item` (a --without item); false for an unknown name.
+bool turn_off_scene_switch(scene& s, const std::string& item);
+// The --without items, "sun-disc, haze, shadows, dither or terrain".
+std::string scene_switch_names();
 
 // The terrain's boxes, camera-relative: the (x, z) of each centre (m; the camera at x = z = 0,
 // looking along -z at yaw 0), its half width and its top's altitude. From below the ground

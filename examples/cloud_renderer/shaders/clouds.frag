@@ -14,8 +14,10 @@
 // Frame and units: see scene.hpp (camera at the origin, +y up, metres).
 
 // The permutation: the pass (below), the density field's shape (scene.hpp's cloud_shape: 0
-// classic, 1 detailed), the lighting variant (values in scene.hpp's `variant`) and what the
-// picture draws besides the clouds (scene.hpp's sun_disc, haze, dither).
+// classic, 1 detailed), the lighting variant and what the picture draws besides the clouds:
+// the constants of scene.hpp's two tables (CLOUD_RENDERER_VARIANT_TABLE,
+// CLOUD_RENDERER_SCENE_SWITCHES), which the host's block defines; ctest
+// cloud_renderer.variant_table checks these lines against them.
 CR_PARAM(int, u_pass)
 CR_PARAM(int, u_shape)
 CR_PARAM(int, u_phase_model)      // 0 HG, 1 dual-lobe HG, 2 Cornette-Shanks, 3 Mie fit
