@@ -1,6 +1,7 @@
 #include "gl_renderer.hpp"
 
 #include "far_shadow.hpp"
+#include "frame_block.hpp"
 #include "physical_sky.hpp"
 #include "sky_tables_gl.hpp"
 
@@ -15,6 +16,8 @@
 #include <GL/glcorearb.h>
 
 #include <chrono>
+#include <cstddef>
+#include <cstring>
 #include <cstdio>
 #include <map>
 #include <vector>
@@ -116,6 +119,65 @@ struct gl_renderer::state {
         return gl.link(shaders, 2, "shader program", why);
     }
 
+    // The frame's constants (clouds.frag's CrFrame, frame_block.hpp): one buffer on binding 0,
+    // uploaded when its bytes change (a frame's passes share them).
+    GLuint frame_ubo = 0;
+    frame_block uploaded{};
+    bool has_uploaded = false;
+    void upload_frame_block(const frame_block& b) {
+        if (frame_ubo == 0) {
+            gl.GenBuffers(1, &frame_ubo);
+            gl.BindBuffer(GL_UNIFORM_BUFFER, frame_ubo);
+            gl.BufferData(GL_UNIFORM_BUFFER, sizeof(frame_block), nullptr, GL_DYNAMIC_DRAW);
+        }
+        gl.BindBufferBase(GL_UNIFORM_BUFFER, 0, frame_ubo);
+        if (has_uploaded && std::memcmp(&b, &uploaded, sizeof b) == 0) return;
+        gl.BindBuffer(GL_UNIFORM_BUFFER, frame_ubo);
+        gl.BufferSubData(GL_UNIFORM_BUFFER, 0, sizeof b, &b);
+        uploaded = b;
+        has_uploaded = true;
+    }
+
+    // Binds program p's CrFrame to binding 0 after checking its layout against frame_block's:
+    // the block's size and every member's offset (a member on one side alone, or moved, names
+    // itself here). False and `why` on a mismatch.
+    bool bind_frame_block(GLuint p, std::string& why) const {
+        const GLuint index = gl.GetUniformBlockIndex(p, "CrFrame");
+        if (index == GL_INVALID_INDEX) {
+            why = "clouds.frag has no uniform block CrFrame";
+            return false;
+        }
+        GLint size = 0;
+        gl.GetActiveUniformBlockiv(p, index, GL_UNIFORM_BLOCK_DATA_SIZE, &size);
+        std::string wrong;
+        if (size != GLint(sizeof(frame_block)))
+            wrong += " size " + std::to_string(size) + " (frame_block: " + std::to_string(sizeof(frame_block)) + ")";
+#define CLOUD_RENDERER_CHECK_MEMBER(member)                                                                        \
+        {                                                                                                          \
+            const char* name = "u_" #member;                                                                       \
+            const std::string array_name = std::string(name) + "[0]";                                              \
+            GLuint at = GL_INVALID_INDEX;                                                                          \
+            gl.GetUniformIndices(p, 1, &name, &at);                                                                \
+            if (at == GL_INVALID_INDEX) {                                                                          \
+                const char* first = array_name.c_str();                                                           \
+                gl.GetUniformIndices(p, 1, &first, &at);                                                           \
+            }                                                                                                      \
+            GLint offset = -1;                                                                                     \
+            if (at != GL_INVALID_INDEX) gl.GetActiveUniformsiv(p, 1, &at, GL_UNIFORM_OFFSET, &offset);             \
+            if (at != GL_INVALID_INDEX && offset != GLint(offsetof(frame_block, member)))                           \
+                wrong += std::string(" ") + name + " at " + std::to_string(offset) + " (frame_block: " +           \
+                         std::to_string(offsetof(frame_block, member)) + ")";                                      \
+        }
+        CLOUD_RENDERER_FRAME_BLOCK_MEMBERS(CLOUD_RENDERER_CHECK_MEMBER)
+#undef CLOUD_RENDERER_CHECK_MEMBER
+        if (!wrong.empty()) {
+            why = "clouds.frag's CrFrame does not match frame_block.hpp:" + wrong;
+            return false;
+        }
+        gl.UniformBlockBinding(p, index, 0);
+        return true;
+    }
+
     GLuint program_for(const variant& v, const scene& sc, clouds_pass pass, std::string& why) {
         // One program per permutation (the variant, the scene's switches, the pass and the sky).
         const std::string key = permutation_key(v, sc) + "/pass" + std::to_string(static_cast<int>(pass)) +
@@ -130,7 +192,12 @@ struct gl_renderer::state {
             return 0;
         }
         const GLuint p = link(vs, fs, why);
-        if (p != 0) programs[key] = p;
+        if (p == 0) return 0;
+        if (!bind_frame_block(p, why)) {
+            gl.DeleteProgram(p);
+            return 0;
+        }
+        programs[key] = p;
         return p;
     }
 
@@ -147,6 +214,7 @@ struct gl_renderer::state {
         if (far_shadow_fbo) gl.DeleteFramebuffers(1, &far_shadow_fbo);
         if (fbo) gl.DeleteFramebuffers(1, &fbo);
         if (vao) gl.DeleteVertexArrays(1, &vao);
+        if (frame_ubo) gl.DeleteBuffers(1, &frame_ubo);
         if (queries[0]) gl.DeleteQueries(2, queries);
         release_temporal();
     }
@@ -372,59 +440,66 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, in
     if (program == 0) return 0;
     gl.UseProgram(program);
     const uniform_setter u{gl, program};
-    u.v2("u_resolution", glm::vec2(float(width), float(height)));
-    u.v3("u_forward", k.forward);
-    u.v3("u_right", k.right);
-    u.v3("u_up", k.up);
-    u.f1("u_tan_half_fov", k.tan_half_fov);
-    u.f1("u_cam_altitude", sc.camera_altitude);
-    u.f1("u_planet_radius", sc.planet_radius);
-    u.f1("u_layer_bottom", sc.layer_bottom);
-    u.f1("u_layer_top", sc.layer_top);
-    u.v3("u_sun_dir", k.sun_dir);
-    u.v3("u_sun_radiance", k.sun_radiance);
-    u.v3("u_ambient_top", k.ambient_top);
-    u.v3("u_ambient_bottom", k.ambient_bottom);
-    u.v3("u_sky_zenith", k.sky_zenith);
-    u.v3("u_sky_horizon", k.sky_horizon);
-    u.v3("u_ground", k.ground);
-    u.f1("u_sun_angular_radius", k.sun_angular_radius);
-    u.f1("u_aureole", k.aureole);
-    u.f1("u_coverage", sc.coverage);
-    u.f1("u_cloud_type", sc.cloud_type);
-    u.f1("u_extinction", sc.extinction);
-    u.f1("u_albedo", sc.albedo);
-    u.f1("u_max_distance", sc.max_distance);
-    u.f1("u_base_tile", sc.base_tile);
-    u.f1("u_detail_tile", sc.detail_tile);
-    u.f1("u_weather_tile", sc.weather_tile);
-    u.v2("u_wind", sc.wind);
-    gl.Uniform1ui(u.loc("u_frame"), sc.frame);
-    u.f1("u_exposure", k.exposure);
-    u.f1("u_phase_g", k.phase_g);
-    u.f1("u_phase_g_back", k.phase_g_back);
-    u.f1("u_phase_w", k.phase_w);
-    u.f1("u_droplet_diameter", k.droplet_diameter);
-    u.f1("u_ms_a", k.ms_a);
-    u.f1("u_phase_mean_cosine", phase_mean_cosine(k, v.phase));
-    u.f1("u_ms_b", k.ms_b);
-    u.f1("u_ms_c", k.ms_c);
-    u.f1("u_cone_step", k.cone_step);
-    u.f1("u_cone_spread", k.cone_spread);
-    u.f1("u_cone_far_distance", k.cone_far_distance);
-    u.f1("u_cone_far_length", k.cone_far_length);
-    u.f1("u_light_march_max", k.light_march_max);
-    u.f1("u_march_near_distance", k.march_near_distance);
-    u.f1("u_min_transmittance", k.min_transmittance);
-    u.u2("u_update_offset", offset);
-    u.v3("u_shadow_origin", k.shadow_origin);
-    u.v3("u_shadow_right", k.shadow_right);
-    u.v3("u_shadow_up", k.shadow_up);
-    u.f1("u_shadow_half_extent", k.shadow_half_extent);
-    for (int i = 0; i < 4; ++i) {
-        const terrain_box& b = terrain_boxes[i];
-        gl.Uniform4f(u.loc(("u_terrain_boxes[" + std::to_string(i) + "]").c_str()), b.x, b.z, b.half_width, b.top);
-    }
+    // The frame's constants: one block (CrFrame), filled here and uploaded when it changed.
+    frame_block b{};
+    b.forward = k.forward;
+    b.tan_half_fov = k.tan_half_fov;
+    b.right = k.right;
+    b.cam_altitude = sc.camera_altitude;
+    b.up = k.up;
+    b.planet_radius = sc.planet_radius;
+    b.sun_dir = k.sun_dir;
+    b.layer_bottom = sc.layer_bottom;
+    b.sun_radiance = k.sun_radiance;
+    b.layer_top = sc.layer_top;
+    b.ambient_top = k.ambient_top;
+    b.sun_angular_radius = k.sun_angular_radius;
+    b.ambient_bottom = k.ambient_bottom;
+    b.aureole = k.aureole;
+    b.sky_zenith = k.sky_zenith;
+    b.coverage = sc.coverage;
+    b.sky_horizon = k.sky_horizon;
+    b.cloud_type = sc.cloud_type;
+    b.ground = k.ground;
+    b.extinction = sc.extinction;
+    b.shadow_origin = k.shadow_origin;
+    b.albedo = sc.albedo;
+    b.shadow_right = k.shadow_right;
+    b.max_distance = sc.max_distance;
+    b.shadow_up = k.shadow_up;
+    b.shadow_half_extent = k.shadow_half_extent;
+    for (int i = 0; i < 4; ++i) b.terrain_boxes[i] = glm::vec4(terrain_boxes[i].x, terrain_boxes[i].z, terrain_boxes[i].half_width, terrain_boxes[i].top);
+    for (int i = 0; i < sun_heights; ++i) b.sun_by_height[i] = glm::vec4(k.sun_by_height[i], 0.0f);
+    b.resolution = glm::vec2(float(width), float(height));
+    b.band = k.band;
+    b.wind = sc.wind;
+    b.update_offset = offset;
+    b.frame = sc.frame;
+    b.exposure = k.exposure;
+    b.base_tile = sc.base_tile;
+    b.detail_tile = sc.detail_tile;
+    b.weather_tile = sc.weather_tile;
+    b.weather_wide_tile = sc.weather_wide_tile;
+    b.curl_tile = sc.curl_tile;
+    b.curl_strength = sc.curl_strength;
+    b.type_spread = sc.type_spread;
+    b.top_rounding = sc.top_rounding;
+    b.density_scale = sc.density_scale;
+    b.phase_g = k.phase_g;
+    b.phase_g_back = k.phase_g_back;
+    b.phase_w = k.phase_w;
+    b.droplet_diameter = k.droplet_diameter;
+    b.ms_a = k.ms_a;
+    b.ms_b = k.ms_b;
+    b.ms_c = k.ms_c;
+    b.phase_mean_cosine = phase_mean_cosine(k, v.phase);
+    b.cone_step = k.cone_step;
+    b.cone_spread = k.cone_spread;
+    b.cone_far_distance = k.cone_far_distance;
+    b.cone_far_length = k.cone_far_length;
+    b.light_march_max = k.light_march_max;
+    b.min_transmittance = k.min_transmittance;
+    b.march_near_distance = k.march_near_distance;
     // Units 0-2 and 4-5 (3 is the shadow map's, bound by shadow_pass).
     struct unit {
         const char* sampler;
@@ -442,13 +517,6 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, in
         u.i1(t.sampler, t.index);
     }
     u.i1("u_shadow_map", 3);
-    u.f1("u_weather_wide_tile", sc.weather_wide_tile);
-    u.f1("u_curl_tile", sc.curl_tile);
-    u.f1("u_curl_strength", sc.curl_strength);
-    u.f1("u_type_spread", sc.type_spread);
-    u.f1("u_top_rounding", sc.top_rounding);
-    u.f1("u_density_scale", sc.density_scale);
-    u.v2("u_band", k.band);
     if (sc.sky == sky_model::physical) {
         // The aerial-perspective table on unit 6 (drawn on the GPU by frame_for; no filtering:
         // clouds.frag interpolates it as haze_lookup does).
@@ -456,25 +524,25 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, in
         gl.ActiveTexture(GL_TEXTURE6);
         gl.BindTexture(GL_TEXTURE_2D, st.sky.haze_texture());
         u.i1("u_haze_table", 6);
-        u.v3("u_haze_table_size", glm::vec3(float(t.n_d), float(t.n_az), float(t.n_el)));
-        u.f1("u_haze_table_distance", t.max_distance);
-        for (int i = 0; i < sun_heights; ++i) u.v3(("u_sun_by_height[" + std::to_string(i) + "]").c_str(), k.sun_by_height[i]);
+        b.haze_table_size = glm::vec3(float(t.n_d), float(t.n_az), float(t.n_el));
+        b.haze_table_distance = t.max_distance;
         // The far shadow on unit 7 (drawn by pass 4, ensure_far_shadow; while pass 4 draws it, a
         // stand-in) and the sky-view table on unit 8, read as the haze table is.
         const far_shadow_table f = far_shadow_nodes(sc, light_reach(v, k));
         gl.ActiveTexture(GL_TEXTURE7);
         gl.BindTexture(GL_TEXTURE_2D, pass == clouds_pass::far_shadow ? st.far_shadow_stand_in : st.far_shadow);
         u.i1("u_far_shadow", 7);
-        u.v2("u_far_shadow_size", glm::vec2(float(f.n_alt), float(f.n_mu)));
-        gl.Uniform4f(u.loc("u_far_shadow_range"), f.alt_lo, f.alt_hi, f.mu_lo, f.mu_hi);
+        b.far_shadow_size = glm::vec2(float(f.n_alt), float(f.n_mu));
+        b.far_shadow_range = glm::vec4(f.alt_lo, f.alt_hi, f.mu_lo, f.mu_hi);
         // What pass 4 (the table on the GPU) needs beyond its range: the march's end and the
         // field's period (far_shadow.cpp's make_table).
-        u.f1("u_far_shadow_reach", f.reach);
-        u.f1("u_far_shadow_period", sc.shape == cloud_shape::classic ? sc.weather_tile : sc.weather_wide_tile);
+        b.far_shadow_reach = f.reach;
+        b.far_shadow_period = sc.shape == cloud_shape::classic ? sc.weather_tile : sc.weather_wide_tile;
         gl.ActiveTexture(GL_TEXTURE8);
         gl.BindTexture(GL_TEXTURE_2D, st.sky.sky_view_texture());
         u.i1("u_sky_view", 8);
     }
+    st.upload_frame_block(b);
     return program;
 }
 

@@ -58,6 +58,12 @@ namespace cloudmath_egl {
     X(PFNGLBINDBUFFERPROC, BindBuffer)                          \
     X(PFNGLBUFFERDATAPROC, BufferData)                          \
     X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                  \
+    X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                    \
+    X(PFNGLGETUNIFORMBLOCKINDEXPROC, GetUniformBlockIndex)      \
+    X(PFNGLUNIFORMBLOCKBINDINGPROC, UniformBlockBinding)        \
+    X(PFNGLGETACTIVEUNIFORMBLOCKIVPROC, GetActiveUniformBlockiv) \
+    X(PFNGLGETUNIFORMINDICESPROC, GetUniformIndices)            \
+    X(PFNGLGETACTIVEUNIFORMSIVPROC, GetActiveUniformsiv)        \
     X(PFNGLGETBUFFERSUBDATAPROC, GetBufferSubData)              \
     X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                \
     X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)          \

@@ -17,10 +17,12 @@ const params = new URLSearchParams(location.search);
 const baseSize = Number(params.get('base') || 64);  // base noise volume edge (the desktop renderer: 128)
 const status = (text) => { document.getElementById('status').textContent = text; };
 // The names of clouds.frag's permutation switches (its CR_PARAM lines: compiled in as
-// constants) and of all its uniforms (those and its uniform lines).
+// constants) and of all its uniforms (those, its uniform lines and its block CrFrame's members).
 const cloudsFragSwitches = [...cloudsFrag.matchAll(/^CR_PARAM\(\w+,\s*(\w+)\)/gm)].map((m) => m[1]);
 const cloudsFragUniforms = new Set(cloudsFragSwitches);
 for (const m of cloudsFrag.matchAll(/^uniform\s+\w+\s+([^;]+);/gm)) for (const n of m[1].split(',')) cloudsFragUniforms.add(n.trim().replace(/\[\d+\]$/, ''));
+const cloudsFragBlock = /uniform CrFrame \{([\s\S]*?)\};/.exec(cloudsFrag)[1].replace(/\/\/.*$/gm, '');
+for (const m of cloudsFragBlock.matchAll(/\w+\s+([^;]+);/g)) for (const n of m[1].split(',')) cloudsFragUniforms.add(n.trim().replace(/\[\d+\]$/, ''));
 
 const canvas = document.getElementById('view');
 const gl = canvas.getContext('webgl2', { antialias: false, preserveDrawingBuffer: true });
@@ -252,32 +254,55 @@ function cloudUniforms(state) {
   };
 }
 
+// clouds.frag's uniform block CrFrame as program p lays it out: its size and each member's
+// offset, array stride and type (all std140 members are active), read once per program; the
+// block bound to binding 0.
+let frameUbo = null;
+const blockLayouts = new WeakMap();
+const GL = WebGL2RenderingContext;  // its constants, whether or not a context was made
+const blockTypes = new Map([[GL.FLOAT, { n: 1, view: 'f' }], [GL.FLOAT_VEC2, { n: 2, view: 'f' }], [GL.FLOAT_VEC3, { n: 3, view: 'f' }],
+  [GL.FLOAT_VEC4, { n: 4, view: 'f' }], [GL.INT, { n: 1, view: 'i' }], [GL.UNSIGNED_INT, { n: 1, view: 'u' }],
+  [GL.UNSIGNED_INT_VEC2, { n: 2, view: 'u' }]]);
+function frameBlockLayout(p) {
+  if (blockLayouts.has(p)) return blockLayouts.get(p);
+  const index = gl.getUniformBlockIndex(p, 'CrFrame');
+  if (index === gl.INVALID_INDEX) throw new Error('clouds.frag has no uniform block CrFrame');
+  const indices = gl.getActiveUniformBlockParameter(p, index, gl.UNIFORM_BLOCK_ACTIVE_UNIFORM_INDICES);
+  const offsets = gl.getActiveUniforms(p, indices, gl.UNIFORM_OFFSET);
+  const strides = gl.getActiveUniforms(p, indices, gl.UNIFORM_ARRAY_STRIDE);
+  const types = gl.getActiveUniforms(p, indices, gl.UNIFORM_TYPE);
+  const members = new Map();
+  indices.forEach((u, i) => members.set(gl.getActiveUniform(p, u).name.replace(/\[0\]$/, ''), { offset: offsets[i], stride: strides[i], type: types[i] }));
+  gl.uniformBlockBinding(p, index, 0);
+  const layout = { size: gl.getActiveUniformBlockParameter(p, index, gl.UNIFORM_BLOCK_DATA_SIZE), members };
+  blockLayouts.set(p, layout);
+  return layout;
+}
+
 // Makes clouds.frag's program for `values` current with every uniform set and the textures
 // bound (the physical sky's far shadow: farShadow, the table or, while it is drawn, a stand-in).
 function bindClouds(values, farShadow) {
   useClouds(values);
   gl.useProgram(clouds);
-  // Each value by the type the program declares (a uniform the compiler dropped is skipped).
-  const active = new Map();
-  for (let i = 0, n = gl.getProgramParameter(clouds, gl.ACTIVE_UNIFORMS); i < n; ++i) {
-    const info = gl.getActiveUniform(clouds, i);
-    active.set(info.name, info.type);
-  }
+  // The frame's constants go into clouds.frag's uniform block CrFrame, at the offsets the
+  // program reports (std140), one buffer on binding 0; a value for no member is an error.
+  const layout = frameBlockLayout(clouds);
+  const data = new ArrayBuffer(layout.size);
+  const views = { f: new Float32Array(data), i: new Int32Array(data), u: new Uint32Array(data) };
   for (const [name, v] of Object.entries(values)) {
     if (name === 'u_physical_sky') continue;  // compiled in (useClouds)
-    if (active.has(name + '[0]') && active.get(name + '[0]') === gl.FLOAT_VEC3) {  // u_sun_by_height[8]
-      gl.uniform3fv(gl.getUniformLocation(clouds, name + '[0]'), v);
-      continue;
-    }
-    const type = active.get(name), at = gl.getUniformLocation(clouds, name);
-    if (type === undefined) { if (!cloudsFragUniforms.has(name)) throw new Error(`clouds.frag declares no uniform ${name}`); continue; }
-    if (type === gl.INT) gl.uniform1i(at, v);
-    else if (type === gl.FLOAT) gl.uniform1f(at, v);
-    else if (type === gl.FLOAT_VEC2) gl.uniform2fv(at, v);
-    else if (type === gl.FLOAT_VEC3) gl.uniform3fv(at, v);
-    else if (type === gl.FLOAT_VEC4) gl.uniform4fv(at, v);
-    else throw new Error(`clouds.frag: uniform ${name} has type 0x${type.toString(16)}, which bindClouds() does not set`);
+    const m = layout.members.get(name);
+    if (m === undefined) { if (!cloudsFragUniforms.has(name)) throw new Error(`clouds.frag declares no uniform ${name}`); continue; }
+    const kind = blockTypes.get(m.type);
+    if (kind === undefined) throw new Error(`clouds.frag: CrFrame member ${name} has type 0x${m.type.toString(16)}, which bindClouds() does not set`);
+    const xs = typeof v === 'number' ? [v] : Array.from(v).flat();
+    for (let e = 0; e * kind.n < xs.length; ++e)
+      for (let c = 0; c < kind.n; ++c) views[kind.view][(m.offset + e * m.stride) / 4 + c] = xs[e * kind.n + c];
   }
+  if (!frameUbo) frameUbo = gl.createBuffer();
+  gl.bindBuffer(gl.UNIFORM_BUFFER, frameUbo);
+  gl.bufferData(gl.UNIFORM_BUFFER, data, gl.DYNAMIC_DRAW);
+  gl.bindBufferBase(gl.UNIFORM_BUFFER, 0, frameUbo);
   // u_shadow_map, u_weather_wide and u_curl get units of their own (a 1 x 1 texture: shadows
   // are off and the shape is classic), so that no unit holds two texture types.
   const units = [['u_base', gl.TEXTURE_3D, textures.base], ['u_detail', gl.TEXTURE_3D, textures.detail], ['u_weather', gl.TEXTURE_2D, textures.weather],

@@ -42,33 +42,48 @@ CR_PARAM(int, u_haze)             // 0 off, 1 aerial perspective (air between ca
 CR_PARAM(int, u_dither)           // 0 off, 1 triangular dither before the 8-bit store
 CR_PARAM(int, u_terrain)          // 0 none, 1 the example's terrain (u_terrain_boxes): the march ends at it
 
-// The scene (scene.hpp's `scene` and `frame_constants`).
-uniform vec2 u_resolution;
-uniform vec3 u_forward, u_right, u_up;
-uniform float u_tan_half_fov;
-uniform float u_cam_altitude, u_planet_radius, u_layer_bottom, u_layer_top;
-uniform vec3 u_sun_dir, u_sun_radiance, u_ambient_top, u_ambient_bottom;
-uniform vec3 u_sky_zenith, u_sky_horizon, u_ground;
-uniform float u_sun_angular_radius;
-uniform float u_aureole;  // the glow around the sun: u_aureole u_sun_radiance HG(mu, 0.75)
-uniform float u_coverage, u_cloud_type, u_extinction, u_albedo, u_max_distance;
-uniform float u_base_tile, u_detail_tile, u_weather_tile;
-uniform float u_weather_wide_tile, u_curl_tile, u_curl_strength, u_type_spread, u_top_rounding, u_density_scale;
-uniform vec2 u_band;  // altitudes outside which the field has no density (scene.cpp's cloud_band)
-uniform vec2 u_wind;
-uniform uint u_frame;
-uniform float u_exposure;
-uniform float u_phase_g, u_phase_g_back, u_phase_w, u_droplet_diameter;
-uniform float u_ms_a, u_ms_b, u_ms_c;
-uniform float u_phase_mean_cosine;  // the diffusion model's g for u_phase_model
-uniform float u_cone_step, u_cone_spread, u_cone_far_distance, u_cone_far_length;
-uniform float u_light_march_max, u_min_transmittance;
-uniform float u_march_near_distance;  // growing view steps: nearly uniform closer than this
-uniform vec3 u_shadow_origin, u_shadow_right, u_shadow_up;  // the Beer shadow map's frame (scene.hpp)
-uniform float u_shadow_half_extent;
-// The example's terrain (scene.hpp's terrain_boxes, with u_terrain): boxes standing on the
-// ground, each (x, z) of its centre relative to the camera's foot, half width, top altitude.
-uniform vec4 u_terrain_boxes[4];
+// The frame's constants: one uniform block, laid out once (std140) and shared by the passes
+// (scene.hpp's `scene` and `frame_constants`). The host fills it from a C++ struct of the same
+// layout (frame_block.hpp, its offsets checked against the program's at link); the web demo
+// from the offsets the program reports. Members keep the u_ names: the code reads them as it
+// would plain uniforms. Each vec3 shares its 16 bytes with the float after it.
+layout(std140) uniform CrFrame {
+    vec3 u_forward; float u_tan_half_fov;
+    vec3 u_right; float u_cam_altitude;
+    vec3 u_up; float u_planet_radius;
+    vec3 u_sun_dir; float u_layer_bottom;
+    vec3 u_sun_radiance; float u_layer_top;
+    vec3 u_ambient_top; float u_sun_angular_radius;
+    vec3 u_ambient_bottom; float u_aureole;  // the glow around the sun: u_aureole u_sun_radiance HG(mu, 0.75)
+    vec3 u_sky_zenith; float u_coverage;
+    vec3 u_sky_horizon; float u_cloud_type;
+    vec3 u_ground; float u_extinction;
+    // The Beer shadow map's frame (scene.hpp).
+    vec3 u_shadow_origin; float u_albedo;
+    vec3 u_shadow_right; float u_max_distance;
+    vec3 u_shadow_up; float u_shadow_half_extent;
+    // The physical sky (read with CR_PHYSICAL_SKY): the aerial-perspective table's size (n_d,
+    // n_az, n_el) and last distance; the far shadow's range (alt_lo, alt_hi, mu_lo, mu_hi).
+    vec3 u_haze_table_size; float u_haze_table_distance;
+    vec4 u_far_shadow_range;
+    // The example's terrain (scene.hpp's terrain_boxes, with u_terrain): boxes standing on the
+    // ground, each (x, z) of its centre relative to the camera's foot, half width, top altitude.
+    vec4 u_terrain_boxes[4];
+    vec3 u_sun_by_height[8];  // the physical sky's sun on the clouds by height in the layer (frame_constants::sun_by_height)
+    vec2 u_resolution; vec2 u_band;  // the image; altitudes outside which the field has no density (cloud_band)
+    vec2 u_wind; vec2 u_far_shadow_size;  // ...; the far shadow's n_alt, n_mu
+    uvec2 u_update_offset; uint u_frame; float u_exposure;  // the temporal passes' pixel of each 4 x 4 block
+    float u_base_tile, u_detail_tile, u_weather_tile, u_weather_wide_tile;
+    float u_curl_tile, u_curl_strength, u_type_spread, u_top_rounding;
+    float u_density_scale, u_phase_g, u_phase_g_back, u_phase_w;
+    float u_droplet_diameter, u_ms_a, u_ms_b, u_ms_c;
+    float u_phase_mean_cosine;  // the diffusion model's g for u_phase_model
+    float u_cone_step, u_cone_spread, u_cone_far_distance;
+    float u_cone_far_length, u_light_march_max, u_min_transmittance;
+    float u_march_near_distance;  // growing view steps: nearly uniform closer than this
+    float u_far_shadow_reach;   // pass 4: where the light march ends (far_shadow_table::reach)
+    float u_far_shadow_period;  // pass 4: the field's horizontal period (the weather map's tile)
+};
 
 uniform sampler3D u_base;      // 128^3 RGBA8: Perlin-Worley + Worley fBm (noise_bake.hpp)
 uniform sampler3D u_detail;    // 32^3 RGB8: Worley fBm
@@ -81,18 +96,11 @@ uniform sampler2D u_shadow_map;  // CR_SHADOW_MAP_SIZE^2 RGBA32F: (front, mean e
 // sky_model::physical): the atmosphere's in-scattered radiance by the view's zenith cosine,
 // its azimuth from the sun's and the distance, nodes in an (n_d n_az) x n_el RGB32F image.
 uniform sampler2D u_haze_table;
-uniform vec3 u_haze_table_size;  // n_d, n_az, n_el
-uniform float u_haze_table_distance;
-uniform vec3 u_sun_by_height[8];  // the sun on the clouds by height in the layer (frame_constants::sun_by_height)
 // The background: the sky-view table at the camera (physical_sky.hpp), an n_az x n_el RGB32F image.
 uniform sampler2D u_sky_view;
 // The clouds' shadow beyond the light march (far_shadow.hpp): mean transmittance by altitude (x)
 // and the sun's zenith cosine (y), an n_alt x n_mu R32F image.
 uniform sampler2D u_far_shadow;
-uniform vec2 u_far_shadow_size;   // n_alt, n_mu
-uniform vec4 u_far_shadow_range;  // alt_lo, alt_hi, mu_lo, mu_hi
-uniform float u_far_shadow_reach;   // pass 4: where the light march ends (far_shadow_table::reach)
-uniform float u_far_shadow_period;  // pass 4: the field's horizontal period (the weather map's tile)
 #endif
 
 // The passes (u_pass): 4 (the physical sky only) the far shadow's table: output pixel (a, m) is
@@ -103,7 +111,6 @@ uniform float u_far_shadow_period;  // pass 4: the field's horizontal period (th
 // resolve pass to blend, composite and tonemap. 2 the Beer shadow map: output pixel (i, j) is
 // texel (i, j) (cr_shadow_texel). 3 the temporal scheme's background at full resolution.
 // u_pass is the permutation's first switch (CR_PARAM above): one program per pass.
-uniform uvec2 u_update_offset;
 
 layout(location = 0) out vec4 out_color;   // rgb: display colour in [0, 1] (pass 1: the layer's linear radiance,
                                            // pass 3: what lies behind it); a: cloud opacity (pass 3: 1 where the ray meets the band)
