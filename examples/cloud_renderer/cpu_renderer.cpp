@@ -95,8 +95,8 @@ struct pixel_program {
     float phase_g_mean;  // the diffusion model's g
     vec2 band;           // altitudes of the cloud type's band (height_range_for_type): no density outside
     const cm::diffusion_model* model;  // the diffusion model's fitted numbers
-    const haze_table* haze = nullptr;  // the physical sky's aerial perspective (physical_sky.hpp)
-    const far_shadow_table* far_field = nullptr;  // ... and its clouds' shadow beyond the light march (far_shadow.hpp)
+    std::shared_ptr<const haze_table> haze;  // the physical sky's aerial perspective (physical_sky.hpp)
+    std::shared_ptr<const far_shadow_table> far_field;  // ... and its clouds' shadow beyond the light march (far_shadow.hpp)
     std::vector<vec3> shadow_map;  // the Beer shadow map (needs_shadow_map), row j = 0 first
     long shadow_map_reads = 0;     // texture reads of building it (once per frame)
 
@@ -108,8 +108,8 @@ struct pixel_program {
           phase_g_mean(phase_mean_cosine(k, va.phase)),
           band(k.band),
           model(m != nullptr ? m : va.table == diffusion_table::clouds ? &cm::diffusion_models::clouds : &cm::diffusion_models::fitted),
-          haze(sc.sky == sky_model::physical ? &physical_haze(sc.camera_altitude, k.sun_dir) : nullptr),
-          far_field(sc.sky == sky_model::physical ? &far_shadow(sc, k.sun_dir, t, light_reach(va, k)) : nullptr) {
+          haze(sc.sky == sky_model::physical ? physical_haze(sc.camera_altitude, k.sun_dir) : nullptr),
+          far_field(sc.sky == sky_model::physical ? far_shadow(sc, k.sun_dir, t, light_reach(va, k)) : nullptr) {
         if (needs_shadow_map(v, s)) {
             shadow_map.resize(static_cast<std::size_t>(shadow_map_size) * static_cast<std::size_t>(shadow_map_size));
             if (kept_map != nullptr && kept_map->size() == shadow_map.size()) shadow_map = *kept_map;

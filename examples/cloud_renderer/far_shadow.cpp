@@ -117,7 +117,7 @@ std::vector<float> far_shadow_scene_key(const scene& s, const glm::vec3& sun, fl
             s.curl_strength, s.type_spread, s.top_rounding, s.density_scale, reach};
 }
 
-const far_shadow_table& far_shadow(const scene& s, const glm::vec3& sun, const cloud_textures& t, float reach) {
+std::shared_ptr<const far_shadow_table> far_shadow(const scene& s, const glm::vec3& sun, const cloud_textures& t, float reach) {
     // Everything the table depends on: geometry, sun, the field's parameters and textures.
     std::uint32_t bytes = 2166136261u;  // FNV-1a over the weather maps: which textures
     for (const std::vector<std::uint8_t>* v : {&t.weather, &t.weather_wide})

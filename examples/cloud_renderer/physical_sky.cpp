@@ -83,7 +83,7 @@ glm::vec2 sky_coordinates(const glm::vec3& dir, const glm::vec3& sun_dir) {
     return {std::acos(cos_phi) / pi, el};
 }
 
-const sky_view_table& physical_sky_view(float altitude, const glm::vec3& sun_dir) {
+std::shared_ptr<const sky_view_table> physical_sky_view(float altitude, const glm::vec3& sun_dir) {
     return made_once<sky_view_table>({altitude, sun_dir.x, sun_dir.y, sun_dir.z}, [&] { return make_sky_view(altitude, sun_dir); });
 }
 
@@ -118,7 +118,7 @@ const physical_air& earth_air() {
     return a;
 }
 
-const haze_table& physical_haze(float camera_altitude, const glm::vec3& sun_dir) {
+std::shared_ptr<const haze_table> physical_haze(float camera_altitude, const glm::vec3& sun_dir) {
     return made_once<haze_table>({camera_altitude, sun_dir.x, sun_dir.y, sun_dir.z},
                                  [&] { return make_table(camera_altitude, sun_dir); });
 }

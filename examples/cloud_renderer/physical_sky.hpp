@@ -22,7 +22,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include <map>
+#include <list>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -52,19 +52,39 @@ struct haze_table {
 };
 // The table for a camera at `camera_altitude` and a sun in direction sun_dir (camera frame,
 // +y up); made once per pair and kept (made_once; about 40 ms each).
-const haze_table& physical_haze(float camera_altitude, const glm::vec3& sun_dir);
+std::shared_ptr<const haze_table> physical_haze(float camera_altitude, const glm::vec3& sun_dir);
 
 // made_once<Value>(key, make): make() the first time `key` is asked for, then the kept value
-// (one table per Value type, thread-safe). What the physical sky derives from the sun and the
-// scene's geometry costs milliseconds to tenths of a second; renderers ask for it every frame.
+// while it is among the made_once_capacity keys asked for last (one list per Value type, the
+// least recently asked for leaves first; thread-safe). What the physical sky derives from the
+// sun and the scene's geometry costs milliseconds to tenths of a second and renderers ask for
+// it every frame; a sun that moves makes a new key each frame, so the list is bounded. The value
+// is shared: whoever holds it keeps it after it leaves the list.
+inline constexpr std::size_t made_once_capacity = 16;
+template <class Value>
+struct made_once_store {
+    inline static std::mutex mutex;
+    inline static std::list<std::pair<std::vector<float>, std::shared_ptr<const Value>>> kept;  // the last asked for first
+};
 template <class Value, class Make>
-const Value& made_once(const std::vector<float>& key, Make&& make) {
-    static std::mutex mutex;
-    static std::map<std::vector<float>, std::unique_ptr<Value>> kept;
-    const std::lock_guard<std::mutex> lock(mutex);
-    std::unique_ptr<Value>& slot = kept[key];
-    if (!slot) slot = std::make_unique<Value>(make());
-    return *slot;
+std::shared_ptr<const Value> made_once(const std::vector<float>& key, Make&& make) {
+    using store = made_once_store<Value>;
+    const std::lock_guard<std::mutex> lock(store::mutex);
+    for (auto it = store::kept.begin(); it != store::kept.end(); ++it)
+        if (it->first == key) {
+            store::kept.splice(store::kept.begin(), store::kept, it);
+            return store::kept.front().second;
+        }
+    std::shared_ptr<const Value> value = std::make_shared<const Value>(make());
+    store::kept.emplace_front(key, value);
+    if (store::kept.size() > made_once_capacity) store::kept.pop_back();
+    return value;
+}
+// How many values made_once<Value> keeps now (a test's check of the bound).
+template <class Value>
+std::size_t made_once_kept() {
+    const std::lock_guard<std::mutex> lock(made_once_store<Value>::mutex);
+    return made_once_store<Value>::kept.size();
 }
 
 // The in-scattered radiance (cd/m^2) between the camera and `distance` metres along the unit
@@ -84,7 +104,7 @@ struct sky_view_table {
 };
 // The table at `altitude` for a sun in direction sun_dir (camera frame, +y up); made once per
 // pair and kept (made_once; about 0.1 s each).
-const sky_view_table& physical_sky_view(float altitude, const glm::vec3& sun_dir);
+std::shared_ptr<const sky_view_table> physical_sky_view(float altitude, const glm::vec3& sun_dir);
 // How many sky-view and aerial-perspective tables this process has made on the CPU (a test's
 // proof that the GL renderer builds its own on the GPU).
 int cpu_sky_table_builds();

@@ -251,7 +251,7 @@ physical_sky_samples cpu_sky_samples(const scene& s, const glm::vec3& sun_dir, g
 }
 
 // The physical sky's fields of f from its samples and sky-view tables (make_frame_constants).
-void apply_physical_sky(frame_constants& f, const physical_sky_samples& p, const sky_view_table& at_camera,
+void apply_physical_sky(frame_constants& f, const physical_sky_samples& p, std::shared_ptr<const sky_view_table> at_camera,
                         const sky_view_table& at_top) {
     // The sun: its illuminance at the band's middle (the drawn disc), and on the clouds by
     // height in the layer.
@@ -263,13 +263,13 @@ void apply_physical_sky(frame_constants& f, const physical_sky_samples& p, const
     f.sky_horizon = p.horizon;
     // The background: the sky-view table at the camera (no gradient, no glow: the table has the
     // sky's own brightening toward the sun).
-    f.sky_view = &at_camera;
+    f.sky_view = at_camera;
     f.aureole = 0.0f;
     // The sky's light on the clouds from above: the mean radiance of the upper hemisphere seen
     // from the layer's top (the table there: what the whole-cloud truth's paths meet when they
     // leave through the top); and the sky's irradiance on the ground at the camera.
     const sky_hemisphere top = upper_hemisphere(at_top, f.sun_dir);
-    const sky_hemisphere below = upper_hemisphere(at_camera, f.sun_dir);
+    const sky_hemisphere below = upper_hemisphere(*at_camera, f.sun_dir);
     // The ground: Lambertian with the air's albedo, lit by the sun at the camera and the sky.
     f.ground = earth_air().air.ground_albedo / 3.14159265f * (p.sun_camera * std::fmax(f.sun_dir.y, 0.0f) + below.irradiance);
     f.ambient_top = top.mean_radiance;
@@ -279,14 +279,15 @@ void apply_physical_sky(frame_constants& f, const physical_sky_samples& p, const
 // apply_physical_sky with the CPU's samples and tables, made once per sun direction and scene
 // geometry (the tables: physical_sky_view, kept).
 void physical_sky(const scene& s, frame_constants& f) {
-    const frame_constants& sky = made_once<frame_constants>(
+    const std::shared_ptr<const frame_constants> kept = made_once<frame_constants>(
         {s.camera_altitude, s.sun_elevation, f.sun_dir.x, f.sun_dir.y, f.sun_dir.z, f.band.x, f.band.y, s.layer_bottom, s.layer_top},
         [&] {
             frame_constants g = f;
             apply_physical_sky(g, cpu_sky_samples(s, f.sun_dir, f.band), physical_sky_view(std::fmax(s.camera_altitude, 0.0f), f.sun_dir),
-                               physical_sky_view(s.layer_top, f.sun_dir));
+                               *physical_sky_view(s.layer_top, f.sun_dir));
             return g;
         });
+    const frame_constants& sky = *kept;
     f.sun_radiance = sky.sun_radiance;
     std::copy(std::begin(sky.sun_by_height), std::end(sky.sun_by_height), std::begin(f.sun_by_height));
     f.sky_zenith = sky.sky_zenith;
@@ -312,7 +313,7 @@ frame_constants frame_constants_for(const scene& s, const physical_sky_inputs* g
     f.band = cloud_band(s);
     if (s.sky == sky_model::physical) {
         if (gpu)
-            apply_physical_sky(f, gpu->samples, *gpu->at_camera, *gpu->at_top);
+            apply_physical_sky(f, gpu->samples, gpu->at_camera, *gpu->at_top);
         else
             physical_sky(s, f);
         // EV100: the scene's, or the one that exposes the sky's mean luminance to middle grey.

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -329,10 +330,10 @@ struct frame_constants {
     // with the artistic sky, whose clouds see sun_radiance everywhere.
     glm::vec3 sun_by_height[8];
     // The physical sky's background: its sky-view table at the camera (physical_sky.hpp; the
-    // CPU's, kept for the process's life, or physical_sky_inputs' at_camera), which
+    // CPU's, made_once's, or physical_sky_inputs' at_camera; shared: it lives while held), which
     // sky_radiance and clouds.frag's cr_background read in place of the gradient and glow; null
     // with the artistic sky.
-    const sky_view_table* sky_view = nullptr;
+    std::shared_ptr<const sky_view_table> sky_view;
     float exposure;                  // the tonemap's (display_exposure)
     float ev100;                     // the physical sky's EV100 (0 with the artistic sky)
     float phase_g, phase_g_back, phase_w;   // HG / Cornette-Shanks g; dual lobe second g, weight
@@ -381,8 +382,7 @@ physical_sky_samples physical_sky_samples_cpu(const scene& s);
 // camera (the background, the ground's sky light) and at the layer's top (the clouds' sky light).
 struct physical_sky_inputs {
     physical_sky_samples samples;
-    const sky_view_table* at_camera;
-    const sky_view_table* at_top;
+    std::shared_ptr<const sky_view_table> at_camera, at_top;
 };
 // The frame's constants with the physical sky from `sky` (the scene's sky must be physical):
 // the same fields as make_frame_constants(s) gives from the CPU's.

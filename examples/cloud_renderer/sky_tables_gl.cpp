@@ -132,6 +132,8 @@ bool gpu_sky_tables::update(const cloudmath_egl::gl_functions& gl, const std::st
     for (int i = 0; i < 8; ++i) samples_.horizon += v[std::size_t(sun_heights + 3 + i)];
     samples_.horizon /= 8.0f;
     band_ = glm::vec2(v[std::size_t(sun_heights + 11)]);
+    shared_camera_ = std::make_shared<const sky_view_table>(at_camera_);
+    shared_top_ = std::make_shared<const sky_view_table>(at_top_);
     gl.Finish();
     why = gl.errors("the sky tables' passes");
     if (!why.empty()) return false;

@@ -14,6 +14,7 @@
 
 #include "gl_functions.hpp"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,7 +36,7 @@ public:
     bool update(const cloudmath_egl::gl_functions& gl, const std::string& vertex_shader, GLuint vao, const scene& s,
                 std::string& why);
     // The physical sky for make_frame_constants (valid after a successful update).
-    physical_sky_inputs inputs() const { return {samples_, &at_camera_, &at_top_}; }
+    physical_sky_inputs inputs() const { return {samples_, shared_camera_, shared_top_}; }
     glm::vec2 band() const { return band_; }  // the values row's band (sky_tables.frag's cr_cloud_band)
     const haze_table& haze_layout() const { return haze_; }  // the aerial-perspective table's size (no texels)
     GLuint sky_view_texture() const { return textures_[1]; }  // RGBA32F n_az x n_el, at the camera
@@ -52,6 +53,9 @@ private:
     std::vector<float> key_;                // what the tables were drawn for (empty: not yet)
     physical_sky_samples samples_{};
     sky_view_table at_camera_, at_top_;
+    // Copies of the last build's, shared with the frame constants made from them (a frame's
+    // keep theirs when the sun moves and the tables are drawn again).
+    std::shared_ptr<const sky_view_table> shared_camera_, shared_top_;
     haze_table haze_;
     glm::vec2 band_{0.0f};
     int builds_ = 0;

@@ -916,7 +916,7 @@ TEST_CASE("the physical sky: cloudmath's atmosphere in lux and cd/m^2, exposure 
     // NaN in, NaN out: no node index made from a NaN (floor_to_int).
     const float nan = std::numeric_limits<float>::quiet_NaN();
     CHECK(std::isnan(sun_at_height(set, true, nan).x));
-    CHECK(std::isnan(haze_lookup(physical_haze(2.0f, set.sun_dir), glm::vec3(0.0f, 1.0f, 0.0f), set.sun_dir, nan).x));
+    CHECK(std::isnan(haze_lookup(*physical_haze(2.0f, set.sun_dir), glm::vec3(0.0f, 1.0f, 0.0f), set.sun_dir, nan).x));
     CHECK(luminance(set.sun_radiance) > 100.0f);
     CHECK(luminance(set.sky_zenith) < 0.5f * luminance(rise.sky_zenith));
     CHECK(set.ev100 < rise.ev100);
@@ -925,7 +925,7 @@ TEST_CASE("the physical sky: cloudmath's atmosphere in lux and cd/m^2, exposure 
     for (const char* name : {"sunrise", "sunset"}) {
         const scene& s = *find_preset(name);
         const frame_constants f = make_frame_constants(s);
-        const haze_table& t = physical_haze(s.camera_altitude, f.sun_dir);
+        const haze_table& t = *physical_haze(s.camera_altitude, f.sun_dir);
         double sum = 0.0, worst = 0.0;
         int n = 0;
         for (float el : {1.3f, 4.7f, 11.0f, 23.0f, 47.0f})
@@ -950,11 +950,12 @@ TEST_CASE("the physical sky: cloudmath's atmosphere in lux and cd/m^2, exposure 
     for (const char* name : {"sunrise", "sunset"}) {
         const scene& s = *find_preset(name);
         const frame_constants f = make_frame_constants(s);
-        CHECK(f.sky_view == &physical_sky_view(s.camera_altitude, f.sun_dir));
+        CHECK(f.sky_view == physical_sky_view(s.camera_altitude, f.sun_dir));
         CHECK(f.aureole == 0.0f);  // no glow on top of the table
         CHECK(std::isnan(sky_view_lookup(*f.sky_view, glm::vec3(std::numeric_limits<float>::quiet_NaN()), f.sun_dir).x));
         for (float altitude : {s.camera_altitude, s.layer_top}) {
-            const sky_view_table& t = physical_sky_view(altitude, f.sun_dir);
+            const std::shared_ptr<const sky_view_table> kept = physical_sky_view(altitude, f.sun_dir);
+            const sky_view_table& t = *kept;
             double sum = 0.0, worst = 0.0;
             int n = 0;
             for (float el : {0.7f, 3.3f, 8.0f, 19.0f, 41.0f, 77.0f})
@@ -1002,7 +1003,8 @@ TEST_CASE("the far shadow: the ground's shadow in closed form, a finer independe
     // meets the ground (r sqrt(1 - mu^2) < R with mu < 0: the planet's shadow).
     scene clear = set;
     clear.extinction = 0.0f;
-    const far_shadow_table& c = far_shadow(clear, k.sun_dir, shared().textures, light_reach(variant{}, k));
+    const std::shared_ptr<const far_shadow_table> kept_clear = far_shadow(clear, k.sun_dir, shared().textures, light_reach(variant{}, k));
+    const far_shadow_table& c = *kept_clear;
     int shaded = 0;
     for (int m = 0; m < c.n_mu; ++m)
         for (int a = 0; a < c.n_alt; ++a) {
@@ -1021,7 +1023,8 @@ TEST_CASE("the far shadow: the ground's shadow in closed form, a finer independe
     // lit) against a finer estimate of its own: random starts over the field's period (not the
     // table's stratified ones), 100 m steps (not 400).
     const variant v;
-    const far_shadow_table& t = far_shadow(set, k.sun_dir, shared().textures, light_reach(v, k));
+    const std::shared_ptr<const far_shadow_table> kept_set = far_shadow(set, k.sun_dir, shared().textures, light_reach(v, k));
+    const far_shadow_table& t = *kept_set;
     CHECK(far_shadow_lookup(t, 0.5f * (t.alt_lo + t.alt_hi), 1.0f) == 1.0f);  // a high sun: the march reaches the band's end
     CHECK(far_shadow_lookup(t, 0.5f * (t.alt_lo + t.alt_hi), -1.0f) == 0.0f);  // below the horizon everywhere
     CHECK(std::isnan(far_shadow_lookup(t, std::numeric_limits<float>::quiet_NaN(), 0.0f)));
@@ -1078,7 +1081,8 @@ TEST_CASE("the far shadow on the GPU (clouds.frag's pass 4) against the CPU's ta
             CAPTURE(static_cast<int>(shape));
             const frame_constants k = make_frame_constants(s);
             const variant v;
-            const far_shadow_table& t = far_shadow(s, k.sun_dir, shared().textures, light_reach(v, k));
+            const std::shared_ptr<const far_shadow_table> kept = far_shadow(s, k.sun_dir, shared().textures, light_reach(v, k));
+            const far_shadow_table& t = *kept;
             std::vector<float> gpu;
             std::string why;
             const auto start = std::chrono::steady_clock::now();
@@ -1148,9 +1152,9 @@ TEST_CASE("the physical sky's tables on the GPU (sky_tables.frag) against the CP
         if (std::string(name) == "towering") s.shape = cloud_shape::detailed;  // cloud_band's other branch
         REQUIRE_MESSAGE(gpu.sky_tables_gpu(s, r, why), why);
         const frame_constants cpu = make_frame_constants(s);
-        const double view = worst_relative(r.sky_view, physical_sky_view(std::fmax(s.camera_altitude, 0.0f), cpu.sun_dir).texels);
-        const double top = worst_relative(r.sky_top, physical_sky_view(s.layer_top, cpu.sun_dir).texels);
-        const double haze = worst_relative(r.haze, physical_haze(s.camera_altitude, cpu.sun_dir).texels);
+        const double view = worst_relative(r.sky_view, physical_sky_view(std::fmax(s.camera_altitude, 0.0f), cpu.sun_dir)->texels);
+        const double top = worst_relative(r.sky_top, physical_sky_view(s.layer_top, cpu.sun_dir)->texels);
+        const double haze = worst_relative(r.haze, physical_haze(s.camera_altitude, cpu.sun_dir)->texels);
         const physical_sky_samples want = physical_sky_samples_cpu(s);
         std::vector<glm::vec3> got_values(std::begin(r.samples.sun_by_height), std::end(r.samples.sun_by_height));
         std::vector<glm::vec3> want_values(std::begin(want.sun_by_height), std::end(want.sun_by_height));
@@ -1169,8 +1173,8 @@ TEST_CASE("the physical sky's tables on the GPU (sky_tables.frag) against the CP
         CHECK(std::fabs(r.band.x - cpu.band.x) <= 0.01f);  // metres: sky_tables.frag's cr_cloud_band is cloud_band
         CHECK(std::fabs(r.band.y - cpu.band.y) <= 0.01f);
         // The frame's sky light and exposure from the GPU's tables are the CPU's.
-        const sky_view_table at_camera{64, 64, r.sky_view}, at_top{64, 64, r.sky_top};
-        const frame_constants g = make_frame_constants(s, physical_sky_inputs{r.samples, &at_camera, &at_top});
+        const frame_constants g = make_frame_constants(s, physical_sky_inputs{r.samples, std::make_shared<const sky_view_table>(sky_view_table{64, 64, r.sky_view}),
+                                                                              std::make_shared<const sky_view_table>(sky_view_table{64, 64, r.sky_top})});
         for (const auto& [a, b] : {std::pair{g.ambient_top, cpu.ambient_top}, std::pair{g.ground, cpu.ground},
                                    std::pair{g.sun_radiance, cpu.sun_radiance}, std::pair{g.sky_horizon, cpu.sky_horizon}})
             for (int c = 0; c < 3; ++c) CHECK(std::fabs(double(a[c]) - double(b[c])) <= 1e-3 * std::max(double(std::fabs(b[c])), 1e-3));
@@ -1254,4 +1258,24 @@ TEST_CASE("the terrain (scene::terrain): the cloud march ends at the scene's dep
                 over += (g.pixels[std::size_t(y * w + x)].a != 0.0f ? 1 : 0) + (c.pixels[std::size_t(y * w + x)].a != 0.0f ? 1 : 0);
         }
     CHECK(over == 0);
+}
+
+TEST_CASE("the CPU's physical-sky tables: kept for the last 16 keys, a held table outlives its eviction") {
+    // A sun that moves asks for a new table every frame: the cache keeps made_once_capacity.
+    const glm::vec3 first_sun = glm::normalize(glm::vec3(0.3f, 0.2f, -0.9f));
+    const std::shared_ptr<const haze_table> held = physical_haze(5.0f, first_sun);
+    const std::vector<glm::vec3> texels = held->texels;
+    for (int i = 1; i <= 20; ++i) {
+        (void)physical_haze(5.0f, glm::normalize(glm::vec3(0.3f, 0.2f + 0.01f * float(i), -0.9f)));
+        CHECK(made_once_kept<haze_table>() <= made_once_capacity);
+    }
+    CHECK(made_once_kept<haze_table>() == made_once_capacity);
+    CHECK(held->texels == texels);  // evicted from the cache, still whole where it is held
+    // Asked for again, the first sun's table is made anew, to the same values.
+    const int builds = cpu_sky_table_builds();
+    CHECK(physical_haze(5.0f, first_sun)->texels == texels);
+    CHECK(cpu_sky_table_builds() == builds + 1);
+    // Asked for again at once, it is kept.
+    (void)physical_haze(5.0f, first_sun);
+    CHECK(cpu_sky_table_builds() == builds + 1);
 }

@@ -265,9 +265,9 @@ lighting make_cloud_lighting(const cr::scene& s) {
         };
     // The physical sky seen from where the paths leave (the layer's top): its sky-view table there.
     // The sun alone (scene::light): no sky, and k's ground and background are black.
-    const cr::sky_view_table* top_sky = s.sky == cr::sky_model::physical && s.light != cr::light_sources::sun
-                                            ? &cr::physical_sky_view(s.layer_top, k.sun_dir)
-                                            : nullptr;
+    // (Shared: the lambda below keeps it for as long as the paths run.)
+    const std::shared_ptr<const cr::sky_view_table> top_sky =
+        s.sky == cr::sky_model::physical && s.light != cr::light_sources::sun ? cr::physical_sky_view(s.layer_top, k.sun_dir) : nullptr;
     l.escaped = [k, top_sky](const vec3&, const vec3& d, bool ground) {
         const glm::vec3 dir(static_cast<float>(d.x), static_cast<float>(d.y), static_cast<float>(d.z));
         const glm::vec3 c = ground ? k.ground : top_sky != nullptr ? cr::sky_view_lookup(*top_sky, dir, k.sun_dir) : cr::sky_radiance(k, dir, false);
