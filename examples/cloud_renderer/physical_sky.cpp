@@ -32,9 +32,6 @@ glm::vec3 node_direction(int az, int el, int n_az, int n_el) {
     return {sin_zenith * std::cos(phi), mu, sin_zenith * std::sin(phi)};
 }
 
-glm::vec3 sun_at_azimuth_zero(const glm::vec3& sun_dir) {
-    return {std::sqrt(std::max(1.0f - sun_dir.y * sun_dir.y, 0.0f)), sun_dir.y, 0.0f};
-}
 
 haze_table make_table(float camera_altitude, const glm::vec3& sun_dir) {
     const physical_air& a = earth_air();
@@ -74,6 +71,10 @@ sky_view_table make_sky_view(float altitude, const glm::vec3& sun_dir) {
 }  // namespace
 
 int cpu_sky_table_builds() { return cpu_builds.load(); }
+
+glm::vec3 sun_at_azimuth_zero(const glm::vec3& sun_dir) {
+    return {std::sqrt(std::max(1.0f - sun_dir.y * sun_dir.y, 0.0f)), sun_dir.y, 0.0f};
+}
 
 glm::vec2 sky_coordinates(const glm::vec3& dir, const glm::vec3& sun_dir) {
     const float mu = std::clamp(dir.y, -1.0f, 1.0f);

@@ -119,6 +119,10 @@ struct sky_hemisphere {
 };
 sky_hemisphere upper_hemisphere(const sky_view_table& t, const glm::vec3& sun_dir);
 
+// The sun at azimuth 0 with sun_dir's elevation: what the tables are made for (they are
+// symmetric about the sun's vertical plane; the lookups take the azimuth from the sun's).
+glm::vec3 sun_at_azimuth_zero(const glm::vec3& sun_dir);
+
 // Where a direction lies in both tables, as fractions in [0, 1]: x the azimuth from the sun's,
 // phi / pi; y the zenith cosine, 0.5 + 0.5 sign(mu) sqrt|mu| (crowded at the horizon, where the
 // sky changes fastest). clouds.frag's cr_sky_coordinates.

@@ -93,6 +93,13 @@ struct value_names<reach_mode> {
     static constexpr const char* names[] = {"far", "band"};
 };
 
+// "a, b or c": the words of an error's choices.
+std::string or_list(const char* const* words, std::size_t n) {
+    std::string out;
+    for (std::size_t i = 0; i < n; ++i) out += std::string(i == 0 ? "" : i + 1 == n ? " or " : ", ") + words[i];
+    return out;
+}
+
 // Where a key's removed values went (appended to its error).
 std::string removed_values(const std::string& key) {
     return key == "reach" ? " (capped and map were removed: docs/lighting_research.md, \"Switches removed\")" : "";
@@ -103,16 +110,12 @@ std::string removed_values(const std::string& key) {
 template <class E>
 std::string parse_value(const char* key, const std::string& text, int, int, const char*, const char*, E& out) {
     const auto& names = value_names<E>::names;
-    std::string choices;
-    const int n = int(std::size(names));
-    for (int i = 0; i < n; ++i) {
+    for (std::size_t i = 0; i < std::size(names); ++i)
         if (text == names[i]) {
             out = static_cast<E>(i);
             return {};
         }
-        choices += std::string(i == 0 ? "" : i + 1 == n ? " or " : ", ") + names[i];
-    }
-    return std::string(key) + " must be " + choices + ", not '" + text + "'" + removed_values(key);
+    return std::string(key) + " must be " + or_list(names, std::size(names)) + ", not '" + text + "'" + removed_values(key);
 }
 std::string parse_value(const char* key, const std::string& text, int lo, int hi, const char*, const char*, int& out) {
     if (parse_int(text, lo, hi, out)) return {};
@@ -401,7 +404,6 @@ float light_reach(const variant& v, const frame_constants& k) {
     return light_long_reach;
 }
 
-
 glm::vec3 pixel_direction(const frame_constants& k, int x, int y, int width, int height) {
     const glm::vec2 ndc = glm::vec2(float(x) + 0.5f, float(y) + 0.5f) / glm::vec2(float(width), float(height)) * 2.0f - 1.0f;
     const float aspect = float(width) / float(height);
@@ -468,9 +470,7 @@ std::string scene_switch_names() {
 #define CLOUD_RENDERER_SWITCH_NAME(member, item, shader) items.push_back(item);
     CLOUD_RENDERER_SCENE_SWITCHES(CLOUD_RENDERER_SWITCH_NAME)
 #undef CLOUD_RENDERER_SWITCH_NAME
-    std::string out;
-    for (std::size_t i = 0; i < items.size(); ++i) out += std::string(i == 0 ? "" : i + 1 == items.size() ? " or " : ", ") + items[i];
-    return out;
+    return or_list(items.data(), items.size());
 }
 
 float terrain_distance(const scene& s, glm::vec3 dir, glm::vec3* normal) {

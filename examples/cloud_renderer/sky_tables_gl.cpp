@@ -71,10 +71,9 @@ bool gpu_sky_tables::update(const cloudmath_egl::gl_functions& gl, const std::st
         gl.ActiveTexture(GL_TEXTURE0);
         const std::vector<glm::vec3> table = stacked_table(earth_air().luts);
         float_texture(gl, textures_[0], GL_RGB32F, GL_RGB, table_size, table_size * table_parts, table.data());
-        at_camera_.texels.resize(std::size_t(at_camera_.n_az * at_camera_.n_el));
-        at_top_.texels.resize(at_camera_.texels.size());
-        float_texture(gl, textures_[1], GL_RGBA32F, GL_RGBA, at_camera_.n_az, at_camera_.n_el, nullptr);
-        float_texture(gl, textures_[2], GL_RGBA32F, GL_RGBA, at_top_.n_az, at_top_.n_el, nullptr);
+        const sky_view_table layout;  // its size
+        float_texture(gl, textures_[1], GL_RGBA32F, GL_RGBA, layout.n_az, layout.n_el, nullptr);
+        float_texture(gl, textures_[2], GL_RGBA32F, GL_RGBA, layout.n_az, layout.n_el, nullptr);
         float_texture(gl, textures_[3], GL_RGBA32F, GL_RGBA, haze_.n_d * haze_.n_az, haze_.n_el, nullptr);
         float_texture(gl, textures_[4], GL_RGBA32F, GL_RGBA, values_width, 1, nullptr);
     }
@@ -94,7 +93,7 @@ bool gpu_sky_tables::update(const cloudmath_egl::gl_functions& gl, const std::st
     gl.DrawBuffers(1, &one);
     gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
     gl.BindVertexArray(vao);
-    const glm::vec3 sun_at_zero(std::sqrt(std::fmax(1.0f - sun.y * sun.y, 0.0f)), sun.y, 0.0f);
+    const glm::vec3 sun_at_zero = sun_at_azimuth_zero(sun);
     std::vector<float> back;
     // Draws table `t` (w x h) of `kind` at `altitude`; reads it back into `back` when asked.
     const auto draw = [&](int t, int w, int h, int kind, glm::ivec3 size, float altitude, glm::vec3 toward, bool read) {
@@ -115,10 +114,11 @@ bool gpu_sky_tables::update(const cloudmath_egl::gl_functions& gl, const std::st
         }
         return true;
     };
-    bool ok = draw(1, at_camera_.n_az, at_camera_.n_el, 0, {at_camera_.n_az, at_camera_.n_el, 0}, camera, sun_at_zero, true);
-    if (ok) at_camera_.texels = rgb(back);
-    ok = ok && draw(2, at_top_.n_az, at_top_.n_el, 0, {at_top_.n_az, at_top_.n_el, 0}, s.layer_top, sun_at_zero, true);
-    if (ok) at_top_.texels = rgb(back);
+    sky_view_table at_camera, at_top;
+    bool ok = draw(1, at_camera.n_az, at_camera.n_el, 0, {at_camera.n_az, at_camera.n_el, 0}, camera, sun_at_zero, true);
+    if (ok) at_camera.texels = rgb(back);
+    ok = ok && draw(2, at_top.n_az, at_top.n_el, 0, {at_top.n_az, at_top.n_el, 0}, s.layer_top, sun_at_zero, true);
+    if (ok) at_top.texels = rgb(back);
     ok = ok && draw(3, haze_.n_d * haze_.n_az, haze_.n_el, 1, {haze_.n_d, haze_.n_az, haze_.n_el}, camera, sun_at_zero, false);
     ok = ok && draw(4, values_width, 1, 2, {0, 0, 0}, camera, sun, true);
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -132,8 +132,8 @@ bool gpu_sky_tables::update(const cloudmath_egl::gl_functions& gl, const std::st
     for (int i = 0; i < 8; ++i) samples_.horizon += v[std::size_t(sun_heights + 3 + i)];
     samples_.horizon /= 8.0f;
     band_ = glm::vec2(v[std::size_t(sun_heights + 11)]);
-    shared_camera_ = std::make_shared<const sky_view_table>(at_camera_);
-    shared_top_ = std::make_shared<const sky_view_table>(at_top_);
+    shared_camera_ = std::make_shared<const sky_view_table>(std::move(at_camera));
+    shared_top_ = std::make_shared<const sky_view_table>(std::move(at_top));
     gl.Finish();
     why = gl.errors("the sky tables' passes");
     if (!why.empty()) return false;

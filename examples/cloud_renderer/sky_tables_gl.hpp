@@ -52,9 +52,8 @@ private:
     GLuint textures_[5] = {0, 0, 0, 0, 0};  // the atmosphere's table, sky view at the camera, at the top, haze, values
     std::vector<float> key_;                // what the tables were drawn for (empty: not yet)
     physical_sky_samples samples_{};
-    sky_view_table at_camera_, at_top_;
-    // Copies of the last build's, shared with the frame constants made from them (a frame's
-    // keep theirs when the sun moves and the tables are drawn again).
+    // The last build's sky views, read back, shared with the frame constants made from them (a
+    // frame's keep theirs when the sun moves and the tables are drawn again).
     std::shared_ptr<const sky_view_table> shared_camera_, shared_top_;
     haze_table haze_;
     glm::vec2 band_{0.0f};
