@@ -108,8 +108,10 @@ declarations += `\n/** Resolves #include lines of your shader against cloudmath'
   `export { resolveIncludes };\n`;
 
 const clouds = readFileSync(join(root, 'examples', 'cloud_renderer', 'shaders', 'clouds.frag'), 'utf8');
-const demo = banner('examples/cloud_renderer/shaders/clouds.frag') +
-  `export const cloudsFrag = ${JSON.stringify(clouds)};\n`;
+const composite = readFileSync(join(root, 'examples', 'cloud_renderer', 'shaders', 'composite.frag'), 'utf8');
+const demo = banner('examples/cloud_renderer/shaders/clouds.frag and composite.frag') +
+  `export const cloudsFrag = ${JSON.stringify(clouds)};\n` +
+  `export const compositeFrag = ${JSON.stringify(composite)};\n`;
 const skyTables = readFileSync(join(root, 'examples', 'cloud_renderer', 'shaders', 'sky_tables.frag'), 'utf8');
 const skyDemo = banner('examples/cloud_renderer/shaders/sky_tables.frag') +
   `export const skyTablesFrag = ${JSON.stringify(skyTables)};\n`;

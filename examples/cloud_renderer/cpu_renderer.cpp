@@ -501,12 +501,11 @@ struct pixel_program {
         return (0.25f / 3.14159265f) * (k.sun_radiance * sun + 3.14159265f * glm::mix(k.ground, k.ambient_top, 0.5f + 0.5f * n.y));
     }
 
-    // main() of the shader: the display colour, dithered for the 8-bit store.
+    // The full frame's pixel: the layer (clouds.frag's pass 0) over what lies behind it
+    // (pass 3), through composite.frag.
     vec4 shade(int x, int y, int width, int height) const {
-        const vec4 c = shade_linear(x, y, width, height);
-        vec3 display = tonemap(vec3(c), k.exposure);
-        if (s.dither) display += cm::triangular_dither(dither_hash(x, y, s.frame)) * (1.0f / 255.0f);
-        return vec4(display, c.a);
+        const vec4 layer = shade_linear(x, y, width, height, nullptr, nullptr, nullptr, nullptr, true);
+        return composite_display(behind(pixel_direction(k, x, y, width, height)), layer, k.exposure, s.dither, x, y, s.frame);
     }
 };
 
@@ -535,6 +534,12 @@ image render_rows(int width, int height, unsigned threads, const Shade& shade) {
 std::uint32_t dither_hash(int x, int y, std::uint32_t frame) {
     const std::uint32_t pixel = static_cast<std::uint32_t>(x) + static_cast<std::uint32_t>(y) * 8192u;
     return cm::noise_hash(cm::noise_hash(pixel) + frame * 0x9e3779b9u);
+}
+
+vec4 composite_display(vec3 behind, vec4 layer, float exposure, bool dither, int x, int y, std::uint32_t frame) {
+    vec3 shown = tonemap(behind * (1.0f - layer.a) + vec3(layer), exposure);
+    if (dither) shown += cm::triangular_dither(dither_hash(x, y, frame)) * (1.0f / 255.0f);
+    return vec4(shown, layer.a);
 }
 
 image render_cpu(const scene& s, const variant& v, const cloud_textures& textures, int width, int height, unsigned threads) {
@@ -723,10 +728,8 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
         const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
         color[i] = c;
         aux[i] = a;
-        // Display: the layer over what lies behind it, clouds.frag's tonemap and dither.
-        vec3 shown = tonemap(behind * (1.0f - c.a) + vec3(c), program.k.exposure);
-        if (s.dither) shown += cm::triangular_dither(dither_hash(x, y, s.frame)) * (1.0f / 255.0f);
-        return vec4(shown, c.a);
+        // The composite (composite.frag): the new history over what lies behind it.
+        return composite_display(behind, c, program.k.exposure, s.dither, x, y, s.frame);
     });
     color_.swap(color);
     aux_.swap(aux);

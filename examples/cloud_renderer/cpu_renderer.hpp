@@ -70,8 +70,12 @@ image render_cpu_linear_with(const scene& s, const variant& v, const cloud_textu
                              const cloudmath::diffusion_model& model, unsigned threads = 0);
 
 // The dither's hash of pixel (x, y) on a frame: another hash of the pixel than the march
-// jitter's, new each frame (clouds.frag and temporal_resolve.frag compute the same).
+// jitter's, new each frame (composite.frag computes the same).
 std::uint32_t dither_hash(int x, int y, std::uint32_t frame);
+// composite.frag's twin, the last pass of every frame: the cloud layer (rgb premultiplied
+// linear radiance, a opacity) over what lies behind it, exposed, tonemapped and, with dither,
+// dithered for pixel (x, y) of frame `frame`; a: the layer's opacity.
+glm::vec4 composite_display(glm::vec3 behind, glm::vec4 layer, float exposure, bool dither, int x, int y, std::uint32_t frame);
 
 // Temporal rendering, Horizon Zero Dawn's scheme (reprojection.hpp): frame f shades one pixel
 // of every 4 x 4 block (temporal_update_offset(f): a quarter-resolution pass, 1/16 of the

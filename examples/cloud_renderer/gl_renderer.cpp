@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <cstring>
 #include <cstdio>
+#include <initializer_list>
 #include <map>
 #include <vector>
 
@@ -64,6 +65,13 @@ std::string fragment_shader_source(const variant& v, const scene& sc, clouds_pas
 
 std::string temporal_resolve_shader_source() { return "#version 410 core\n" + with_cloudmath(temporal_resolve_frag_text); }
 
+std::string composite_shader_source(const scene& sc) {
+    std::string head = "#version 410 core\n#define CR_PARAM(type, name)\n";
+    for (const shader_constant& c : scene_constants(sc, switch_shader::composite))
+        head += std::string("const int ") + c.name + " = " + std::to_string(c.value) + ";\n";
+    return head + with_cloudmath(composite_frag_text);
+}
+
 std::string sky_tables_shader_source() { return "#version 410 core\n" + with_cloudmath(sky_tables_frag_text); }
 
 // The GL entry points (tools/egl's table, loaded at run time: no loader library).
@@ -90,17 +98,25 @@ struct gl_renderer::state {
     };
     shadow_target shadow;  // the full frame's, drawn whole every frame
     int target_w = 0, target_h = 0;
-    std::map<std::string, GLuint> programs;  // by permutation_key, pass and sky
+    std::map<std::string, GLuint> programs;  // by permutation_key, pass and sky; composite.frag's by its switches
+
+    // The full frame (draw): clouds.frag's pass 3 (what lies behind the layer, the scene's depth)
+    // and pass 0 (the layer, its depth) at full resolution, for composite.frag to combine.
+    struct frame_targets {
+        int width = 0, height = 0;
+        GLuint background_fbo = 0, background = 0, scene_depth = 0;
+        GLuint layer_fbo = 0, layer = 0, layer_depth = 0;
+    } frame;
 
     // Temporal rendering (render_temporal): the quarter-resolution shading target (linear
     // radiance + opacity, depth), two full-resolution histories (colour, depth + samples)
-    // written in turn, and the display image the resolve pass writes beside the history.
+    // written in turn, and the display image composite.frag writes from the new history.
     struct temporal_targets {
         int width = 0, height = 0;
         GLuint fresh_fbo = 0, fresh[2] = {0, 0};
         GLuint background_fbo = 0, background = 0;  // clouds.frag's pass 3: what lies behind the layer
         GLuint scene_depth = 0;                      // ... and the scene's (the terrain's) depth
-        GLuint history_fbo[2] = {0, 0}, history[2][2] = {{0, 0}, {0, 0}}, display = 0;
+        GLuint history_fbo[2] = {0, 0}, history[2][2] = {{0, 0}, {0, 0}}, display_fbo = 0, display = 0;
         GLuint resolve_program = 0;
         // Its own shadow map, a slice a frame: a full frame in between (another variant, another
         // scene) does not make it redraw the whole map.
@@ -178,20 +194,37 @@ struct gl_renderer::state {
         return true;
     }
 
+    // Compiles and links the full-screen vertex shader with fragment shader `source`; 0 and
+    // `why` on failure.
+    GLuint full_screen_program(const std::string& source, const char* what, std::string& why) const {
+        const GLuint vs = gl.compile(GL_VERTEX_SHADER, vertex_shader_source(), "vertex shader", why);
+        if (vs == 0) return 0;
+        const GLuint fs = gl.compile(GL_FRAGMENT_SHADER, source, what, why);
+        if (fs == 0) {
+            gl.DeleteShader(vs);
+            return 0;
+        }
+        return link(vs, fs, why);
+    }
+
+    // composite.frag's program for the scene's composite switches (compiled on first use).
+    GLuint composite_program(const scene& sc, std::string& why) {
+        std::string key = "composite";
+        for (const shader_constant& c : scene_constants(sc, switch_shader::composite)) key += std::string("/") + c.name + "=" + std::to_string(c.value);
+        const auto found = programs.find(key);
+        if (found != programs.end()) return found->second;
+        const GLuint p = full_screen_program(composite_shader_source(sc), "composite shader", why);
+        if (p != 0) programs[key] = p;
+        return p;
+    }
+
     GLuint program_for(const variant& v, const scene& sc, clouds_pass pass, std::string& why) {
         // One program per permutation (the variant, the scene's switches, the pass and the sky).
         const std::string key = permutation_key(v, sc) + "/pass" + std::to_string(static_cast<int>(pass)) +
                                 (sc.sky == sky_model::physical ? "/physical" : "");
         const auto found = programs.find(key);
         if (found != programs.end()) return found->second;
-        const GLuint vs = gl.compile(GL_VERTEX_SHADER, vertex_shader_source(), "vertex shader", why);
-        if (vs == 0) return 0;
-        const GLuint fs = gl.compile(GL_FRAGMENT_SHADER, fragment_shader_source(v, sc, pass), "fragment shader", why);
-        if (fs == 0) {
-            gl.DeleteShader(vs);
-            return 0;
-        }
-        const GLuint p = link(vs, fs, why);
+        const GLuint p = full_screen_program(fragment_shader_source(v, sc, pass), "fragment shader", why);
         if (p == 0) return 0;
         if (!bind_frame_block(p, why)) {
             gl.DeleteProgram(p);
@@ -216,7 +249,17 @@ struct gl_renderer::state {
         if (vao) gl.DeleteVertexArrays(1, &vao);
         if (frame_ubo) gl.DeleteBuffers(1, &frame_ubo);
         if (queries[0]) gl.DeleteQueries(2, queries);
+        release_frame();
         release_temporal();
+    }
+
+    void release_frame() {
+        frame_targets& f = frame;
+        const GLuint fbos[2] = {f.background_fbo, f.layer_fbo};
+        const GLuint textures_[4] = {f.background, f.scene_depth, f.layer, f.layer_depth};
+        if (f.background_fbo) gl.DeleteFramebuffers(2, fbos);
+        if (f.background) gl.DeleteTextures(4, textures_);
+        f = frame_targets{};
     }
 
     void release_temporal() {
@@ -231,6 +274,7 @@ struct gl_renderer::state {
         for (GLuint* h : t.history)
             if (h[0]) gl.DeleteTextures(2, h);
         if (t.display) gl.DeleteTextures(1, &t.display);
+        if (t.display_fbo) gl.DeleteFramebuffers(1, &t.display_fbo);
         release_shadow(t.shadow);
         t = temporal_targets{};
     }
@@ -342,6 +386,17 @@ void linear_filter(const gl_api& gl, GLuint tex) {
     gl.BindTexture(GL_TEXTURE_2D, tex);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+}
+
+// New RGBA32F colour and R32F depth targets of width x height on framebuffer fbo's attachments
+// 0 and 1 (clouds.frag's two outputs); false if the framebuffer is not complete.
+bool colour_and_depth(const gl_api& gl, GLuint fbo, GLuint colour, GLuint depth, int width, int height) {
+    make_target(gl, colour, GL_RGBA32F, GL_RGBA, width, height);
+    make_target(gl, depth, GL_R32F, GL_RED, width, height);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour, 0);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, depth, 0);
+    return gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
 }
 
 // Sets uniforms of one program by name (the location lookups of both passes).
@@ -624,14 +679,7 @@ bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std:
     auto& t = st.temporal;
     const gl_api& gl = st.gl;
     if (t.resolve_program == 0) {
-        const GLuint vs = st.gl.compile(GL_VERTEX_SHADER, vertex_shader_source(), "vertex shader", why);
-        if (vs == 0) return false;
-        const GLuint fs = st.gl.compile(GL_FRAGMENT_SHADER, temporal_resolve_shader_source(), "temporal resolve shader", why);
-        if (fs == 0) {
-            gl.DeleteShader(vs);
-            return false;
-        }
-        t.resolve_program = st.link(vs, fs, why);
+        t.resolve_program = st.full_screen_program(temporal_resolve_shader_source(), "temporal resolve shader", why);
         if (t.resolve_program == 0) return false;
     }
     if (t.width == width && t.height == height) return true;
@@ -642,25 +690,18 @@ bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std:
         gl.GenTextures(2, t.history[0]);
         gl.GenTextures(2, t.history[1]);
         gl.GenTextures(1, &t.display);
+        gl.GenFramebuffers(1, &t.display_fbo);
         gl.GenFramebuffers(1, &t.background_fbo);
         gl.GenTextures(1, &t.background);
         gl.GenTextures(1, &t.scene_depth);
     }
     const int lw = (width + 3) / 4, lh = (height + 3) / 4;
-    make_target(gl, t.fresh[0], GL_RGBA32F, GL_RGBA, lw, lh);
+    bool complete = colour_and_depth(gl, t.fresh_fbo, t.fresh[0], t.fresh[1], lw, lh);
     linear_filter(gl, t.fresh[0]);  // the resolve's Catmull-Rom reads between texels
-    make_target(gl, t.fresh[1], GL_R32F, GL_RED, lw, lh);
+    complete = colour_and_depth(gl, t.background_fbo, t.background, t.scene_depth, width, height) && complete;
     make_target(gl, t.display, GL_RGBA32F, GL_RGBA, width, height);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, t.fresh_fbo);
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.fresh[0], 0);
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, t.fresh[1], 0);
-    bool complete = gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-    make_target(gl, t.background, GL_RGBA32F, GL_RGBA, width, height);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, t.background_fbo);
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.background, 0);
-    make_target(gl, t.scene_depth, GL_R32F, GL_RED, width, height);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, t.background_fbo);
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, t.scene_depth, 0);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, t.display_fbo);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.display, 0);
     complete = complete && gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
     for (int i = 0; i < 2; ++i) {
         make_target(gl, t.history[i][0], GL_RGBA32F, GL_RGBA, width, height);
@@ -669,7 +710,6 @@ bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std:
         gl.BindFramebuffer(GL_FRAMEBUFFER, t.history_fbo[i]);
         gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.history[i][0], 0);
         gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, t.history[i][1], 0);
-        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, t.display, 0);
         complete = complete && gl.CheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
     }
     if (!complete) {
@@ -683,25 +723,85 @@ bool ensure_temporal_targets(gl_renderer::state& st, int width, int height, std:
     return why.empty();
 }
 
+// The full frame's targets for a width x height image.
+bool ensure_frame_targets(gl_renderer::state& st, int width, int height, std::string& why) {
+    auto& f = st.frame;
+    if (f.width == width && f.height == height) return true;
+    const gl_api& gl = st.gl;
+    if (f.background_fbo == 0) {
+        gl.GenFramebuffers(1, &f.background_fbo);
+        gl.GenFramebuffers(1, &f.layer_fbo);
+        GLuint t[4];
+        gl.GenTextures(4, t);
+        f.background = t[0];
+        f.scene_depth = t[1];
+        f.layer = t[2];
+        f.layer_depth = t[3];
+    }
+    if (!colour_and_depth(gl, f.background_fbo, f.background, f.scene_depth, width, height) ||
+        !colour_and_depth(gl, f.layer_fbo, f.layer, f.layer_depth, width, height)) {
+        why = "the frame's float targets are not supported (framebuffer incomplete)";
+        return false;
+    }
+    f.width = width;
+    f.height = height;
+    why = st.gl_errors("frame targets");
+    return why.empty();
+}
+
+// Draws the current program's full-screen triangle into framebuffer fbo's first `buffers`
+// attachments (0: the default framebuffer) over width x height.
+void full_screen(const gl_api& gl, GLuint program, GLuint fbo, int buffers, int width, int height) {
+    const GLenum attachments[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    gl.UseProgram(program);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
+    if (fbo != 0) gl.DrawBuffers(buffers, attachments);
+    gl.Viewport(0, 0, width, height);
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+// composite.frag (program: composite_program's): the layer over the background, the frame's
+// exposure, tonemap and dither, into framebuffer fbo. Both inputs on units 9 and 10, which no
+// clouds.frag sampler uses.
+void composite_pass(const gl_api& gl, GLuint program, float exposure, std::uint32_t frame, GLuint layer, GLuint background,
+                    GLuint fbo, int width, int height) {
+    gl.UseProgram(program);
+    const uniform_setter u{gl, program};
+    u.f1("u_exposure", exposure);
+    gl.Uniform1ui(u.loc("u_frame"), frame);
+    gl.ActiveTexture(GL_TEXTURE9);
+    gl.BindTexture(GL_TEXTURE_2D, layer);
+    u.i1("u_layer", 9);
+    gl.ActiveTexture(GL_TEXTURE10);
+    gl.BindTexture(GL_TEXTURE_2D, background);
+    u.i1("u_background", 10);
+    full_screen(gl, program, fbo, 1, width, height);
+}
+
 }  // namespace
 
 bool gl_renderer::draw(const scene& sc, const variant& v, unsigned fbo, int width, int height,
                        frame_timing* timing, std::string& why) {
+    if (!ensure_frame_targets(*s_, width, height, why)) return false;
     // Every program bound (compiled the first time) and its uniforms set before the timing.
     const GLuint shadow = bind_shadow_map(*s_, sc, v, width, height, why);
     if (shadow == 0 && !why.empty()) return false;
-    const GLuint program = bind_clouds(*s_, sc, v, width, height, clouds_pass::frame, glm::uvec2(0), why);
-    if (program == 0) return false;
+    const GLuint background = bind_clouds(*s_, sc, v, width, height, clouds_pass::background, glm::uvec2(0), why);
+    if (background == 0) return false;
+    const GLuint clouds = bind_clouds(*s_, sc, v, width, height, clouds_pass::frame, glm::uvec2(0), why);
+    if (clouds == 0) return false;
+    const GLuint composite = s_->composite_program(sc, why);
+    if (composite == 0) return false;
+    frame_constants k;
+    if (!frame_for(*s_, sc, k, why)) return false;
     const gl_api& gl = s_->gl;
+    const auto& f = s_->frame;
     bool shadow_ok = true;
-    const GLenum one = GL_COLOR_ATTACHMENT0;
     const bool ok = timed(*s_, timing, why, [&] {
         shadow_ok = shadow_pass(*s_, s_->shadow, shadow, why);
-        gl.UseProgram(program);
-        gl.BindFramebuffer(GL_FRAMEBUFFER, fbo);
-        if (fbo != 0) gl.DrawBuffers(1, &one);
-        gl.Viewport(0, 0, width, height);
-        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        full_screen(gl, background, f.background_fbo, 2, width, height);  // what lies behind the layer
+        full_screen(gl, clouds, f.layer_fbo, 2, width, height);            // the layer
+        composite_pass(gl, composite, k.exposure, sc.frame, f.layer, f.background, fbo, width, height);
     });
     return shadow_ok && ok;
 }
@@ -729,8 +829,8 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, int width, in
     if (background == 0) return false;
     const GLuint clouds = bind_clouds(*s_, shading, v, width, height, clouds_pass::temporal_shading, offset, why);
     if (clouds == 0) return false;
-    const GLenum two[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    const GLenum three[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    const GLuint composite = s_->composite_program(sc, why);
+    if (composite == 0) return false;
     const int lw = (width + 3) / 4, lh = (height + 3) / 4;
 
     // The resolve pass's uniforms (temporal_resolve.frag).
@@ -757,9 +857,6 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, int width, in
     u.f1("u_max_samples", float(temporal_max_samples));
     u.f1("u_tolerance", temporal_reprojection_tolerance);
     u.f1("u_fill_blend", temporal_fill_blend);
-    u.f1("u_exposure", k.exposure);
-    gl.Uniform1ui(u.loc("u_frame"), sc.frame);
-    u.i1("u_dither", sc.dither ? 1 : 0);
     const char* samplers[6] = {"u_fresh", "u_fresh_depth", "u_history", "u_history_aux", "u_background", "u_scene_depth"};
     const GLuint inputs[6] = {t.fresh[0], t.fresh[1], t.history[t.current][0], t.history[t.current][1], t.background, t.scene_depth};
     const int out = 1 - t.current;
@@ -775,23 +872,15 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, int width, in
         *ms = std::chrono::duration<double, std::milli>(now - mark).count();
         mark = now;
     };
-    double shadow_ms = 0, shading_ms = 0, background_ms = 0, resolve_ms = 0;
+    double shadow_ms = 0, shading_ms = 0, background_ms = 0, resolve_ms = 0, composite_ms = 0;
     const bool ok = timed(*s_, timing, why, [&] {
         mark = std::chrono::steady_clock::now();
         shadow_ok = shadow_pass(*s_, t.shadow, shadow, why, temporal_shadow_rows(sc.frame, whole_map));
         lap(&shadow_ms);
-        gl.UseProgram(clouds);
-        gl.BindFramebuffer(GL_FRAMEBUFFER, t.fresh_fbo);
-        gl.DrawBuffers(2, two);
-        gl.Viewport(0, 0, lw, lh);
-        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        full_screen(gl, clouds, t.fresh_fbo, 2, lw, lh);
         lap(&shading_ms);
         // The background pass (clouds.frag's pass 3) at full resolution.
-        gl.UseProgram(background);
-        gl.BindFramebuffer(GL_FRAMEBUFFER, t.background_fbo);
-        gl.DrawBuffers(2, two);
-        gl.Viewport(0, 0, width, height);
-        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        full_screen(gl, background, t.background_fbo, 2, width, height);
         lap(&background_ms);
         gl.UseProgram(r);
         for (int i = 0; i < 6; ++i) {
@@ -799,17 +888,18 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, int width, in
             gl.BindTexture(GL_TEXTURE_2D, inputs[i]);
             u.i1(samplers[i], i);
         }
-        gl.BindFramebuffer(GL_FRAMEBUFFER, t.history_fbo[out]);
-        gl.DrawBuffers(3, three);
-        gl.Viewport(0, 0, width, height);
-        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        full_screen(gl, r, t.history_fbo[out], 2, width, height);
         lap(&resolve_ms);
+        // The new history (the layer) over the background, into the display image.
+        composite_pass(gl, composite, k.exposure, sc.frame, t.history[out][0], t.background, t.display_fbo, width, height);
+        lap(&composite_ms);
     });
     if (timing != nullptr) {
         timing->shadow_ms = shadow_ms;
         timing->shading_ms = shading_ms;
         timing->background_ms = background_ms;
         timing->resolve_ms = resolve_ms;
+        timing->composite_ms = composite_ms;
     }
     if (!ok || !shadow_ok) return false;
     t.current = out;
@@ -821,8 +911,8 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, int width, in
 bool gl_renderer::show_temporal(unsigned fbo, std::string& why) {
     auto& t = s_->temporal;
     const gl_api& gl = s_->gl;
-    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, t.history_fbo[t.current]);
-    gl.ReadBuffer(GL_COLOR_ATTACHMENT2);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, t.display_fbo);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
     gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
     gl.BlitFramebuffer(0, 0, t.width, t.height, 0, 0, t.width, t.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -834,8 +924,8 @@ bool gl_renderer::render_temporal(const scene& sc, const variant& v, int width, 
                                   frame_timing* timing, std::string& why) {
     if (!draw_temporal(sc, v, width, height, timing, why)) return false;
     const gl_api& gl = s_->gl;
-    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, s_->temporal.history_fbo[s_->temporal.current]);
-    gl.ReadBuffer(GL_COLOR_ATTACHMENT2);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, s_->temporal.display_fbo);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
     out.width = width;
     out.height = height;
     out.pixels.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), glm::vec4(0.0f));
@@ -843,6 +933,36 @@ bool gl_renderer::render_temporal(const scene& sc, const variant& v, int width, 
     gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, out.pixels.data());
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     why = s_->gl_errors("temporal read back");
+    return why.empty();
+}
+
+bool gl_renderer::read_frame_layers(frame_layers& out, std::string& why) {
+    const auto& f = s_->frame;
+    if (f.width == 0) {
+        why = "no full frame was drawn yet";
+        return false;
+    }
+    const gl_api& gl = s_->gl;
+    const std::size_t n = static_cast<std::size_t>(f.width) * static_cast<std::size_t>(f.height);
+    const auto read = [&](GLuint fbo, GLenum attachment, GLenum format, void* to) {
+        gl.BindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+        gl.ReadBuffer(attachment);
+        gl.ReadPixels(0, 0, f.width, f.height, format, GL_FLOAT, to);
+    };
+    for (image* i : {&out.layer, &out.background}) {
+        i->width = f.width;
+        i->height = f.height;
+        i->pixels.assign(n, glm::vec4(0.0f));
+    }
+    out.cloud_depth.assign(n, 0.0f);
+    out.scene_depth.assign(n, 0.0f);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    read(f.layer_fbo, GL_COLOR_ATTACHMENT0, GL_RGBA, out.layer.pixels.data());
+    read(f.layer_fbo, GL_COLOR_ATTACHMENT1, GL_RED, out.cloud_depth.data());
+    read(f.background_fbo, GL_COLOR_ATTACHMENT0, GL_RGBA, out.background.pixels.data());
+    read(f.background_fbo, GL_COLOR_ATTACHMENT1, GL_RED, out.scene_depth.data());
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    why = s_->gl_errors("reading the frame's layers back");
     return why.empty();
 }
 

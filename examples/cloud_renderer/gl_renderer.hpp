@@ -15,8 +15,10 @@
 
 namespace cloud_renderer {
 
-// clouds.frag's passes (its u_pass): a full frame, the temporal scheme's shading pass, the
-// Beer shadow map, the temporal scheme's background.
+// clouds.frag's passes (its u_pass): the cloud layer at every pixel (the full frame), the
+// temporal scheme's shading pass (the layer at one pixel of each 4 x 4 block), the Beer shadow
+// map, the background (what lies behind the layer, and the scene's depth), the physical sky's
+// far shadow. A frame ends with composite.frag, which lays the layer over the background.
 enum class clouds_pass { frame = 0, temporal_shading = 1, shadow_map = 2, background = 3, far_shadow = 4 };
 
 // The fragment shader for a variant, as compiled: #version, `#define CR_PHYSICAL_SKY 1` for the
@@ -27,6 +29,9 @@ std::string fragment_shader_source(const variant& v, const scene& s, clouds_pass
 std::string vertex_shader_source();
 // shaders/temporal_resolve.frag as compiled (#version, cloudmath.glsl resolved in).
 std::string temporal_resolve_shader_source();
+// shaders/composite.frag as compiled for the scene's composite switches (the dither): #version,
+// the permutation block, cloudmath.glsl resolved in.
+std::string composite_shader_source(const scene& s);
 // The running mean's cap of the temporal scheme (temporal_blend_weight), on the CPU and GPU.
 inline constexpr int temporal_max_samples = 8;
 
@@ -40,7 +45,7 @@ struct frame_timing {
     // The temporal scheme's passes apart, on the host (set split_passes before the call: each
     // pass then ends with glFinish, which adds a little to wall_ms; 0 when not split).
     bool split_passes = false;
-    double shadow_ms = 0, shading_ms = 0, background_ms = 0, resolve_ms = 0;
+    double shadow_ms = 0, shading_ms = 0, background_ms = 0, resolve_ms = 0, composite_ms = 0;
 };
 
 class gl_renderer {
@@ -61,17 +66,27 @@ public:
     bool upload_textures(const cloud_textures& t, std::string& why);
 
     // Draws into framebuffer `fbo` (0: the window) over (0, 0, width, height) with the
-    // permutation's programs (compiled on first use, cached). timing (optional) receives the
-    // time of the draw.
+    // permutation's programs (compiled on first use, cached): the shadow map, the background
+    // (clouds.frag's pass 3), the cloud layer (pass 0) into float targets of the renderer's,
+    // then composite.frag into `fbo`. timing (optional) receives the time of the draw.
     bool draw(const scene& s, const variant& v, unsigned fbo, int width, int height, frame_timing* timing, std::string& why);
     // Draws offscreen into a float target and reads it back.
     bool render(const scene& s, const variant& v, int width, int height, image& out, frame_timing* timing, std::string& why);
+    // What the last full frame (draw, render) gave composite.frag, read back: the layer
+    // (clouds.frag's pass 0: rgb premultiplied linear radiance, a opacity) and the cloud's depth
+    // (0: none), the background (pass 3: rgb what lies behind the layer, a 1 where the ray
+    // meets the band) and the scene's depth (0: none). False and `why` before any full frame.
+    struct frame_layers {
+        image layer, background;
+        std::vector<float> cloud_depth, scene_depth;
+    };
+    bool read_frame_layers(frame_layers& out, std::string& why);
 
     // Temporal rendering, the twin of cpu_temporal_renderer (cpu_renderer.hpp): frame s.frame
-    // shades one pixel of every 4 x 4 block (clouds.frag's temporal pass) and resolves the
-    // full image from the reprojected history (temporal_resolve.frag). Frames should count
-    // up by one; a new size or reset_temporal() starts a new history. timing covers both
-    // passes. draw_temporal keeps the display image on the GPU (show_temporal copies it
+    // shades one pixel of every 4 x 4 block (clouds.frag's temporal pass), resolves the full
+    // layer from the reprojected history (temporal_resolve.frag) and composites it over the
+    // background (composite.frag). Frames should count up by one; a new size or
+    // reset_temporal() starts a new history. timing covers every pass. draw_temporal keeps the display image on the GPU (show_temporal copies it
     // into framebuffer fbo, 0 the window); render_temporal reads it back.
     bool draw_temporal(const scene& s, const variant& v, int width, int height, frame_timing* timing, std::string& why);
     bool show_temporal(unsigned fbo, std::string& why);

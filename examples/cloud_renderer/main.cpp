@@ -215,7 +215,7 @@ int run_headless(const options& o) {
                     "%.1f ms)\n", o.temporal, temporal_ms, temporal_gpu_ms);
         // Where the time goes: 9 more frames (the camera held at the last one's), each pass
         // ended by glFinish and timed apart; the medians. Not in the frame times above.
-        std::vector<double> passes[4];
+        std::vector<double> passes[5];
         image spare;
         for (int f = 0; f < 9; ++f) {
             scene s = temporal_scene(o, o.temporal - 1);
@@ -226,12 +226,12 @@ int run_headless(const options& o) {
                 std::fprintf(stderr, "error: %s\n", why.c_str());
                 return 1;
             }
-            const double ms[4] = {split.shadow_ms, split.shading_ms, split.background_ms, split.resolve_ms};
-            for (int i = 0; i < 4; ++i) passes[i].push_back(ms[i]);
+            const double ms[5] = {split.shadow_ms, split.shading_ms, split.background_ms, split.resolve_ms, split.composite_ms};
+            for (int i = 0; i < 5; ++i) passes[i].push_back(ms[i]);
         }
         std::printf("GPU temporal passes (each ended by glFinish, medians of 9 frames): shadow-map slice %.1f ms, "
-                    "shading %.1f ms, background %.1f ms, resolve %.1f ms\n",
-                    median_of(passes[0]), median_of(passes[1]), median_of(passes[2]), median_of(passes[3]));
+                    "shading %.1f ms, background %.1f ms, resolve %.1f ms, composite %.1f ms\n",
+                    median_of(passes[0]), median_of(passes[1]), median_of(passes[2]), median_of(passes[3]), median_of(passes[4]));
     }
     print_stats("GPU image", img);
     return save(img, o.out.empty() ? "clouds.png" : o.out) ? 0 : 1;
@@ -594,7 +594,10 @@ int main(int argc, char** argv) {
                         s.description.c_str(), double(s.camera_altitude), double(s.pitch), double(s.sun_elevation),
                         double(s.coverage), double(s.cloud_type));
         return 0;
-    case run_mode::dump_shader: std::printf("%s", fragment_shader_source(o.var, o.sc, static_cast<clouds_pass>(o.pass)).c_str()); return 0;
+    case run_mode::dump_shader:
+        std::printf("%s", o.pass == composite_pass_option ? composite_shader_source(o.sc).c_str()
+                                                          : fragment_shader_source(o.var, o.sc, static_cast<clouds_pass>(o.pass)).c_str());
+        return 0;
     case run_mode::print_sky: std::printf("%s", sky_json(o.sc).c_str()); return 0;
     case run_mode::headless: return run_headless(o);
     case run_mode::cpu: return run_cpu(o);

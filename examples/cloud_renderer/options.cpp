@@ -42,7 +42,8 @@ const char* usage_text() {
            "  --print-sky         print the frame's sky and sun (JSON: the sun by height, the sky's\n"
            "                      zenith and horizon, the ground, the sky light, EV100) for the scene\n"
            "  --dump-shader       print the fragment shader as compiled for the variant and\n"
-           "                      --pass (one program per pass, as the renderer compiles them)\n"
+           "                      --pass (frame, temporal, shadow, background: clouds.frag's passes,\n"
+           "                      one program each, as the renderer compiles them; composite: composite.frag)\n"
            "options:\n"
            "  --preset NAME       scene preset (default: ground; see --list-presets)\n"
            "  --variant SPEC      lighting variant over the defaults (the diffusion model, 6-step\n"
@@ -184,12 +185,12 @@ std::string parse_options(int argc, const char* const* argv, options& o) {
             else return "--shape must be classic or detailed, not '" + v + "'";
         } else if (a == "--pass") {
             std::string v;
-            if (!value(v)) return "--pass needs frame, temporal, shadow or background";
+            if (!value(v)) return "--pass needs frame, temporal, shadow, background or composite";
             const char* names[4] = {"frame", "temporal", "shadow", "background"};
-            o.pass = -1;
+            o.pass = v == "composite" ? composite_pass_option : -1;
             for (int p = 0; p < 4; ++p)
                 if (v == names[p]) o.pass = p;
-            if (o.pass < 0) return "--pass must be frame, temporal, shadow or background, not '" + v + "'";
+            if (o.pass < 0) return "--pass must be frame, temporal, shadow, background or composite, not '" + v + "'";
             pass_given = true;
         } else if (a == "--out" || a == "--bench-out" || a == "--cache") {
             std::string v;

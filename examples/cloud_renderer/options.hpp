@@ -10,6 +10,9 @@ namespace cloud_renderer {
 
 enum class run_mode { window, headless, cpu, compare, bench, convergence, list_presets, dump_shader, print_sky, help };
 
+// options::pass for `--pass composite`: composite.frag, not a pass of clouds.frag.
+inline constexpr int composite_pass_option = 100;
+
 struct options {
     run_mode mode = run_mode::window;
     scene sc = presets().front();
@@ -30,7 +33,8 @@ struct options {
     int save_every = 0;          // --temporal: also write every Nth frame (FILE_fNNN.png)
     double min_psnr = 0;         // --compare: fail below this (0: never)
     bool quiet = false;
-    int pass = 0;                // --dump-shader: clouds.frag's pass (gl_renderer.hpp's clouds_pass), --pass
+    int pass = 0;                // --dump-shader: clouds.frag's pass (gl_renderer.hpp's clouds_pass), --pass;
+                                 // composite_pass_option: composite.frag
 };
 
 // Parses argv into `out`. Returns an empty string on success, else a one-line message for

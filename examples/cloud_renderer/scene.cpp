@@ -443,22 +443,25 @@ std::optional<light_sources> light_sources_named(const std::string& n) {
 
 std::string permutation_key(const variant& v, const scene& s) {
     std::string key = variant_spec(v) + "/" + name(s.shape) + "/";
-#define CLOUD_RENDERER_SWITCH_KEY(member, item, shader) key += std::string(item) + (s.member ? "=on," : "=off,");
+#define CLOUD_RENDERER_SWITCH_KEY(member, item, shader, file) \
+    if (switch_shader::file == switch_shader::clouds) key += std::string(item) + (s.member ? "=on," : "=off,");
     CLOUD_RENDERER_SCENE_SWITCHES(CLOUD_RENDERER_SWITCH_KEY)
 #undef CLOUD_RENDERER_SWITCH_KEY
     return key;
 }
 
-std::vector<shader_constant> scene_constants(const scene& s) {
-    std::vector<shader_constant> out = {{"u_shape", static_cast<int>(s.shape)}};
-#define CLOUD_RENDERER_SWITCH_CONSTANT(member, item, shader) out.push_back({shader, s.member ? 1 : 0});
+std::vector<shader_constant> scene_constants(const scene& s, switch_shader in) {
+    std::vector<shader_constant> out;
+    if (in == switch_shader::clouds) out.push_back({"u_shape", static_cast<int>(s.shape)});
+#define CLOUD_RENDERER_SWITCH_CONSTANT(member, item, shader, file) \
+    if (switch_shader::file == in) out.push_back({shader, s.member ? 1 : 0});
     CLOUD_RENDERER_SCENE_SWITCHES(CLOUD_RENDERER_SWITCH_CONSTANT)
 #undef CLOUD_RENDERER_SWITCH_CONSTANT
     return out;
 }
 
 bool turn_off_scene_switch(scene& s, const std::string& item) {
-#define CLOUD_RENDERER_SWITCH_OFF(member, item_text, shader) \
+#define CLOUD_RENDERER_SWITCH_OFF(member, item_text, shader, file) \
     if (item == item_text) return s.member = false, true;
     CLOUD_RENDERER_SCENE_SWITCHES(CLOUD_RENDERER_SWITCH_OFF)
 #undef CLOUD_RENDERER_SWITCH_OFF
@@ -467,7 +470,7 @@ bool turn_off_scene_switch(scene& s, const std::string& item) {
 
 std::string scene_switch_names() {
     std::vector<const char*> items;
-#define CLOUD_RENDERER_SWITCH_NAME(member, item, shader) items.push_back(item);
+#define CLOUD_RENDERER_SWITCH_NAME(member, item, shader, file) items.push_back(item);
     CLOUD_RENDERER_SCENE_SWITCHES(CLOUD_RENDERER_SWITCH_NAME)
 #undef CLOUD_RENDERER_SWITCH_NAME
     return or_list(items.data(), items.size());

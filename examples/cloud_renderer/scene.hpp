@@ -207,17 +207,21 @@ struct scene {
     bool terrain = false;
 };
 
-// The scene's switches in one table: X(member, --without item, the shader's permutation
-// constant). The --without list, permutation_key and fragment_shader_source's permutation
-// block are made from it.
-#define CLOUD_RENDERER_SCENE_SWITCHES(X)  \
-    X(sun_disc, "sun-disc", "u_sun_disc") \
-    X(haze, "haze", "u_haze")             \
-    X(shadows, "shadows", "u_shadows")    \
-    X(dither, "dither", "u_dither")       \
-    X(terrain, "terrain", "u_terrain")
-// The scene's permutation constants: its density field's shape (u_shape) and its switches.
-std::vector<shader_constant> scene_constants(const scene& s);
+// The scene's switches in one table: X(member, --without item, the permutation constant, the
+// shader that reads it: clouds, the cloud passes' clouds.frag; composite, composite.frag, the
+// display transform). The --without list, permutation_key and the permutation blocks of both
+// shaders are made from it.
+#define CLOUD_RENDERER_SCENE_SWITCHES(X)             \
+    X(sun_disc, "sun-disc", "u_sun_disc", clouds)    \
+    X(haze, "haze", "u_haze", clouds)                \
+    X(shadows, "shadows", "u_shadows", clouds)       \
+    X(dither, "dither", "u_dither", composite)       \
+    X(terrain, "terrain", "u_terrain", clouds)
+// The two shaders of a frame that take permutation constants.
+enum class switch_shader { clouds, composite };
+// A shader's permutation constants from the scene: for clouds.frag its density field's shape
+// (u_shape) and its switches, for composite.frag its switches.
+std::vector<shader_constant> scene_constants(const scene& s, switch_shader shader = switch_shader::clouds);
 // Turns off the scene switch named `item` (a --without item); false for an unknown name.
 bool turn_off_scene_switch(scene& s, const std::string& item);
 // The --without items, "sun-disc, haze, shadows, dither or terrain".
@@ -413,8 +417,9 @@ std::string apply_variant_spec(const std::string& spec, variant& v);
 // The same notation back, every field.
 std::string variant_spec(const variant& v);
 // The variant and the scene's permutation switches as one key,
-// "<variant_spec>/<shape>/sun=on,haze=on,shadows=on,dither=on": what a compiled-in permutation, and what
-// is drawn for it (the temporal scheme's shadow map), is for.
+// "<variant_spec>/<shape>/sun-disc=on,haze=on,shadows=on,terrain=off": what a compiled-in clouds.frag
+// permutation, and what is drawn for it (the temporal scheme's shadow map), is for; the
+// composite's switches (dither) are not in it.
 std::string permutation_key(const variant& v, const scene& s);
 const char* name(phase_model p);
 const char* name(light_mode l);

@@ -1260,6 +1260,58 @@ TEST_CASE("the terrain (scene::terrain): the cloud march ends at the scene's dep
     CHECK(over == 0);
 }
 
+TEST_CASE("the composite (composite.frag): the cloud pass writes the layer alone, the composite lays it over the background as its C++ twin does") {
+    if (!shared().gpu) return;
+    // The mountains under the physical sky with the dither on: the terrain in the background
+    // pass and the scene's depth, clouds in front of it and around it, the dither's noise.
+    const scene s = *find_preset("mountains");
+    REQUIRE(s.dither);
+    const variant v;
+    const int w = 160, h = 90;
+    const image shown = render_gpu(s, v, w, h);
+    gl_renderer::frame_layers f;
+    std::string why;
+    REQUIRE_MESSAGE(shared().gpu->read_frame_layers(f, why), why);
+    const frame_constants k = make_frame_constants(s);
+    // The layer is the clouds' light alone: no sky, ground or terrain where there is no cloud.
+    int clear = 0, clear_lit = 0, cloudy = 0, cloudy_without_depth = 0, boxes = 0, box_without_depth = 0;
+    // composite.frag against composite_display on the same inputs, with and without the dither.
+    double worst = 0.0, dither_seen = 0.0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y * w + x);
+            const glm::vec4 layer = f.layer.pixels[i], behind = f.background.pixels[i];
+            if (layer.a == 0.0f) {
+                ++clear;
+                clear_lit += glm::vec3(layer) != glm::vec3(0.0f) ? 1 : 0;
+            } else if (layer.a > 0.05f) {
+                ++cloudy;
+                cloudy_without_depth += f.cloud_depth[i] > 0.0f ? 0 : 1;
+            }
+            if (terrain_distance(s, pixel_direction(k, x, y, w, h), nullptr) > 0.0f) {
+                ++boxes;
+                box_without_depth += f.scene_depth[i] > 0.0f ? 0 : 1;
+            }
+            const glm::vec4 want = composite_display(glm::vec3(behind), layer, k.exposure, true, x, y, s.frame);
+            const glm::vec4 plain = composite_display(glm::vec3(behind), layer, k.exposure, false, x, y, s.frame);
+            for (int c = 0; c < 4; ++c) {
+                worst = std::max(worst, double(std::abs(shown.pixels[i][c] - want[c])));
+                dither_seen = std::max(dither_seen, double(std::abs(want[c] - plain[c])));
+            }
+        }
+    MESSAGE("mountains at " << w << " x " << h << ": " << clear << " pixels without cloud, " << cloudy << " with opacity over 0.05, "
+                            << boxes << " on a box; composite.frag against composite_display: largest difference " << worst
+                            << " (the dither's reach " << dither_seen << ")");
+    CHECK(clear > 100);
+    CHECK(clear_lit == 0);
+    CHECK(cloudy > 1000);
+    CHECK(cloudy_without_depth == 0);
+    CHECK(boxes > 100);
+    CHECK(box_without_depth == 0);
+    CHECK(dither_seen > 0.5 / 255.0);  // the dither is in the image compared
+    CHECK(worst < 0.05 / 255.0);       // far under one 8-bit step: the same composite
+}
+
 TEST_CASE("the CPU's physical-sky tables: kept for the last 16 keys, a held table outlives its eviction") {
     // A sun that moves asks for a new table every frame: the cache keeps made_once_capacity.
     const glm::vec3 first_sun = glm::normalize(glm::vec3(0.3f, 0.2f, -0.9f));

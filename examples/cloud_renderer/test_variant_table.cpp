@@ -1,7 +1,8 @@
 // ctest cloud_renderer.variant_table: the switches are listed once, in scene.hpp's tables
 // (CLOUD_RENDERER_VARIANT_TABLE, CLOUD_RENDERER_SCENE_SWITCHES), and every other place that
-// names the permutation's constants must name the same ones: clouds.frag's CR_PARAM lines,
-// clouds.wgsl's overrides and the web demo's permutation values (web/demo/main.js). A switch
+// names the permutation's constants must name the same ones: clouds.frag's and composite.frag's
+// CR_PARAM lines (each shader the switches the table gives it), clouds.wgsl's overrides (both
+// shaders' in one module) and the web demo's permutation values (web/demo/main.js). A switch
 // added to or removed from one of them alone fails here. Needs no OpenGL.
 #include "scene.hpp"
 
@@ -34,11 +35,25 @@ std::set<std::string> matches(const std::string& text, const std::string& patter
     return out;
 }
 
-// The table's constants: the pass, the scene's and the variant's.
-std::set<std::string> table_constants() {
+// The table's constants for clouds.frag: the pass, the scene's and the variant's.
+std::set<std::string> clouds_constants() {
     std::set<std::string> out = {"u_pass"};
-    for (const shader_constant& c : scene_constants(scene{})) out.insert(c.name);
+    for (const shader_constant& c : scene_constants(scene{}, switch_shader::clouds)) out.insert(c.name);
     for (const shader_constant& c : variant_constants(variant{})) out.insert(c.name);
+    return out;
+}
+
+// ... for composite.frag: the scene's switches that the table gives it.
+std::set<std::string> composite_constants() {
+    std::set<std::string> out;
+    for (const shader_constant& c : scene_constants(scene{}, switch_shader::composite)) out.insert(c.name);
+    return out;
+}
+
+// Both shaders' (one WGSL module holds both).
+std::set<std::string> table_constants() {
+    std::set<std::string> out = clouds_constants();
+    for (const std::string& n : composite_constants()) out.insert(n);
     return out;
 }
 
@@ -50,9 +65,14 @@ std::string join(const std::set<std::string>& names) {
 
 }  // namespace
 
-TEST_CASE("clouds.frag's CR_PARAM lines are the table's constants") {
-    const std::set<std::string> frag = matches(read(CLOUD_RENDERER_SOURCE_DIR "/shaders/clouds.frag"), R"(^CR_PARAM\(int, (\w+)\))");
-    CHECK_MESSAGE(frag == table_constants(), "clouds.frag: " << join(frag) << "; the table: " << join(table_constants()));
+TEST_CASE("clouds.frag's and composite.frag's CR_PARAM lines are the table's constants") {
+    const std::string pattern = R"(^CR_PARAM\(int, (\w+)\))";
+    const std::set<std::string> frag = matches(read(CLOUD_RENDERER_SOURCE_DIR "/shaders/clouds.frag"), pattern);
+    CHECK_MESSAGE(frag == clouds_constants(), "clouds.frag: " << join(frag) << "; the table: " << join(clouds_constants()));
+    const std::set<std::string> composite = matches(read(CLOUD_RENDERER_SOURCE_DIR "/shaders/composite.frag"), pattern);
+    CHECK_MESSAGE(composite == composite_constants(),
+                  "composite.frag: " << join(composite) << "; the table: " << join(composite_constants()));
+    CHECK(composite_constants() == std::set<std::string>{"u_dither"});  // the display transform's only switch
 }
 
 TEST_CASE("clouds.wgsl's overrides are the table's constants and its sky's") {

@@ -5,7 +5,7 @@
 import { modules, resolve } from '../dist/index.js';
 import { cases, defaultBudget, floor } from './parity.js';
 import { scenePresets, variants, msPresets, frameConstants, phaseMeanCosine } from './scene.js';
-import { cloudsFrag } from './clouds_frag.js';
+import { cloudsFrag, compositeFrag } from './clouds_frag.js';
 import { skyTablesFrag } from './sky_tables_frag.js';
 import { imageStats, compareImages, shiftImage } from './image.js';
 import { initWebGPU, createClouds, renderClouds, setPhysicalTables } from './webgpu.js';
@@ -23,6 +23,8 @@ const cloudsFragUniforms = new Set(cloudsFragSwitches);
 for (const m of cloudsFrag.matchAll(/^uniform\s+\w+\s+([^;]+);/gm)) for (const n of m[1].split(',')) cloudsFragUniforms.add(n.trim().replace(/\[\d+\]$/, ''));
 const cloudsFragBlock = /uniform CrFrame \{([\s\S]*?)\};/.exec(cloudsFrag)[1].replace(/\/\/.*$/gm, '');
 for (const m of cloudsFragBlock.matchAll(/\w+\s+([^;]+);/g)) for (const n of m[1].split(',')) cloudsFragUniforms.add(n.trim().replace(/\[\d+\]$/, ''));
+// composite.frag's switches (the dither), compiled into its program, not clouds.frag's.
+const compositeSwitches = [...compositeFrag.matchAll(/^CR_PARAM\(\w+,\s*(\w+)\)/gm)].map((m) => m[1]);
 
 const canvas = document.getElementById('view');
 const gl = canvas.getContext('webgl2', { antialias: false, preserveDrawingBuffer: true });
@@ -193,14 +195,36 @@ function useClouds(values) {
     cloudPrograms.set(constants, program(header + '#define CR_PARAM(type, name)\n' + constants + resolve(cloudsFrag), 'clouds.frag'));
   clouds = cloudPrograms.get(constants);
 }
+// A frame's targets, as the desktop renderer's: clouds.frag's pass 3 (what lies behind the layer,
+// RGBA32F, and the scene's depth, R32F) and pass 0 (the layer: premultiplied radiance and
+// opacity, RGBA32F, and the cloud's depth, R32F), then composite.frag's display image (RGBA8).
+function frameTarget(formats) {
+  const t = { fbo: gl.createFramebuffer(), tex: formats.map(() => gl.createTexture()) };
+  gl.bindFramebuffer(gl.FRAMEBUFFER, t.fbo);
+  formats.forEach((format, i) => {
+    gl.bindTexture(gl.TEXTURE_2D, t.tex[i]);
+    gl.texStorage2D(gl.TEXTURE_2D, 1, format, canvas.width, canvas.height);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + i, gl.TEXTURE_2D, t.tex[i], 0);
+  });
+  gl.drawBuffers(formats.map((_, i) => gl.COLOR_ATTACHMENT0 + i));
+  if (gl.checkFramebufferStatus(gl.FRAMEBUFFER) !== gl.FRAMEBUFFER_COMPLETE) throw new Error('a frame target is incomplete');
+  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  return t;
+}
 function setupClouds(values) {
   useClouds(values);
-  target = { fbo: gl.createFramebuffer(), tex: gl.createTexture() };
-  gl.bindTexture(gl.TEXTURE_2D, target.tex);
-  gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA8, canvas.width, canvas.height);
-  gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
-  gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, target.tex, 0);
-  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  target = { background: frameTarget([gl.RGBA32F, gl.R32F]), layer: frameTarget([gl.RGBA32F, gl.R32F]), display: frameTarget([gl.RGBA8]) };
+}
+
+// composite.frag's program for the values' composite switches (the dither), compiled on first use.
+const compositePrograms = new Map();
+function useComposite(values) {
+  const constants = compositeSwitches.map((name) => `const int ${name} = ${Math.trunc(values[name] ?? 0)};\n`).join('');
+  if (!compositePrograms.has(constants))
+    compositePrograms.set(constants, program(header + '#define CR_PARAM(type, name)\n' + constants + resolve(compositeFrag), 'composite.frag'));
+  return compositePrograms.get(constants);
 }
 
 // The cloud pass's uniform values by their GLSL names (clouds.frag's uniforms; the WebGPU
@@ -290,7 +314,7 @@ function bindClouds(values, farShadow) {
   const data = new ArrayBuffer(layout.size);
   const views = { f: new Float32Array(data), i: new Int32Array(data), u: new Uint32Array(data) };
   for (const [name, v] of Object.entries(values)) {
-    if (name === 'u_physical_sky') continue;  // compiled in (useClouds)
+    if (name === 'u_physical_sky' || compositeSwitches.includes(name)) continue;  // compiled in (useClouds, useComposite)
     const m = layout.members.get(name);
     if (m === undefined) { if (!cloudsFragUniforms.has(name)) throw new Error(`clouds.frag declares no uniform ${name}`); continue; }
     const kind = blockTypes.get(m.type);
@@ -338,16 +362,28 @@ function ensureFarShadow(values) {
 
 function render(values) {
   if (values.u_physical_sky) ensureFarShadow(values);
-  bindClouds(values, values.u_physical_sky ? physicalSky.sky.farTable : null);
-
-  gl.bindFramebuffer(gl.FRAMEBUFFER, target.fbo);
-  gl.viewport(0, 0, canvas.width, canvas.height);
+  const farShadow = values.u_physical_sky ? physicalSky.sky.farTable : null;
+  const composite = useComposite(values);
   const pixels = new Uint8Array(canvas.width * canvas.height * 4);
+  gl.viewport(0, 0, canvas.width, canvas.height);
   const t0 = performance.now();
+  // The background (clouds.frag's pass 3), the layer (pass 0), then the composite.
+  bindClouds({ ...values, u_pass: 3 }, farShadow);
+  gl.bindFramebuffer(gl.FRAMEBUFFER, target.background.fbo);
+  drawTriangle();
+  bindClouds(values, farShadow);
+  gl.bindFramebuffer(gl.FRAMEBUFFER, target.layer.fbo);
+  drawTriangle();
+  gl.useProgram(composite);
+  gl.uniform1f(gl.getUniformLocation(composite, 'u_exposure'), values.u_exposure);
+  gl.uniform1ui(gl.getUniformLocation(composite, 'u_frame'), values.u_frame ?? 0);
+  [['u_layer', target.layer.tex[0]], ['u_background', target.background.tex[0]]].forEach(([name, tex], i) => {
+    gl.activeTexture(gl.TEXTURE9 + i); gl.bindTexture(gl.TEXTURE_2D, tex); gl.uniform1i(gl.getUniformLocation(composite, name), 9 + i); });
+  gl.bindFramebuffer(gl.FRAMEBUFFER, target.display.fbo);
   drawTriangle();
   gl.readPixels(0, 0, canvas.width, canvas.height, gl.RGBA, gl.UNSIGNED_BYTE, pixels);  // waits for the frame
   const ms = performance.now() - t0;
-  gl.bindFramebuffer(gl.READ_FRAMEBUFFER, target.fbo);
+  gl.bindFramebuffer(gl.READ_FRAMEBUFFER, target.display.fbo);
   gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
   gl.blitFramebuffer(0, 0, canvas.width, canvas.height, 0, 0, canvas.width, canvas.height, gl.COLOR_BUFFER_BIT, gl.NEAREST);
   gl.bindFramebuffer(gl.FRAMEBUFFER, null);

@@ -102,8 +102,11 @@ export async function createClouds(gpu, canvas, texels, present2d = false) {
     tex(12, '2d', 'unfilterable-float'), tex(13, '2d', 'unfilterable-float'), tex(14, '2d', 'unfilterable-float'),
   ] });
   // One pipeline per permutation (clouds.wgsl's override constants), made the first time its
-  // permutation is drawn (pipelineFor).
+  // permutation is drawn (pipelineFor). The composite's (cr_composite) reads group 1 as well:
+  // the layer and the background.
   const pipelineLayout = device.createPipelineLayout({ bindGroupLayouts: [bindGroupLayout] });
+  const compositeGroupLayout = device.createBindGroupLayout({ entries: [tex(0, '2d', 'unfilterable-float'), tex(1, '2d', 'unfilterable-float')] });
+  const compositeLayout = device.createPipelineLayout({ bindGroupLayouts: [bindGroupLayout, compositeGroupLayout] });
   const overrides = [...source.matchAll(/^override\s+(\w+)\s*:/gm)].map((m) => m[1]);
 
   // The baked noise, texel for texel; samplers as the WebGL2 textures' parameters (linear,
@@ -136,10 +139,16 @@ export async function createClouds(gpu, canvas, texels, present2d = false) {
   ];
   const bindGroup = device.createBindGroup({ layout: bindGroupLayout, entries: entries(null) });
 
+  // A frame's targets, as the WebGL2 path's: cr_fragment's pass 3 (what lies behind the layer,
+  // the scene's depth) and pass 0 (the layer, its depth), then cr_composite's display image.
   const { width, height } = canvas;
+  const target = (format) => device.createTexture({ size: [width, height], format,
+    usage: GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.TEXTURE_BINDING });
+  const background = [target('rgba32float'), target('r32float')], layer = [target('rgba32float'), target('r32float')];
+  const compositeGroup = device.createBindGroup({ layout: compositeGroupLayout, entries: [
+    { binding: 0, resource: layer[0].createView() }, { binding: 1, resource: background[0].createView() }] });
   const color = device.createTexture({ size: [width, height], format: 'rgba8unorm',
     usage: GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.COPY_SRC });
-  const depth = device.createTexture({ size: [width, height], format: 'r32float', usage: GPUTextureUsage.RENDER_ATTACHMENT });
   const bytesPerRow = Math.ceil(width * 4 / 256) * 256;
   const readBuffer = device.createBuffer({ size: bytesPerRow * height, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
   // The canvas: a WebGPU context (rgba8unorm, premultiplied alpha: what the WebGL2 canvas
@@ -154,7 +163,8 @@ export async function createClouds(gpu, canvas, texels, present2d = false) {
   }
   const scopeError = await device.popErrorScope();
   if (scopeError) throw new Error(`WebGPU validation: ${scopeError.message}`);
-  return { gpu, module, pipelineLayout, overrides, pipelines: new Map(), bindGroup, uniformBuffer, layout, color, depth, readBuffer,
+  return { gpu, module, pipelineLayout, compositeLayout, overrides, pipelines: new Map(), bindGroup, uniformBuffer, layout,
+    background, layer, compositeGroup, color, readBuffer,
     bytesPerRow, context, context2d, width, height, errors, warnings: messages,
     rebind: (tables) => device.createBindGroup({ layout: bindGroupLayout, entries: entries(tables) }) };
 }
@@ -209,17 +219,20 @@ export function renderClouds(c, values, show = true) {
 }
 
 // The pipeline of the permutation in values (its override constants; an unset one is 0, as an
-// unset uniform), and the values that go to the uniform struct.
-async function pipelineFor(c, values) {
+// unset uniform), and the values that go to the uniform struct: cr_fragment's (the cloud
+// passes), or with composite cr_composite's (whose only switch is the dither, composite.frag's).
+async function pipelineFor(c, values, composite = false) {
   const constants = {}, uniforms = {};
   for (const [name, v] of Object.entries(values)) (c.overrides.includes(name) ? constants : uniforms)[name] = v;
   for (const name of c.overrides) constants[name] = Math.trunc(constants[name] ?? 0);
-  const key = c.overrides.map((name) => constants[name]).join(',');
+  const key = (composite ? 'composite:' + constants.u_dither : c.overrides.map((name) => constants[name]).join(','));
   if (!c.pipelines.has(key)) {
     c.pipelines.set(key, await c.gpu.device.createRenderPipelineAsync({
-      layout: c.pipelineLayout,
+      layout: composite ? c.compositeLayout : c.pipelineLayout,
       vertex: { module: c.module, entryPoint: 'cr_vertex' },
-      fragment: { module: c.module, entryPoint: 'cr_fragment', constants, targets: [{ format: 'rgba8unorm' }, { format: 'r32float' }] },
+      fragment: composite
+        ? { module: c.module, entryPoint: 'cr_composite', constants: { u_dither: constants.u_dither }, targets: [{ format: 'rgba8unorm' }] }
+        : { module: c.module, entryPoint: 'cr_fragment', constants, targets: [{ format: 'rgba32float' }, { format: 'r32float' }] },
       primitive: { topology: 'triangle-list' },
     }));
   }
@@ -229,15 +242,20 @@ async function pipelineFor(c, values) {
 async function renderOnce(c, values, show) {
   const { device } = c.gpu;
   const { pipeline, uniforms } = await pipelineFor(c, values);
+  const background = (await pipelineFor(c, { ...values, u_pass: 3 })).pipeline;
+  const composite = (await pipelineFor(c, values, true)).pipeline;
   device.queue.writeBuffer(c.uniformBuffer, 0, packUniforms(c.layout, uniforms));
   const encoder = device.createCommandEncoder();
-  const pass = encoder.beginRenderPass({ colorAttachments: [
-    { view: c.color.createView(), loadOp: 'clear', storeOp: 'store', clearValue: [0, 0, 0, 0] },
-    { view: c.depth.createView(), loadOp: 'clear', storeOp: 'store', clearValue: [0, 0, 0, 0] }] });
-  pass.setPipeline(pipeline);
-  pass.setBindGroup(0, c.bindGroup);
-  pass.draw(3);
-  pass.end();
+  // The background (pass 3), the layer (pass 0), then the composite (WebGL2's order).
+  for (const [p, targets] of [[background, c.background], [pipeline, c.layer], [composite, [c.color]]]) {
+    const pass = encoder.beginRenderPass({ colorAttachments: targets.map((t) =>
+      ({ view: t.createView(), loadOp: 'clear', storeOp: 'store', clearValue: [0, 0, 0, 0] })) });
+    pass.setPipeline(p);
+    pass.setBindGroup(0, c.bindGroup);
+    if (p === composite) pass.setBindGroup(1, c.compositeGroup);
+    pass.draw(3);
+    pass.end();
+  }
   encoder.copyTextureToBuffer({ texture: c.color }, { buffer: c.readBuffer, bytesPerRow: c.bytesPerRow }, [c.width, c.height]);
   if (show && c.context) encoder.copyTextureToTexture({ texture: c.color }, { texture: c.context.getCurrentTexture() }, [c.width, c.height]);
   const t0 = performance.now();

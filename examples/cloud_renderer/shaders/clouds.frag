@@ -1,4 +1,4 @@
-// clouds.frag: one full-screen pass that ray-marches a spherical cloud layer. Every piece of
+// clouds.frag: the full-screen passes that ray-march a spherical cloud layer. Every piece of
 // cloud math is a cloudmath GLSL function (cm_*); this file is the glue: the camera ray, the
 // textures, the march loop and the switches between lighting variants. cpu_renderer.cpp is
 // the same program in C++ with cloudmath's C++ functions, line for line.
@@ -16,8 +16,8 @@
 // The permutation: the pass (below), the density field's shape (scene.hpp's cloud_shape: 0
 // classic, 1 detailed), the lighting variant and what the picture draws besides the clouds:
 // the constants of scene.hpp's two tables (CLOUD_RENDERER_VARIANT_TABLE,
-// CLOUD_RENDERER_SCENE_SWITCHES), which the host's block defines; ctest
-// cloud_renderer.variant_table checks these lines against them.
+// CLOUD_RENDERER_SCENE_SWITCHES; the dither is composite.frag's), which the host's block
+// defines; ctest cloud_renderer.variant_table checks these lines against them.
 CR_PARAM(int, u_pass)
 CR_PARAM(int, u_shape)
 CR_PARAM(int, u_phase_model)      // 0 HG, 1 dual-lobe HG, 2 Cornette-Shanks, 3 Mie fit
@@ -39,7 +39,6 @@ CR_PARAM(int, u_reach)            // the march toward the sun: 0 (far) capped at
                                   // (30 km at most); 1 (band) its steps stretched to the band's end
 CR_PARAM(int, u_sun_disc)         // 0 no sun disc, 1 the disc at its physical radiance
 CR_PARAM(int, u_haze)             // 0 off, 1 aerial perspective (air between camera and cloud)
-CR_PARAM(int, u_dither)           // 0 off, 1 triangular dither before the 8-bit store
 CR_PARAM(int, u_terrain)          // 0 none, 1 the example's terrain (u_terrain_boxes): the march ends at it
 
 // The frame's constants: one uniform block, laid out once (std140) and shared by the passes
@@ -72,7 +71,8 @@ layout(std140) uniform CrFrame {
     vec3 u_sun_by_height[8];  // the physical sky's sun on the clouds by height in the layer (frame_constants::sun_by_height)
     vec2 u_resolution; vec2 u_band;  // the image; altitudes outside which the field has no density (cloud_band)
     vec2 u_wind; vec2 u_far_shadow_size;  // ...; the far shadow's n_alt, n_mu
-    uvec2 u_update_offset; uint u_frame; float u_exposure;  // the temporal passes' pixel of each 4 x 4 block
+    uvec2 u_update_offset; uint u_frame; float u_exposure;  // the temporal passes' pixel of each 4 x 4 block; ...;
+                                                            // the frame's exposure (composite.frag's, kept with the frame)
     float u_base_tile, u_detail_tile, u_weather_tile, u_weather_wide_tile;
     float u_curl_tile, u_curl_strength, u_type_spread, u_top_rounding;
     float u_density_scale, u_phase_g, u_phase_g_back, u_phase_w;
@@ -104,17 +104,19 @@ uniform sampler2D u_far_shadow;
 #endif
 
 // The passes (u_pass): 4 (the physical sky only) the far shadow's table: output pixel (a, m) is
-// node (a, m) (cr_far_shadow_texel). 0 a full frame. 1 the shading pass of the temporal scheme
-// (temporal_resolve.frag), one pixel of every 4 x 4 block: the output pixel (i, j) shades the
-// image's pixel (4 i, 4 j) + u_update_offset (u_resolution stays the full image's size) and
-// writes the cloud layer's own linear radiance and opacity and the cloud's depth, for the
-// resolve pass to blend, composite and tonemap. 2 the Beer shadow map: output pixel (i, j) is
-// texel (i, j) (cr_shadow_texel). 3 the temporal scheme's background at full resolution.
+// node (a, m) (cr_far_shadow_texel). 0 the cloud layer at every pixel (the full frame). 1 the
+// shading pass of the temporal scheme (temporal_resolve.frag), one pixel of every 4 x 4 block:
+// the output pixel (i, j) shades the image's pixel (4 i, 4 j) + u_update_offset (u_resolution
+// stays the full image's size). Both write the cloud layer alone: its premultiplied linear
+// radiance (the aerial perspective over the cloud included), its opacity and the cloud's depth,
+// which composite.frag lays over pass 3's background (the temporal resolve in between).
+// 2 the Beer shadow map: output pixel (i, j) is texel (i, j) (cr_shadow_texel). 3 what lies
+// behind the cloud layer (the sky, the ground, the terrain) and the scene's depth, at every pixel.
 // u_pass is the permutation's first switch (CR_PARAM above): one program per pass.
 
-layout(location = 0) out vec4 out_color;   // rgb: display colour in [0, 1] (pass 1: the layer's linear radiance,
-                                           // pass 3: what lies behind it); a: cloud opacity (pass 3: 1 where the ray meets the band)
-layout(location = 1) out float out_depth;  // pass 1: the cloud's transmittance-weighted distance, 0 for none;
+layout(location = 0) out vec4 out_color;   // rgb: the layer's linear radiance (pass 3: what lies behind it);
+                                           // a: cloud opacity (pass 3: 1 where the ray meets the band)
+layout(location = 1) out float out_depth;  // passes 0 and 1: the cloud's transmittance-weighted distance, 0 for none;
                                            // pass 3: the scene's (the terrain's) distance, 0 for none
 
 // cloudmath calls these back (declared before the include, defined below).
@@ -530,9 +532,6 @@ float cr_march_distance(float u, float t0, float t1) {
     return u_schedule == 1 ? cm_march_schedule_distance(u, t0, t1, u_march_near_distance) : t0 + u * (t1 - t0);
 }
 
-// Exposure, 1 - e^-x tone curve, display gamma 2.2.
-vec3 cr_tonemap(vec3 c) { return pow(vec3(1.0) - exp(-c * u_exposure), vec3(1.0 / 2.2)); }
-
 // The pixel's hash: the march's start offset is it advanced by R1 each frame
 // (cm_frame_jitter), the light marches' offsets by their index too (cm_sample_jitter).
 uint cr_pixel_hash(vec2 pixel) { return cm_noise_hash(uint(pixel.x) + uint(pixel.y) * 8192u); }
@@ -568,10 +567,11 @@ void main() {
     float scene = cr_scene_distance(dir, scene_normal);
     if (scene > 0.0) seg.y = min(seg.y, scene);  // the scene's geometry hides what lies behind it
     if (u_pass == 3) {
-        // The temporal scheme's background, at full resolution every frame: what lies behind
-        // the cloud layer, and whether the ray meets the band at all (a ray that does not
-        // carries no cloud). The resolve composites the reprojected layer over it, so the sky,
-        // the ground and the clouds' moving shadows on it never lag.
+        // The background, at full resolution every frame: what lies behind the cloud layer, and
+        // whether the ray meets the band at all (a ray that does not carries no cloud: the
+        // temporal resolve's test). The composite lays the layer (for the temporal scheme, the
+        // reprojected one) over it, so the sky, the ground and the clouds' moving shadows on
+        // it never lag.
         out_color = vec4(cr_background(dir), seg.y > seg.x ? 1.0 : 0.0);
         out_depth = max(scene, 0.0);  // the scene's depth (0: none), for the resolve
         return;
@@ -668,17 +668,5 @@ void main() {
     }
     float alpha = 1.0 - (acc.transmittance.r + acc.transmittance.g + acc.transmittance.b) / 3.0;
     out_depth = cloud_depth;
-    if (u_pass == 1) {
-        out_color = vec4(acc.luminance, alpha);  // the layer alone: pass 3 gives what lies behind it
-        return;
-    }
-    vec3 color = cr_background(dir) * acc.transmittance + acc.luminance;
-    vec3 display = cr_tonemap(color);
-    if (u_dither != 0) {
-        // Triangular dither of one 8-bit step (no banding in the sky's slow gradients); its
-        // hash is another hash of the pixel than the jitter's, new each frame.
-        uint index = uint(gl_FragCoord.x) + uint(gl_FragCoord.y) * 8192u;
-        display += cm_triangular_dither(cm_noise_hash(cm_noise_hash(index) + u_frame * 0x9e3779b9u)) * (1.0 / 255.0);
-    }
-    out_color = vec4(display, alpha);
+    out_color = vec4(acc.luminance, alpha);  // the layer alone: pass 3 gives what lies behind it
 }

@@ -1,4 +1,5 @@
-// clouds.wgsl: clouds.frag in WGSL, line for line. It mirrors clouds.frag (the same functions
+// clouds.wgsl: clouds.frag in WGSL, line for line, and composite.frag as a second fragment entry
+// point (cr_composite). It mirrors clouds.frag (the same functions
 // in the same order, the same names, the same arithmetic); read clouds.frag for the comments
 // on what each piece does. Every piece of cloud math is a cloudmath WGSL function (cm_*,
 // include/cloudmath/wgsl/, generated from the GLSL twins).
@@ -52,7 +53,7 @@ override u_occluded_ambient: i32;
 override u_reach: i32;
 override u_sun_disc: i32;
 override u_haze: i32;
-override u_dither: i32;
+override u_dither: i32;  // composite.frag's switch: read by cr_composite only
 // clouds.frag's terrain (u_terrain: cr_scene_distance, cr_terrain) is not ported: the web demo
 // draws no terrain, so this override is 0 in every pipeline and nothing reads it.
 override u_terrain: i32;
@@ -112,6 +113,10 @@ struct CrUniforms {
 @group(0) @binding(12) var u_haze_table: texture_2d<f32>;
 @group(0) @binding(13) var u_sky_view: texture_2d<f32>;
 @group(0) @binding(14) var u_far_shadow: texture_2d<f32>;
+// composite.frag's inputs (cr_composite's pipeline only): the layer (pass 0) and what lies behind
+// it (pass 3), RGBA32F, textureLoad only.
+@group(1) @binding(0) var u_layer: texture_2d<f32>;
+@group(1) @binding(1) var u_background: texture_2d<f32>;
 
 struct CrOutput {
     @location(0) out_color: vec4f,
@@ -387,8 +392,6 @@ fn cr_march_distance(u: f32, t0: f32, t1: f32) -> f32 {
     return t0 + u * (t1 - t0);
 }
 
-fn cr_tonemap(c: vec3f) -> vec3f { return pow(vec3f(1.0) - exp(-c * U.u_exposure), vec3f(1.0 / 2.2)); }
-
 fn cr_pixel_hash(pixel: vec2f) -> u32 { return cm_noise_hash(u32(pixel.x) + u32(pixel.y) * 8192u); }
 
 @vertex
@@ -513,16 +516,23 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
     }
     let alpha = 1.0 - (acc.transmittance.r + acc.transmittance.g + acc.transmittance.b) / 3.0;
     out.out_depth = cloud_depth;
-    if (u_pass == 1) {
-        out.out_color = vec4f(acc.luminance, alpha);
-        return out;
-    }
-    let color = cr_background(dir) * acc.transmittance + acc.luminance;
-    var display = cr_tonemap(color);
-    if (u_dither != 0) {
-        let index = u32(frag_coord.x) + u32(frag_coord.y) * 8192u;
-        display += cm_triangular_dither(cm_noise_hash(cm_noise_hash(index) + U.u_frame * 0x9e3779b9u)) * (1.0 / 255.0);
-    }
-    out.out_color = vec4f(display, alpha);
+    out.out_color = vec4f(acc.luminance, alpha);
     return out;
+}
+
+// composite.frag: the layer over what lies behind it, the tonemap and the dither. Both inputs
+// were drawn by this module's cr_fragment, so they share WebGPU's rows (top first); the dither's
+// pixel is gl_FragCoord's (y up from the bottom row).
+@fragment
+fn cr_composite(@builtin(position) position: vec4f) -> @location(0) vec4f {
+    let p = vec2i(position.xy);
+    let layer = textureLoad(u_layer, p, 0);
+    let behind = textureLoad(u_background, p, 0).rgb;
+    var shown = pow(vec3f(1.0) - exp(-(behind * (1.0 - layer.a) + layer.rgb) * U.u_exposure), vec3f(1.0 / 2.2));
+    if (u_dither != 0) {
+        let frag_coord = vec2f(position.x, U.u_resolution.y - position.y);
+        let index = u32(frag_coord.x) + u32(frag_coord.y) * 8192u;
+        shown += cm_triangular_dither(cm_noise_hash(cm_noise_hash(index) + U.u_frame * 0x9e3779b9u)) * (1.0 / 255.0);
+    }
+    return vec4f(shown, layer.a);
 }

@@ -6,7 +6,7 @@
 // pixels blended into their reprojected history (a running mean of at most u_max_samples),
 // the other 15 taken from the history where their point was on the previous screen and the
 // history there is theirs, and filled from the block's new samples where it is not. Outputs
-// the new history and the display colour: the layer over the background, tonemapped.
+// the new history: the full-resolution layer, which composite.frag lays over the background.
 //
 // The host (gl_renderer.cpp) prepends `#version 410 core` and resolves the include below.
 
@@ -20,9 +20,6 @@ uniform int u_has_history;        // 0 on the first frame
 uniform float u_max_samples;
 uniform float u_tolerance;        // scene.hpp's temporal_reprojection_tolerance (pixels)
 uniform float u_fill_blend;       // ... temporal_fill_blend
-uniform float u_exposure;
-uniform uint u_frame;
-uniform int u_dither;
 
 uniform sampler2D u_fresh;         // quarter resolution: rgb linear radiance, a opacity
 uniform sampler2D u_fresh_depth;   // quarter resolution: cloud depth (0: none)
@@ -33,7 +30,6 @@ uniform sampler2D u_scene_depth;   // full resolution: the scene's distance (the
 
 layout(location = 0) out vec4 out_history;
 layout(location = 1) out vec2 out_aux;
-layout(location = 2) out vec4 out_display;
 
 #include "cloudmath.glsl"
 
@@ -147,11 +143,4 @@ void main() {
     if (behind.a == 0.0) c = vec4(0.0);  // a ray that meets no cloud carries none
     out_history = c;
     out_aux = a;
-    // Display: the layer over what lies behind it, clouds.frag's tonemap and dither.
-    vec3 shown = pow(vec3(1.0) - exp(-(behind.rgb * (1.0 - c.a) + c.rgb) * u_exposure), vec3(1.0 / 2.2));
-    if (u_dither != 0) {
-        uint index = uint(p.x) + uint(p.y) * 8192u;
-        shown += cm_triangular_dither(cm_noise_hash(cm_noise_hash(index) + u_frame * 0x9e3779b9u)) * (1.0 / 255.0);
-    }
-    out_display = vec4(shown, c.a);
 }
