@@ -500,6 +500,30 @@ TEST_CASE("atmosphere_multiple_scattering_refined_lut: Hillaire's with no pass, 
     CHECK(moment_ground.z > 0.1f * refined.z);
 }
 
+TEST_CASE("atmosphere_stacked_table: each part's block at the rows the GLSL reads (part * height), the ground's zero") {
+    const auto a = earth_atmosphere<float>();
+    const atmosphere_sky_luts<float> luts = atmosphere_make_sky_luts(a, 5, 3, 2, 16, 6, 8);
+    const std::vector<glm::vec3> stacked = atmosphere_stacked_table(luts);
+    REQUIRE(atmosphere_stacked_table_parts == 4 + atmosphere_aerosol_field_nodes);
+    REQUIRE(stacked.size() == std::size_t(5 * 3 * atmosphere_stacked_table_parts));
+    // Texel (x, y) of part p where atmosphere.glsl's example reads it: texelFetch(u_table,
+    // ivec2(x, y + p * height)) of a width-wide image, row-major.
+    const auto at = [&](int part, int x, int y) { return stacked[std::size_t((y + part * 3) * 5 + x)]; };
+    int compared = 0;
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 5; ++x) {
+            const std::size_t i = std::size_t(y * 5 + x);
+            CHECK(at(0, x, y) == luts.texels[i]);              // CM_ATMOSPHERE_TABLE_PSI
+            CHECK(at(1, x, y) == luts.vertical_moments[i]);    // _VERTICAL
+            CHECK(at(2, x, y) == luts.sun_azimuth_moments[i]); // _ALONG
+            CHECK(at(3, x, y) == glm::vec3(0.0f));             // _GROUND: a texture of its own
+            for (int j = 0; j < atmosphere_aerosol_field_nodes; ++j)
+                CHECK(at(4 + j, x, y) == luts.aerosol_field[std::size_t(j) * 15 + i]);  // _AEROSOL + j
+            compared += luts.texels[i].x > 0.0f ? 1 : 0;
+        }
+    CHECK(compared == 15);  // the parts compared are not all zero
+}
+
 TEST_CASE("atmosphere_make_sky_luts: the aerosol field keeps the field's light, turns it forward, and is read only where the sun is up") {
     const auto a = earth_atmosphere<float>();
     const atmosphere_sky_luts<float> luts = atmosphere_make_sky_luts(a, 16, 8, 3, 64, 12, 16);

@@ -642,7 +642,22 @@ TEST_CASE_TEMPLATE("fuzz the sky: scattering, multiple scattering, in-scattering
             const glm::vec<3, T> seen = cm::atmosphere_sky_radiance(air, table, r.in(T(0), T(1e5)), unit(), unit(), 1 + q % 6, 1 + q % 3);
             for (int c = 0; c < 3; ++c) CHECK((ok(seen[c]) && seen[c] >= T(0)));
         }
+        // Stacked for a shader: every part's block, finite and non-negative.
+        const std::vector<glm::vec<3, T>> stacked = cm::atmosphere_stacked_table(luts);
+        REQUIRE(stacked.size() == texels * std::size_t(cm::atmosphere_stacked_table_parts));
+        for (const glm::vec<3, T>& v : stacked) CHECK((ok(v.x) && ok(v.y) && ok(v.z) && v.x >= T(0) && v.y >= T(0) && v.z >= T(0)));
     }
+    // LUTs with missing or short parts, or no size: zero blocks, never a read past the end.
+    cm::atmosphere_sky_luts<T> partial;
+    partial.width = 3;
+    partial.height = 2;
+    partial.texels.assign(6, glm::vec<3, T>(T(1)));
+    partial.aerosol_field.assign(5, glm::vec<3, T>(T(1)));  // short of even one node's block
+    const std::vector<glm::vec<3, T>> stacked = cm::atmosphere_stacked_table(partial);
+    REQUIRE(stacked.size() == 6u * std::size_t(cm::atmosphere_stacked_table_parts));
+    for (std::size_t i = 0; i < stacked.size(); ++i) CHECK(stacked[i].x == (i < 6 ? T(1) : T(0)));
+    partial.width = -4;
+    CHECK(cm::atmosphere_stacked_table(partial).empty());
 }
 
 TEST_CASE_TEMPLATE("fuzz the atmosphere: extinction, optical depth and transmittance in range, the LUT mapping inside it", T, float, double) {

@@ -65,7 +65,7 @@ constexpr int ms_directions = 64, ms_sun_steps = 32;
 // irradiance's texels (atmosphere_make_sky_luts' and atmosphere_ground_irradiance_lut's
 // defaults), and the parts of the table stacked in one texture (part p: rows p h .. p h + h - 1;
 // the ground irradiance, part CM_ATMOSPHERE_TABLE_GROUND = 3, has its own texture).
-constexpr int sky_sun_steps = 32, table_size = 32, ground_size = 64, table_parts = 4 + cloudmath::atmosphere_aerosol_field_nodes;
+constexpr int sky_sun_steps = 32, table_size = 32, ground_size = 64, table_parts = cloudmath::atmosphere_stacked_table_parts;
 constexpr float degrees = 3.14159265358979f / 180.0f;
 
 // Whether `text` spells a whole number in [lo, hi]; if so, it is stored in `out`.
@@ -144,29 +144,13 @@ std::vector<glm::vec3> cpu_sky_view(const cloudmath::atmosphere_parameters<float
     return out;
 }
 
-// The refined table as the sky view's shader reads it: atmosphere_make_sky_luts' parts stacked
-// (part p at rows p h .. p h + h - 1; part CM_ATMOSPHERE_TABLE_GROUND's block left 0, the
-// ground irradiance having a texture of its own), row-major, row 0 first.
-std::vector<glm::vec3> stacked_table(const cloudmath::atmosphere_sky_luts<float>& luts) {
-    const std::size_t block = std::size_t(luts.width) * std::size_t(luts.height);
-    std::vector<glm::vec3> stacked(block * std::size_t(table_parts), glm::vec3(0.0f));
-    const auto put = [&](int part, const glm::vec3* from) {
-        std::copy(from, from + block, stacked.begin() + std::ptrdiff_t(block * std::size_t(part)));
-    };
-    put(0, luts.texels.data());
-    put(1, luts.vertical_moments.data());
-    put(2, luts.sun_azimuth_moments.data());
-    for (int j = 0; j < cloudmath::atmosphere_aerosol_field_nodes; ++j) put(4 + j, luts.aerosol_field.data() + block * std::size_t(j));
-    return stacked;
-}
-
 // --write-table / --check-table: the stacked table of Earth's air (the renderer's physical_air:
 // atmosphere_make_sky_luts' defaults at 32 x 32) as raw little-endian float32 RGB. Exit status
 // 0 written or equal (within 1e-5 of each part's largest value: another compiler may round
 // otherwise), 1 when it differs or cannot be read or written.
 int table_file(const std::string& path, bool check) {
     const auto air = cloudmath::earth_atmosphere<float>();
-    const std::vector<glm::vec3> table = stacked_table(cloudmath::atmosphere_make_sky_luts(air, table_size, table_size));
+    const std::vector<glm::vec3> table = cloudmath::atmosphere_stacked_table(cloudmath::atmosphere_make_sky_luts(air, table_size, table_size));
     std::vector<float> values;
     for (const glm::vec3& v : table) values.insert(values.end(), {v.x, v.y, v.z});
     static_assert(sizeof(float) == 4, "float32 expected");
@@ -315,7 +299,7 @@ int main(int argc, char** argv) {
         luts = cloudmath::atmosphere_make_sky_luts(air, table_size, table_size);
         luts.ground_irradiance = cloudmath::atmosphere_ground_irradiance_lut(air, luts.table(), ground_size);
         table_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-        const std::vector<glm::vec3> stacked = stacked_table(luts);
+        const std::vector<glm::vec3> stacked = cloudmath::atmosphere_stacked_table(luts);
         gl.ActiveTexture(GL_TEXTURE1);
         table_texture = upload(gl, stacked, table_size, table_size * table_parts);
         gl.ActiveTexture(GL_TEXTURE2);

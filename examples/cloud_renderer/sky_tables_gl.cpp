@@ -8,25 +8,10 @@
 namespace cloud_renderer {
 namespace {
 
-// The stacked table's layout, sky_tables.frag's u_table: physical_air's 32 x 32 refined LUT,
-// part p at rows 32 p .. 32 p + 31: Psi_ms, its vertical and sun-azimuth moments, the ground
-// irradiance's block (left 0: the sky's ground reflects the sun alone) and the aerosol field's
-// nodes (atmosphere.glsl's CM_ATMOSPHERE_TABLE_* parts).
-constexpr int table_size = 32, table_parts = 4 + cloudmath::atmosphere_aerosol_field_nodes;
-
-std::vector<glm::vec3> stacked_table(const cloudmath::atmosphere_sky_luts<float>& luts) {
-    const std::size_t block = std::size_t(table_size) * std::size_t(table_size);
-    std::vector<glm::vec3> stacked(block * std::size_t(table_parts), glm::vec3(0.0f));
-    const auto put = [&](int part, const std::vector<glm::vec3>& from, std::size_t first) {
-        std::copy(from.begin() + std::ptrdiff_t(first), from.begin() + std::ptrdiff_t(first + block),
-                  stacked.begin() + std::ptrdiff_t(block * std::size_t(part)));
-    };
-    put(0, luts.texels, 0);
-    put(1, luts.vertical_moments, 0);
-    put(2, luts.sun_azimuth_moments, 0);
-    for (int j = 0; j < cloudmath::atmosphere_aerosol_field_nodes; ++j) put(4 + j, luts.aerosol_field, block * std::size_t(j));
-    return stacked;
-}
+// The stacked table, sky_tables.frag's u_table: physical_air's 32 x 32 refined LUT as
+// atmosphere_stacked_table lays it out (part p at rows 32 p .. 32 p + 31; the ground
+// irradiance's block 0: the sky's ground reflects the sun alone).
+constexpr int table_size = 32, table_parts = cloudmath::atmosphere_stacked_table_parts;
 
 // The RGB of a w x h RGBA32F read-back.
 std::vector<glm::vec3> rgb(const std::vector<float>& rgba) {
@@ -69,7 +54,7 @@ bool gpu_sky_tables::update(const cloudmath_egl::gl_functions& gl, const std::st
         gl.GenTextures(5, textures_);
         gl.GenFramebuffers(1, &fbo_);
         gl.ActiveTexture(GL_TEXTURE0);
-        const std::vector<glm::vec3> table = stacked_table(earth_air().luts);
+        const std::vector<glm::vec3> table = cloudmath::atmosphere_stacked_table(earth_air().luts);
         float_texture(gl, textures_[0], GL_RGB32F, GL_RGB, table_size, table_size * table_parts, table.data());
         const sky_view_table layout;  // its size
         float_texture(gl, textures_[1], GL_RGBA32F, GL_RGBA, layout.n_az, layout.n_el, nullptr);

@@ -50,6 +50,7 @@
 #ifndef CLOUDMATH_ATMOSPHERE_HPP
 #define CLOUDMATH_ATMOSPHERE_HPP
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -977,6 +978,33 @@ template <class T>
     out.height = height > 2 ? height : 2;
     out.texels = atmosphere_multiple_scattering_refined_lut(air, out.width, out.height, passes, directions, steps, sun_steps,
                                                             &out.vertical_moments, &out.sun_azimuth_moments, &out.aerosol_field);
+    return out;
+}
+
+// atmosphere_stacked_table(luts): the LUTs' parts stacked in one image for a shader's
+// CM_ATMOSPHERE_TABLE (atmosphere.glsl's sky section), the layout its example reads with
+// texelFetch(u_table, ivec2(x, y + part * height)): width x (atmosphere_stacked_table_parts *
+// height) texels, row-major, part p at rows p * height .. p * height + height - 1, in the GLSL's
+// part numbers: 0 (CM_ATMOSPHERE_TABLE_PSI) the texels, 1 (_VERTICAL) the vertical moments, 2
+// (_ALONG) the sun-azimuth moments, 3 (_GROUND) zero (the ground irradiance is one row of its
+// own width: give it its own texture), 4 + j (_AEROSOL + j) the aerosol field's node j. A part
+// the LUTs lack (made without that output) is zero. Upload it as an RGB32F texture (what the
+// example renderer's sky tables and the web demo's sky_table.bin hold).
+inline constexpr int atmosphere_stacked_table_parts = 4 + atmosphere_aerosol_field_nodes;
+template <class T>
+[[nodiscard]] inline std::vector<glm::vec<3, T>> atmosphere_stacked_table(const atmosphere_sky_luts<T>& luts) {
+    const std::size_t block = std::size_t(luts.width > 0 ? luts.width : 0) * std::size_t(luts.height > 0 ? luts.height : 0);
+    std::vector<glm::vec<3, T>> out(block * std::size_t(atmosphere_stacked_table_parts), glm::vec<3, T>(T(0)));
+    // Part `part` from `from`'s block `index`, when `from` holds it.
+    const auto put = [&](int part, const std::vector<glm::vec<3, T>>& from, std::size_t index) {
+        if (from.size() < block * (index + 1)) return;
+        std::copy(from.begin() + std::ptrdiff_t(block * index), from.begin() + std::ptrdiff_t(block * (index + 1)),
+                  out.begin() + std::ptrdiff_t(block * std::size_t(part)));
+    };
+    put(0, luts.texels, 0);
+    put(1, luts.vertical_moments, 0);
+    put(2, luts.sun_azimuth_moments, 0);
+    for (int j = 0; j < atmosphere_aerosol_field_nodes; ++j) put(4 + j, luts.aerosol_field, std::size_t(j));
     return out;
 }
 
