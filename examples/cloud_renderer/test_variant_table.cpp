@@ -3,7 +3,8 @@
 // names the permutation's constants must name the same ones: clouds.frag's and composite.frag's
 // CR_PARAM lines (each shader the switches the table gives it), clouds.wgsl's overrides (both
 // shaders' in one module) and the web demo's permutation values (web/demo/main.js). A switch
-// added to or removed from one of them alone fails here. Needs no OpenGL.
+// added to or removed from one of them alone fails here; so does a terrain box changed on one
+// side only (scene.hpp's terrain_boxes, web/demo/scene.js's terrainBoxes). Needs no OpenGL.
 #include "scene.hpp"
 
 #define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
@@ -84,6 +85,23 @@ TEST_CASE("clouds.wgsl's overrides are the table's constants and its sky's") {
 TEST_CASE("the web demo sets every constant of the table") {
     const std::string main_js = read(CLOUD_RENDERER_SOURCE_DIR "/../../web/demo/main.js");
     for (const std::string& name : table_constants()) CHECK_MESSAGE(main_js.find(name + ":") != std::string::npos, "web/demo/main.js sets no " << name);
+}
+
+TEST_CASE("the web demo's terrain boxes are scene.hpp's") {
+    const std::string scene_js = read(CLOUD_RENDERER_SOURCE_DIR "/../../web/demo/scene.js");
+    const std::smatch found = [&] {
+        std::smatch m;
+        std::regex_search(scene_js, m, std::regex(R"(terrainBoxes = \[(\[[^;]*\])\];)"));
+        return m;
+    }();
+    REQUIRE_MESSAGE(!found.empty(), "web/demo/scene.js has no terrainBoxes = [...];");
+    std::string want;
+    for (const terrain_box& b : terrain_boxes) {
+        std::ostringstream box;
+        box << "[" << b.x << ", " << b.z << ", " << b.half_width << ", " << b.top << "]";
+        want += (want.empty() ? "" : ", ") + box.str();
+    }
+    CHECK_MESSAGE(found[1].str() == want, "web/demo/scene.js: " << found[1].str() << "; scene.hpp: " << want);
 }
 
 TEST_CASE("the table's rows: each key once, each constant once, the spec round-trips") {

@@ -4,7 +4,7 @@
 // window.cloudmathDemo holds the results (read by web/test/browser.mjs).
 import { modules, resolve } from '../dist/index.js';
 import { cases, defaultBudget, floor } from './parity.js';
-import { scenePresets, variants, msPresets, frameConstants, phaseMeanCosine } from './scene.js';
+import { scenePresets, variants, msPresets, frameConstants, phaseMeanCosine, terrainBoxes } from './scene.js';
 import { cloudsFrag, compositeFrag } from './clouds_frag.js';
 import { skyTablesFrag } from './sky_tables_frag.js';
 import { imageStats, compareImages, shiftImage } from './image.js';
@@ -253,7 +253,7 @@ function cloudUniforms(state) {
     u_phase_model: v.phase, u_lighting: v.lighting, u_octaves: state.ms === 'production' ? v.octaves : msN, u_powder: v.powder,
     u_light_mode: v.light, u_behind_mode: v.behind, u_phase_mean_cosine: phaseMeanCosine(f, v.phase),
     u_light_steps: v.lightSteps, u_integration: v.integration, u_refine: v.refine,
-    u_view_steps: v.viewSteps, u_schedule: v.schedule, u_sun_disc: v.sun, u_haze: v.haze, u_dither: v.dither, u_terrain: 0,
+    u_view_steps: v.viewSteps, u_schedule: v.schedule, u_sun_disc: v.sun, u_haze: v.haze, u_dither: v.dither, u_terrain: s.terrain ? 1 : 0,
     u_occluded_ambient: v.ambient, u_reach: v.reach, u_shadows: v.shadows, u_pass: 0,
     u_shape: 0,  // the classic density field: the demo bakes no wide weather map or curl texture
     u_resolution: [canvas.width, canvas.height],
@@ -263,7 +263,7 @@ function cloudUniforms(state) {
     u_sky_zenith: f.skyZenith, u_sky_horizon: f.skyHorizon, u_ground: f.ground, u_sun_angular_radius: f.sunAngularRadius, u_aureole: 0.05,
     u_coverage: s.coverage, u_cloud_type: s.cloudType, u_extinction: s.extinction, u_albedo: s.albedo, u_max_distance: s.maxDistance,
     u_base_tile: s.baseTile, u_detail_tile: s.detailTile, u_weather_tile: s.weatherTile, u_wind: s.wind,
-    u_exposure: s.exposure,
+    u_exposure: s.exposure, u_terrain_boxes: terrainBoxes.flat(),
     u_phase_g: f.phaseG, u_phase_g_back: f.phaseGBack, u_phase_w: f.phaseW, u_droplet_diameter: f.dropletDiameter,
     u_ms_a: msA, u_ms_b: msB, u_ms_c: msC,
     u_cone_step: f.coneStep, u_cone_spread: f.coneSpread, u_cone_far_distance: f.coneFarDistance, u_cone_far_length: f.coneFarLength,

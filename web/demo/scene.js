@@ -16,11 +16,18 @@ export const scenePresets = [
   ['above', 'above the clouds looking down, low sun', 7000, 200, -18, 10, 230, 0.33, 0.75],
   ['stratus', 'overcast stratus from the ground', 2, 40, 22, 35, 100, 0.6, 0.0],
   ['cumulus', 'scattered cumulus, sun high', 2, 300, 18, 60, 180, 0.27, 1.0],
+  ['mountains', "above a cloud sea, the terrain's boxes rising through it", 4700, 0, -6, 20, 120, 0.5, 0.5],
 ].map(([name, description, cameraAltitude, yaw, pitch, sunElevation, sunAzimuth, coverage, cloudType]) => ({
   name, description, cameraAltitude, yaw, pitch, fovY: 60, sunElevation, sunAzimuth, coverage, cloudType,
+  terrain: name === 'mountains',  // scene.hpp's scene::terrain: the boxes below stand in the view
   planetRadius: 6371000, layerBottom: 1500, layerTop: 4000, extinction: 0.04, albedo: 0.99,
   maxDistance: 35000, baseTile: 12000, detailTile: 1500, weatherTile: 60000, wind: [1200, -800], exposure: 1,
 }));
+
+// The example's terrain (scene.hpp's terrain_boxes, read with scene::terrain): each box's centre
+// (x, z) relative to the camera, its half width and its top's altitude (m). ctest
+// cloud_renderer.variant_table checks these numbers against scene.hpp's.
+export const terrainBoxes = [[-3500, -9000, 1200, 3300], [1500, -12500, 1600, 4500], [5200, -7500, 900, 2600], [-800, -16000, 1400, 5400]];
 
 // Lighting variants (scene.hpp's `variant`, and its scene's sun, haze, shadows and dither switches; the
 // names of scripts/render-docs.sh). The default is the diffusion model with 6-step marches

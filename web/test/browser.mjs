@@ -144,6 +144,17 @@ try {
   imageOk(demo.image, 'horizon, sun 12 deg, coverage 0.4');
   webgpuOk(demo, 'horizon, sun 12 deg, coverage 0.4');
 
+  // The terrain (the mountains preset): clouds.wgsl's port of the boxes and the march's end at
+  // them draws the WebGL2 image; without the boxes the image is another (the comparison fails).
+  demo = await load('?scene=mountains');
+  check(!demo.error, `mountains scene loads${demo.error ? ': ' + demo.error : ''}`);
+  imageOk(demo.image, 'mountains (terrain)');
+  webgpuOk(demo, 'mountains (terrain)');
+  if (demo.webgpu.available) {
+    const flat = await page.evaluate(() => window.cloudmathDemoTools.perturbed({ u_terrain: 0 }));
+    check(!sameImage(flat.comparison), `mountains: WebGPU without the terrain is not the WebGL2 image with it: ${comparisonText(flat.comparison)}`);
+  }
+
   // The artistic sky (?sky=artistic), the physical sky being the default.
   demo = await load('?scene=cumulus&sky=artistic');
   check(!demo.error, `cumulus under the artistic sky loads${demo.error ? ': ' + demo.error : ''}`);

@@ -54,8 +54,6 @@ override u_reach: i32;
 override u_sun_disc: i32;
 override u_haze: i32;
 override u_dither: i32;  // composite.frag's switch: read by cr_composite only
-// clouds.frag's terrain (u_terrain: cr_scene_distance, cr_terrain) is not ported: the web demo
-// draws no terrain, so this override is 0 in every pipeline and nothing reads it.
 override u_terrain: i32;
 // clouds.frag's #define CR_PHYSICAL_SKY (the host's sky_model::physical): 1 the physical sky's
 // tables and sun by height, 0 the artistic sky.
@@ -95,6 +93,8 @@ struct CrUniforms {
     u_far_shadow_reach: f32,  // clouds.frag's pass 4 only (the table's drawing), which WebGPU takes from WebGL2
     u_far_shadow_period: f32,
     u_sun_by_height: array<vec3f, 8>,  // the sun on the clouds by height in the layer
+    // The example's terrain (with u_terrain): each box's (x, z) of its centre, half width, top.
+    u_terrain_boxes: array<vec4f, 4>,
 }
 
 @group(0) @binding(0) var<uniform> U: CrUniforms;
@@ -300,6 +300,45 @@ fn cr_shadow_texel(ij: vec2f) -> vec3f {
     return cm_beer_shadow_texel(acc);
 }
 
+fn cr_scene_distance(dir: vec3f, normal: ptr<function, vec3f>) -> f32 {
+    *normal = vec3f(0.0, 1.0, 0.0);
+    var nearest = -1.0;
+    if (u_terrain == 0) { return nearest; }
+    let inv = vec3f(select(1.0, -1.0, dir.x < 0.0), select(1.0, -1.0, dir.y < 0.0), select(1.0, -1.0, dir.z < 0.0)) / max(abs(dir), vec3f(1e-8));
+    for (var i = 0; i < 4; i++) {
+        let b = U.u_terrain_boxes[i];
+        let t0 = vec3f(b.x - b.z, -U.u_cam_altitude - 1000.0, b.y - b.z) * inv;
+        let t1 = vec3f(b.x + b.z, b.w - U.u_cam_altitude, b.y + b.z) * inv;
+        let near = min(t0, t1);
+        let far = max(t0, t1);
+        let enter = max(max(near.x, near.y), near.z);
+        let leave = min(min(far.x, far.y), far.z);
+        if (enter > 0.0 && enter < leave && (nearest < 0.0 || enter < nearest)) {
+            nearest = enter;
+            if (enter == near.x) {
+                *normal = vec3f(-sign(dir.x), 0.0, 0.0);
+            } else if (enter == near.y) {
+                *normal = vec3f(0.0, -sign(dir.y), 0.0);
+            } else {
+                *normal = vec3f(0.0, 0.0, -sign(dir.z));
+            }
+        }
+    }
+    return nearest;
+}
+
+fn cr_sun_transmittance(p: vec3f) -> f32 {
+    let uvd = cm_shadow_map_project(p, U.u_shadow_origin, U.u_shadow_right, U.u_shadow_up, U.u_sun_dir, U.u_shadow_half_extent);
+    if (!cr_on_map(uvd)) { return 1.0; }
+    return cm_beer_shadow_transmittance(cr_shadow_lookup(uvd.xy), uvd.z);
+}
+
+fn cr_terrain(p: vec3f, n: vec3f) -> vec3f {
+    var sun = max(dot(n, U.u_sun_dir), 0.0);
+    if (u_shadows != 0) { sun *= cr_sun_transmittance(p); }
+    return (0.25 / CM_PI) * (U.u_sun_radiance * sun + CM_PI * mix(U.u_ground, U.u_ambient_top, 0.5 + 0.5 * n.y));
+}
+
 fn cr_ground_shadow(g: vec3f) -> f32 {
     let uvd = cm_shadow_map_project(g, U.u_shadow_origin, U.u_shadow_right, U.u_shadow_up, U.u_sun_dir, U.u_shadow_half_extent);
     if (!cr_on_map(uvd)) { return 1.0; }
@@ -340,6 +379,9 @@ fn cr_sky_view(dir: vec3f) -> vec3f {
 }
 
 fn cr_background(dir: vec3f) -> vec3f {
+    var normal: vec3f;
+    let scene = cr_scene_distance(dir, &normal);
+    if (scene > 0.0) { return cr_terrain(dir * scene, normal); }
     let ground = cm_ray_sphere_intersect_altitude(U.u_cam_altitude, dir.y, U.u_planet_radius, 0.0);
     if (ground.x >= 0.0 && ground.y > ground.x) {
         if (u_shadows != 0) { return U.u_ground * cr_ground_shadow(dir * ground.x); }
@@ -418,10 +460,13 @@ fn cr_fragment(@builtin(position) position: vec4f) -> CrOutput {
 
     let layer = cm_cloud_layer_segment(U.u_cam_altitude, dir.y, U.u_planet_radius, U.u_layer_bottom, U.u_layer_top);
     let in_band = cm_cloud_layer_segment(U.u_cam_altitude, dir.y, U.u_planet_radius, cr_band.x, cr_band.y);
-    let seg = vec2f(max(layer.x, in_band.x), min(min(layer.y, layer.x + U.u_max_distance), in_band.y));
+    var seg = vec2f(max(layer.x, in_band.x), min(min(layer.y, layer.x + U.u_max_distance), in_band.y));
+    var scene_normal: vec3f;
+    let scene = cr_scene_distance(dir, &scene_normal);
+    if (scene > 0.0) { seg.y = min(seg.y, scene); }
     if (u_pass == 3) {
         out.out_color = vec4f(cr_background(dir), select(0.0, 1.0, seg.y > seg.x));
-        out.out_depth = 0.0;
+        out.out_depth = max(scene, 0.0);
         return out;
     }
 
