@@ -101,15 +101,17 @@ struct pixel_program {
     long shadow_map_reads = 0;     // texture reads of building it (once per frame)
 
     // `kept_map`: the shadow map of the temporal scheme's previous frames, of which only rows
-    // `rows` are redrawn (temporal_shadow_rows); null: the whole map is drawn.
+    // `rows` are redrawn (temporal_shadow_rows); null: the whole map is drawn. `tables`: where
+    // the physical sky's tables are kept (the process's, or a cpu_temporal_renderer's own).
     pixel_program(const scene& sc, const variant& va, const cloud_textures& t, const cm::diffusion_model* m = nullptr,
-                  const std::vector<vec3>* kept_map = nullptr, glm::ivec2 rows = glm::ivec2(0, shadow_map_size))
-        : s(sc), v(va), k(make_frame_constants(sc)), field(sc, t), mie(cm::mie_approx_params(k.droplet_diameter)),
+                  const std::vector<vec3>* kept_map = nullptr, glm::ivec2 rows = glm::ivec2(0, shadow_map_size),
+                  cpu_sky_tables& tables = shared_cpu_sky_tables())
+        : s(sc), v(va), k(make_frame_constants(sc, tables)), field(sc, t), mie(cm::mie_approx_params(k.droplet_diameter)),
           phase_g_mean(phase_mean_cosine(k, va.phase)),
           band(k.band),
           model(m != nullptr ? m : va.table == diffusion_table::clouds ? &cm::diffusion_models::clouds : &cm::diffusion_models::fitted),
-          haze(sc.sky == sky_model::physical ? physical_haze(sc.camera_altitude, k.sun_dir) : nullptr),
-          far_field(sc.sky == sky_model::physical ? far_shadow(sc, k.sun_dir, t, light_reach(va, k)) : nullptr) {
+          haze(sc.sky == sky_model::physical ? physical_haze(sc.camera_altitude, k.sun_dir, tables) : nullptr),
+          far_field(sc.sky == sky_model::physical ? far_shadow(sc, k.sun_dir, t, light_reach(va, k), tables) : nullptr) {
         if (needs_shadow_map(v, s)) {
             shadow_map.resize(static_cast<std::size_t>(shadow_map_size) * static_cast<std::size_t>(shadow_map_size));
             if (kept_map != nullptr && kept_map->size() == shadow_map.size()) shadow_map = *kept_map;
@@ -637,7 +639,7 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
     const std::string map_key = permutation_key(v, s);
     const bool whole_map = !has_history_ || map_key != shadow_map_key_;
     const pixel_program program(shading, v, textures, nullptr, whole_map ? nullptr : &shadow_map_,
-                                temporal_shadow_rows(s.frame, whole_map));
+                                temporal_shadow_rows(s.frame, whole_map), tables_);
     shadow_map_ = program.shadow_map;
     shadow_map_key_ = map_key;
     std::vector<vec4> fresh(static_cast<std::size_t>(lw) * static_cast<std::size_t>(lh));
@@ -651,8 +653,8 @@ image cpu_temporal_renderer::frame(const scene& s, const variant& v, const cloud
     });
 
     // The resolve pass (temporal_resolve.frag).
-    const frame_constants k = make_frame_constants(s);
-    const frame_constants pk = make_frame_constants(has_history_ ? previous_ : s);
+    const frame_constants k = make_frame_constants(s, tables_);
+    const frame_constants pk = geometry_constants(has_history_ ? previous_ : s);  // its camera
     const vec3 motion = has_history_ ? vec3(s.wind.x - previous_.wind.x, s.camera_altitude - previous_.camera_altitude,
                                             s.wind.y - previous_.wind.y)
                                      : vec3(0.0f);

@@ -6,6 +6,7 @@
 #define CLOUD_RENDERER_CPU_RENDERER_HPP
 
 #include "image.hpp"
+#include "physical_sky.hpp"
 #include "scene.hpp"
 #include "textures.hpp"
 
@@ -98,11 +99,16 @@ public:
     // Texture reads of the last frame per pixel whose ray enters the cloud layer: the shaded
     // pixels' reads over all in-layer pixels of the image.
     texture_read_stats last_reads() const;
+    // The physical sky's tables this renderer made and keeps (its own, not the process's:
+    // they go with it); make_frame_constants(s, r.sky_tables()) reads the same.
+    cpu_sky_tables& sky_tables() { return tables_; }
+    const cpu_sky_tables& sky_tables() const { return tables_; }
 
 private:
     int width_, height_, max_samples_;
     bool has_history_ = false;
     scene previous_;
+    cpu_sky_tables tables_;
     std::vector<glm::vec4> color_;
     std::vector<glm::vec2> aux_;
     long reads_view_ = 0, reads_light_ = 0, reads_shadow_map_ = 0;  // the last frame's

@@ -117,14 +117,15 @@ std::vector<float> far_shadow_scene_key(const scene& s, const glm::vec3& sun, fl
             s.curl_strength, s.type_spread, s.top_rounding, s.density_scale, reach};
 }
 
-std::shared_ptr<const far_shadow_table> far_shadow(const scene& s, const glm::vec3& sun, const cloud_textures& t, float reach) {
+std::shared_ptr<const far_shadow_table> far_shadow(const scene& s, const glm::vec3& sun, const cloud_textures& t, float reach,
+                                                   cpu_sky_tables& tables) {
     // Everything the table depends on: geometry, sun, the field's parameters and textures.
     std::uint32_t bytes = 2166136261u;  // FNV-1a over the weather maps: which textures
     for (const std::vector<std::uint8_t>* v : {&t.weather, &t.weather_wide})
         for (std::size_t i = 0; i < v->size(); i += 61) bytes = (bytes ^ (*v)[i]) * 16777619u;
     std::vector<float> key = far_shadow_scene_key(s, sun, reach);
     key.insert(key.end(), {float(t.base_size), float(t.detail_size), float(t.weather_size), float(bytes & 0xffffu), float(bytes >> 16)});
-    return made_once<far_shadow_table>(key, [&] { return make_table(s, sun, t, reach); });
+    return tables.made_once<far_shadow_table>(key, [&] { return make_table(s, sun, t, reach); });
 }
 
 float far_shadow_lookup(const far_shadow_table& t, float altitude, float mu) {

@@ -25,6 +25,7 @@
 #ifndef CLOUD_RENDERER_FAR_SHADOW_HPP
 #define CLOUD_RENDERER_FAR_SHADOW_HPP
 
+#include "physical_sky.hpp"
 #include "scene.hpp"
 #include "textures.hpp"
 
@@ -58,8 +59,9 @@ std::vector<float> far_shadow_scene_key(const scene& s, const glm::vec3& sun_dir
 
 // The table for scene s (its band, geometry and density field) and the sun in direction
 // sun_dir (frame_constants::sun_dir), with the light march ending at `reach` (light_reach);
-// made once per scene, sun and reach and kept (made_once).
-std::shared_ptr<const far_shadow_table> far_shadow(const scene& s, const glm::vec3& sun_dir, const cloud_textures& t, float reach);
+// made once per scene, sun and reach and kept in `tables` (physical_sky.hpp's cpu_sky_tables).
+std::shared_ptr<const far_shadow_table> far_shadow(const scene& s, const glm::vec3& sun_dir, const cloud_textures& t, float reach,
+                                                   cpu_sky_tables& tables = shared_cpu_sky_tables());
 
 // The far field's transmittance for a sample at `altitude` with the sun at zenith cosine mu
 // there; bilinear between the table's nodes, clamped to its ends. A NaN reads node 0.

@@ -84,8 +84,13 @@ glm::vec2 sky_coordinates(const glm::vec3& dir, const glm::vec3& sun_dir) {
     return {std::acos(cos_phi) / pi, el};
 }
 
-std::shared_ptr<const sky_view_table> physical_sky_view(float altitude, const glm::vec3& sun_dir) {
-    return made_once<sky_view_table>({altitude, sun_dir.x, sun_dir.y, sun_dir.z}, [&] { return make_sky_view(altitude, sun_dir); });
+cpu_sky_tables& shared_cpu_sky_tables() {
+    static cpu_sky_tables tables;
+    return tables;
+}
+
+std::shared_ptr<const sky_view_table> physical_sky_view(float altitude, const glm::vec3& sun_dir, cpu_sky_tables& tables) {
+    return tables.made_once<sky_view_table>({altitude, sun_dir.x, sun_dir.y, sun_dir.z}, [&] { return make_sky_view(altitude, sun_dir); });
 }
 
 glm::vec3 sky_view_lookup(const sky_view_table& t, const glm::vec3& dir, const glm::vec3& sun_dir) {
@@ -119,9 +124,9 @@ const physical_air& earth_air() {
     return a;
 }
 
-std::shared_ptr<const haze_table> physical_haze(float camera_altitude, const glm::vec3& sun_dir) {
-    return made_once<haze_table>({camera_altitude, sun_dir.x, sun_dir.y, sun_dir.z},
-                                 [&] { return make_table(camera_altitude, sun_dir); });
+std::shared_ptr<const haze_table> physical_haze(float camera_altitude, const glm::vec3& sun_dir, cpu_sky_tables& tables) {
+    return tables.made_once<haze_table>({camera_altitude, sun_dir.x, sun_dir.y, sun_dir.z},
+                                        [&] { return make_table(camera_altitude, sun_dir); });
 }
 
 glm::vec3 haze_lookup(const haze_table& t, const glm::vec3& dir, const glm::vec3& sun_dir, float distance) {

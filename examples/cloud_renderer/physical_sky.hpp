@@ -22,9 +22,13 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include <cstddef>
 #include <list>
+#include <map>
 #include <memory>
 #include <mutex>
+#include <typeindex>
+#include <utility>
 #include <vector>
 
 namespace cloud_renderer {
@@ -50,42 +54,60 @@ struct haze_table {
     float max_distance = 160000.0f;  // metres; farther reads the last node
     std::vector<glm::vec3> texels;   // n_d n_az x n_el, row-major
 };
-// The table for a camera at `camera_altitude` and a sun in direction sun_dir (camera frame,
-// +y up); made once per pair and kept (made_once; about 40 ms each).
-std::shared_ptr<const haze_table> physical_haze(float camera_altitude, const glm::vec3& sun_dir);
+// The CPU's physical-sky tables, kept by whoever owns this object. What the physical sky derives
+// from the sun and the scene's geometry (the sky views, the aerial perspective, the far shadow,
+// the sky's frame constants) costs milliseconds to tenths of a second, and renderers ask for it
+// every frame. made_once<Value>(key, make) calls make() the first time `key` is asked for and
+// hands out the kept value while it is among the `capacity` keys asked for last (one list per
+// Value type, the least recently asked for leaves first): a sun that moves makes a new key each
+// frame, so each list is bounded. Values are shared: whoever holds one keeps it after it leaves
+// the list, or after this object is gone. Thread-safe (a make() may ask this object for another
+// type's value: the mutex is recursive). A cpu_temporal_renderer owns one, so its tables go with
+// it; the free functions (render_cpu, make_frame_constants, physical_haze...) use the
+// process's, shared_cpu_sky_tables(), unless given another.
+class cpu_sky_tables {
+public:
+    static constexpr std::size_t default_capacity = 16;
+    explicit cpu_sky_tables(std::size_t capacity = default_capacity) : capacity_(capacity > 0 ? capacity : 1) {}
+    cpu_sky_tables(const cpu_sky_tables&) = delete;
+    cpu_sky_tables& operator=(const cpu_sky_tables&) = delete;
 
-// made_once<Value>(key, make): make() the first time `key` is asked for, then the kept value
-// while it is among the made_once_capacity keys asked for last (one list per Value type, the
-// least recently asked for leaves first; thread-safe). What the physical sky derives from the
-// sun and the scene's geometry costs milliseconds to tenths of a second and renderers ask for
-// it every frame; a sun that moves makes a new key each frame, so the list is bounded. The value
-// is shared: whoever holds it keeps it after it leaves the list.
-inline constexpr std::size_t made_once_capacity = 16;
-template <class Value>
-struct made_once_store {
-    inline static std::mutex mutex;
-    inline static std::list<std::pair<std::vector<float>, std::shared_ptr<const Value>>> kept;  // the last asked for first
+    template <class Value, class Make>
+    std::shared_ptr<const Value> made_once(const std::vector<float>& key, Make&& make) {
+        const std::lock_guard<std::recursive_mutex> lock(mutex_);
+        list& kept = lists_[std::type_index(typeid(Value))];
+        for (auto it = kept.begin(); it != kept.end(); ++it)
+            if (it->first == key) {
+                kept.splice(kept.begin(), kept, it);
+                return std::static_pointer_cast<const Value>(kept.front().second);
+            }
+        std::shared_ptr<const Value> value = std::make_shared<const Value>(make());
+        kept.emplace_front(key, value);
+        if (kept.size() > capacity_) kept.pop_back();
+        return value;
+    }
+    // How many values of type Value this object keeps now (a test's check of the bound).
+    template <class Value>
+    std::size_t kept() const {
+        const std::lock_guard<std::recursive_mutex> lock(mutex_);
+        const auto found = lists_.find(std::type_index(typeid(Value)));
+        return found == lists_.end() ? 0 : found->second.size();
+    }
+    std::size_t capacity() const { return capacity_; }
+
+private:
+    using list = std::list<std::pair<std::vector<float>, std::shared_ptr<const void>>>;  // the last asked for first
+    std::size_t capacity_;
+    mutable std::recursive_mutex mutex_;
+    std::map<std::type_index, list> lists_;
 };
-template <class Value, class Make>
-std::shared_ptr<const Value> made_once(const std::vector<float>& key, Make&& make) {
-    using store = made_once_store<Value>;
-    const std::lock_guard<std::mutex> lock(store::mutex);
-    for (auto it = store::kept.begin(); it != store::kept.end(); ++it)
-        if (it->first == key) {
-            store::kept.splice(store::kept.begin(), store::kept, it);
-            return store::kept.front().second;
-        }
-    std::shared_ptr<const Value> value = std::make_shared<const Value>(make());
-    store::kept.emplace_front(key, value);
-    if (store::kept.size() > made_once_capacity) store::kept.pop_back();
-    return value;
-}
-// How many values made_once<Value> keeps now (a test's check of the bound).
-template <class Value>
-std::size_t made_once_kept() {
-    const std::lock_guard<std::mutex> lock(made_once_store<Value>::mutex);
-    return made_once_store<Value>::kept.size();
-}
+// The process's tables, for the free functions that are given none.
+cpu_sky_tables& shared_cpu_sky_tables();
+
+// The table for a camera at `camera_altitude` and a sun in direction sun_dir (camera frame,
+// +y up); made once per pair and kept in `tables` (about 40 ms each).
+std::shared_ptr<const haze_table> physical_haze(float camera_altitude, const glm::vec3& sun_dir,
+                                                cpu_sky_tables& tables = shared_cpu_sky_tables());
 
 // The in-scattered radiance (cd/m^2) between the camera and `distance` metres along the unit
 // direction dir, interpolated from the table's 8 nearest nodes.
@@ -103,8 +125,9 @@ struct sky_view_table {
     std::vector<glm::vec3> texels;  // n_az x n_el, row-major
 };
 // The table at `altitude` for a sun in direction sun_dir (camera frame, +y up); made once per
-// pair and kept (made_once; about 0.1 s each).
-std::shared_ptr<const sky_view_table> physical_sky_view(float altitude, const glm::vec3& sun_dir);
+// pair and kept in `tables` (about 0.1 s each).
+std::shared_ptr<const sky_view_table> physical_sky_view(float altitude, const glm::vec3& sun_dir,
+                                                        cpu_sky_tables& tables = shared_cpu_sky_tables());
 // How many sky-view and aerial-perspective tables this process has made on the CPU (a test's
 // proof that the GL renderer builds its own on the GPU).
 int cpu_sky_table_builds();

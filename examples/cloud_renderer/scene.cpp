@@ -280,14 +280,15 @@ void apply_physical_sky(frame_constants& f, const physical_sky_samples& p, std::
 }
 
 // apply_physical_sky with the CPU's samples and tables, made once per sun direction and scene
-// geometry (the tables: physical_sky_view, kept).
-void physical_sky(const scene& s, frame_constants& f) {
-    const std::shared_ptr<const frame_constants> kept = made_once<frame_constants>(
+// geometry (the tables: physical_sky_view), all kept in `tables`.
+void physical_sky(const scene& s, frame_constants& f, cpu_sky_tables& tables) {
+    const std::shared_ptr<const frame_constants> kept = tables.made_once<frame_constants>(
         {s.camera_altitude, s.sun_elevation, f.sun_dir.x, f.sun_dir.y, f.sun_dir.z, f.band.x, f.band.y, s.layer_bottom, s.layer_top},
         [&] {
             frame_constants g = f;
-            apply_physical_sky(g, cpu_sky_samples(s, f.sun_dir, f.band), physical_sky_view(std::fmax(s.camera_altitude, 0.0f), f.sun_dir),
-                               *physical_sky_view(s.layer_top, f.sun_dir));
+            apply_physical_sky(g, cpu_sky_samples(s, f.sun_dir, f.band),
+                               physical_sky_view(std::fmax(s.camera_altitude, 0.0f), f.sun_dir, tables),
+                               *physical_sky_view(s.layer_top, f.sun_dir, tables));
             return g;
         });
     const frame_constants& sky = *kept;
@@ -303,8 +304,8 @@ void physical_sky(const scene& s, frame_constants& f) {
 }
 
 // make_frame_constants' body: the physical sky from `gpu` (its samples and tables made on the
-// GPU) or, when null, from the CPU's.
-frame_constants frame_constants_for(const scene& s, const physical_sky_inputs* gpu) {
+// GPU) or, when null, from the CPU's, kept in `tables`.
+frame_constants frame_constants_for(const scene& s, const physical_sky_inputs* gpu, cpu_sky_tables& tables) {
     frame_constants f{};
     const float pitch = s.pitch > 89.0f ? 89.0f : (s.pitch < -89.0f ? -89.0f : s.pitch);
     f.forward = direction(s.yaw, pitch);
@@ -318,7 +319,7 @@ frame_constants frame_constants_for(const scene& s, const physical_sky_inputs* g
         if (gpu)
             apply_physical_sky(f, gpu->samples, gpu->at_camera, *gpu->at_top);
         else
-            physical_sky(s, f);
+            physical_sky(s, f, tables);
         // EV100: the scene's, or the one that exposes the sky's mean luminance to middle grey.
         f.ev100 = s.ev100 > -50.0f ? s.ev100
                                    : cloudmath::ev100_from_luminance(
@@ -385,15 +386,19 @@ glm::vec3 sun_at_height(const frame_constants& k, bool physical, float h) {
 
 float display_exposure(const scene& s) { return make_frame_constants(s).exposure; }
 
-frame_constants make_frame_constants(const scene& s) { return frame_constants_for(s, nullptr); }
+frame_constants make_frame_constants(const scene& s) { return frame_constants_for(s, nullptr, shared_cpu_sky_tables()); }
+
+frame_constants make_frame_constants(const scene& s, cpu_sky_tables& tables) { return frame_constants_for(s, nullptr, tables); }
 
 frame_constants geometry_constants(const scene& s) {
     scene no_sky = s;
     no_sky.sky = sky_model::artistic;
-    return frame_constants_for(no_sky, nullptr);
+    return frame_constants_for(no_sky, nullptr, shared_cpu_sky_tables());  // no table is made
 }
 
-frame_constants make_frame_constants(const scene& s, const physical_sky_inputs& gpu) { return frame_constants_for(s, &gpu); }
+frame_constants make_frame_constants(const scene& s, const physical_sky_inputs& gpu) {
+    return frame_constants_for(s, &gpu, shared_cpu_sky_tables());  // no table is made
+}
 
 physical_sky_samples physical_sky_samples_cpu(const scene& s) {
     return cpu_sky_samples(s, direction(s.sun_azimuth, s.sun_elevation), cloud_band(s));

@@ -22,6 +22,7 @@
 namespace cloud_renderer {
 
 struct sky_view_table;  // physical_sky.hpp
+class cpu_sky_tables;   // ...
 
 enum class phase_model { hg, dual_hg, cornette_shanks, mie };
 // How a light estimate gets its optical depth: the cone, a march over the cloud type's band,
@@ -334,7 +335,7 @@ struct frame_constants {
     // with the artistic sky, whose clouds see sun_radiance everywhere.
     glm::vec3 sun_by_height[8];
     // The physical sky's background: its sky-view table at the camera (physical_sky.hpp; the
-    // CPU's, made_once's, or physical_sky_inputs' at_camera; shared: it lives while held), which
+    // CPU's, kept by a cpu_sky_tables, or physical_sky_inputs' at_camera; shared: it lives while held), which
     // sky_radiance and clouds.frag's cr_background read in place of the gradient and glow; null
     // with the artistic sky.
     std::shared_ptr<const sky_view_table> sky_view;
@@ -356,8 +357,10 @@ struct frame_constants {
 };
 
 // The frame's constants, the physical sky's from the CPU (its sky marches and sky-view tables,
-// made once per sun and geometry and kept).
+// made once per sun and geometry and kept in `tables`: physical_sky.hpp's cpu_sky_tables; the
+// first form in the process's, shared_cpu_sky_tables()).
 frame_constants make_frame_constants(const scene& s);
+frame_constants make_frame_constants(const scene& s, cpu_sky_tables& tables);
 // The frame's constants that need no sky light: the camera, the sun's direction, the light
 // and phase parameters, the shadow map's frame (its sky and sun fields are the artistic
 // sky's): make_frame_constants with no physical sky's tables built.

@@ -1313,21 +1313,58 @@ TEST_CASE("the composite (composite.frag): the cloud pass writes the layer alone
 }
 
 TEST_CASE("the CPU's physical-sky tables: kept for the last 16 keys, a held table outlives its eviction") {
-    // A sun that moves asks for a new table every frame: the cache keeps made_once_capacity.
+    // A sun that moves asks for a new table every frame: the tables keep their capacity's.
+    cpu_sky_tables tables;
+    REQUIRE(tables.capacity() == 16);
     const glm::vec3 first_sun = glm::normalize(glm::vec3(0.3f, 0.2f, -0.9f));
-    const std::shared_ptr<const haze_table> held = physical_haze(5.0f, first_sun);
+    const std::shared_ptr<const haze_table> held = physical_haze(5.0f, first_sun, tables);
     const std::vector<glm::vec3> texels = held->texels;
     for (int i = 1; i <= 20; ++i) {
-        (void)physical_haze(5.0f, glm::normalize(glm::vec3(0.3f, 0.2f + 0.01f * float(i), -0.9f)));
-        CHECK(made_once_kept<haze_table>() <= made_once_capacity);
+        (void)physical_haze(5.0f, glm::normalize(glm::vec3(0.3f, 0.2f + 0.01f * float(i), -0.9f)), tables);
+        CHECK(tables.kept<haze_table>() <= tables.capacity());
     }
-    CHECK(made_once_kept<haze_table>() == made_once_capacity);
-    CHECK(held->texels == texels);  // evicted from the cache, still whole where it is held
+    CHECK(tables.kept<haze_table>() == tables.capacity());
+    CHECK(tables.kept<sky_view_table>() == 0);  // one list per type
+    CHECK(held->texels == texels);  // evicted from the list, still whole where it is held
     // Asked for again, the first sun's table is made anew, to the same values.
     const int builds = cpu_sky_table_builds();
-    CHECK(physical_haze(5.0f, first_sun)->texels == texels);
+    CHECK(physical_haze(5.0f, first_sun, tables)->texels == texels);
     CHECK(cpu_sky_table_builds() == builds + 1);
     // Asked for again at once, it is kept.
-    (void)physical_haze(5.0f, first_sun);
+    (void)physical_haze(5.0f, first_sun, tables);
     CHECK(cpu_sky_table_builds() == builds + 1);
+}
+
+TEST_CASE("the CPU's physical-sky tables are owned: a temporal renderer keeps its own, and they go with it") {
+    // A sun no other test asks for, so that every table below is new.
+    scene s = *find_preset("ground");
+    s.sun_elevation = 37.25f;
+    s.sun_azimuth = 151.5f;
+    REQUIRE(s.sky == sky_model::physical);
+    const variant v;
+    const std::size_t shared_views = shared_cpu_sky_tables().kept<sky_view_table>();
+    const std::size_t shared_haze = shared_cpu_sky_tables().kept<haze_table>();
+    std::weak_ptr<const sky_view_table> background;
+    {
+        cpu_temporal_renderer r(32, 18, temporal_max_samples);
+        const int builds = cpu_sky_table_builds();
+        (void)r.frame(s, v, shared().textures);
+        s.frame = 1;
+        (void)r.frame(s, v, shared().textures);  // the same sun: nothing new
+        // Two sky views (at the camera and at the layer's top) and the aerial perspective, made
+        // once, kept by the renderer; the process's tables unchanged.
+        CHECK(cpu_sky_table_builds() == builds + 3);
+        CHECK(r.sky_tables().kept<sky_view_table>() == 2);
+        CHECK(r.sky_tables().kept<haze_table>() == 1);
+        CHECK(r.sky_tables().kept<far_shadow_table>() == 1);
+        CHECK(shared_cpu_sky_tables().kept<sky_view_table>() == shared_views);
+        CHECK(shared_cpu_sky_tables().kept<haze_table>() == shared_haze);
+        // A second renderer makes its own.
+        cpu_temporal_renderer other(32, 18, temporal_max_samples);
+        (void)other.frame(s, v, shared().textures);
+        CHECK(cpu_sky_table_builds() == builds + 6);
+        background = make_frame_constants(s, r.sky_tables()).sky_view;
+        CHECK(!background.expired());
+    }
+    CHECK(background.expired());  // the renderers are gone, and their tables with them
 }
