@@ -52,15 +52,16 @@ row() {
     END { printf "| %s | %d | %d | %d |\n", label, n, tex, loops }' "$work/o.spvasm"
 }
 
-for pass in frame temporal shadow background; do
+for pass in frame temporal shadow background composite; do
   "$renderer" --dump-shader --pass "$pass" > "$work/$pass.frag"
 done
 echo "| Shader | SPIR-V instructions | texture operations | loops |"
 echo "|---|---:|---:|---:|"
-row "ours: the default's full frame (one permutation compiled in: the variant, the shape and the pass)" frag "$work/frame.frag"
+row "ours: the default's cloud layer at every pixel (the full frame's cloud pass; one permutation compiled in: the variant, the shape and the pass)" frag "$work/frame.frag"
 row "ours: the default's temporal shading pass (\`--pass temporal\`)" frag "$work/temporal.frag"
 row "ours: the default's shadow-map pass (\`--pass shadow\`)" frag "$work/shadow.frag"
-row "ours: the default's background pass (\`--pass background\`: the temporal scheme's sky and ground)" frag "$work/background.frag"
+row "ours: the default's background pass (\`--pass background\`: the sky, the ground and the terrain, every frame)" frag "$work/background.frag"
+row "ours: the composite (\`--pass composite\`: the layer over the background, tonemap and dither, every frame)" frag "$work/composite.frag"
 if [[ -n "$peer" ]]; then
   [[ -r "$peer/shaders/volumetric_clouds.comp" ]] || { echo "shader-cost: $peer/shaders/volumetric_clouds.comp not found" >&2; exit 2; }
   # Its `uniform bool enablePowder = false;` is an initialised bool uniform, which the SPIR-V

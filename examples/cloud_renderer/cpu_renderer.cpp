@@ -312,8 +312,8 @@ struct pixel_program {
     // for the model's table then peak weights (diffusion_feature_count), the max(0, ...)
     // clamps ignored, and to sky (given with grad) the sky light's weights from above and
     // below (render_cpu_diffusion_features). layer_only: rgb is the cloud layer's own light
-    // (haze included), without what lies behind it (the temporal scheme's shading pass, pass 1:
-    // the resolve composites behind() at full resolution every frame).
+    // (haze included), without what lies behind it (clouds.frag's passes 0 and 1: the
+    // composite, composite_display, lays it over behind() at full resolution every frame).
     vec4 shade_linear(int x, int y, int width, int height, reads* counted = nullptr, float* depth = nullptr,
                       float* grad = nullptr, float* sky = nullptr, bool layer_only = false) const {
         long* view_reads = counted ? &counted->view : nullptr;

@@ -87,8 +87,9 @@ glm::vec4 composite_display(glm::vec3 behind, glm::vec4 layer, float exposure, b
 // mean of at most max_samples (temporal_blend_weight); its march jitter advances once per
 // 16 frames (frame_jitter with frame / 16), so each pixel's samples follow R1. A pixel whose
 // point was off the previous screen (disocclusion at the screen edge, or the first frame)
-// takes the bilinear interpolation of the new samples until its own turn.
-// temporal_resolve.frag is the GPU twin.
+// takes the bilinear interpolation of the new samples until its own turn. The display image is
+// the composite (composite_display) of the new history over the background.
+// temporal_resolve.frag and composite.frag are the GPU twins.
 class cpu_temporal_renderer {
 public:
     cpu_temporal_renderer(int width, int height, int max_samples = 8);

@@ -728,6 +728,7 @@ bool ensure_frame_targets(gl_renderer::state& st, int width, int height, std::st
     auto& f = st.frame;
     if (f.width == width && f.height == height) return true;
     const gl_api& gl = st.gl;
+    gl.ActiveTexture(GL_TEXTURE9);  // make_target binds to the active unit: the composite's, not the clouds' 0-8
     if (f.background_fbo == 0) {
         gl.GenFramebuffers(1, &f.background_fbo);
         gl.GenFramebuffers(1, &f.layer_fbo);

@@ -246,8 +246,9 @@ float terrain_distance(const scene& s, glm::vec3 dir, glm::vec3* normal);
 
 // The exposure the tonemap uses (frame_constants::exposure): scene::exposure with the artistic
 // sky; with the physical one exposure_from_ev100(ev100) = 1 / (1.2 2^EV100) for luminance in
-// cd/m^2, EV100 the scene's or auto_ev100. The tonemap (tonemap in cloud_density.hpp,
-// cr_tonemap in clouds.frag) is then (1 - e^(-exposure L))^(1 / 2.2) per channel.
+// cd/m^2, EV100 the scene's or auto_ev100. The tonemap (tonemap in cloud_density.hpp, the
+// composite pass's in composite.frag and clouds.wgsl's cr_composite) is then
+// (1 - e^(-exposure L))^(1 / 2.2) per channel.
 float display_exposure(const scene& s);
 // The physical sky's EV100 when the scene does not set one: ev100_from_luminance of the sky's
 // mean luminance (zenith and horizon), which exposes it to middle grey.
@@ -420,7 +421,7 @@ std::string apply_variant_spec(const std::string& spec, variant& v);
 // The same notation back, every field.
 std::string variant_spec(const variant& v);
 // The variant and the scene's permutation switches as one key,
-// "<variant_spec>/<shape>/sun-disc=on,haze=on,shadows=on,terrain=off": what a compiled-in clouds.frag
+// "<variant_spec>/<shape>/sun-disc=on,haze=on,shadows=on,terrain=off,": what a compiled-in clouds.frag
 // permutation, and what is drawn for it (the temporal scheme's shadow map), is for; the
 // composite's switches (dither) are not in it.
 std::string permutation_key(const variant& v, const scene& s);

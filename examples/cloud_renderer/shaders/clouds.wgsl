@@ -19,9 +19,11 @@
 // - The hooks have fixed names: cm_cone_extinction (CM_CONE_EXTINCTION), cm_ms_phase
 //   (CM_MS_PHASE) and cm_diffusion_phase (CM_DIFFUSION_PHASE) call cr_cone_extinction and
 //   cr_phase.
-// - gl_FragCoord has its origin at the bottom left, WebGPU's position at the top left: main()
-//   flips y (frag_coord) so that every pixel gets the same ray, jitter and dither as in GLSL.
-// - The outputs are a struct (location 0 colour, location 1 depth).
+// - gl_FragCoord has its origin at the bottom left, WebGPU's position at the top left:
+//   cr_fragment and cr_composite flip y (frag_coord) so that every pixel gets the same ray,
+//   jitter and dither as in GLSL.
+// - cr_fragment's outputs are a struct (location 0 colour, location 1 depth); cr_composite
+//   returns its colour alone.
 // - No ?: operator: select() where both sides are cheap and free of side effects, if/else
 //   otherwise (light_index++ is a statement of its own). Function parameters are immutable
 //   (cr_light_optical_depth copies `mode`); `from` is a reserved word (from_); overloaded
