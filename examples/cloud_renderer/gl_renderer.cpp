@@ -423,15 +423,16 @@ bool frame_for(gl_renderer::state& st, const scene& sc, frame_constants& k, std:
     return true;
 }
 
-GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, int width, int height, clouds_pass pass,
-                   glm::uvec2 offset, std::string& why);
+GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, const frame_constants& k, int width, int height,
+                   clouds_pass pass, glm::uvec2 offset, std::string& why);
 
 // Draws the physical sky's far shadow for the scene and variant (clouds.frag's pass 4 into
 // st.far_shadow, far_shadow_nodes' size and range) unless it holds that table already: what
 // far_shadow() keys its CPU table by, the uploaded textures for their bytes. 0.3-0.6 s on
 // llvmpipe, once per scene, sun and reach; outside the frame's timing. The CPU renderer keeps
 // its own table (far_shadow()), which this one matches to test_cloud_renderer's bounds.
-bool ensure_far_shadow(gl_renderer::state& st, const scene& sc, const variant& v, std::string& why) {
+// `frame`: the frame's constants (frame_for's), which pass 4 reads as every pass does.
+bool ensure_far_shadow(gl_renderer::state& st, const scene& sc, const variant& v, const frame_constants& frame, std::string& why) {
     const gl_api& gl = st.gl;
     const frame_constants k = geometry_constants(sc);
     const float reach = light_reach(v, k);
@@ -455,7 +456,7 @@ bool ensure_far_shadow(gl_renderer::state& st, const scene& sc, const variant& v
             return false;
         }
     }
-    const GLuint program = bind_clouds(st, sc, v, f.n_alt, f.n_mu, clouds_pass::far_shadow, glm::uvec2(0), why);
+    const GLuint program = bind_clouds(st, sc, v, frame, f.n_alt, f.n_mu, clouds_pass::far_shadow, glm::uvec2(0), why);
     if (program == 0) return false;
     const GLenum one = GL_COLOR_ATTACHMENT0;
     gl.BindFramebuffer(GL_FRAMEBUFFER, st.far_shadow_fbo);
@@ -473,9 +474,10 @@ bool ensure_far_shadow(gl_renderer::state& st, const scene& sc, const variant& v
 
 // Makes the clouds program of the variant's pass current with every uniform of the scene set
 // and the cloud textures bound; 0 on failure. clouds_pass::temporal_shading shades pixel
-// 4 (i, j) + offset.
-GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, int width, int height, clouds_pass pass,
-                   glm::uvec2 offset, std::string& why) {
+// 4 (i, j) + offset. k: the frame's constants, frame_for's for the scene, made once per frame by
+// the caller before any pass is bound (drawing the sky tables binds their own program and target).
+GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, const frame_constants& k, int width, int height,
+                   clouds_pass pass, glm::uvec2 offset, std::string& why) {
     // scene::light splits the truth tool's light by source: the sky alone is drawn (its frame
     // only lacks the sun), the sun alone is for the CPU reference only: without the sky its
     // frame has no sky-view table to bind.
@@ -487,10 +489,7 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, in
     const gl_api& gl = st.gl;
     // The physical sky's far shadow, drawn on the GPU when what it depends on changes (pass 4
     // binds its own program through this function: it draws no far shadow itself).
-    if (sc.sky == sky_model::physical && pass != clouds_pass::far_shadow && !ensure_far_shadow(st, sc, v, why)) return 0;
-    // First the frame's constants: drawing the sky tables binds their own program and target.
-    frame_constants k;
-    if (!frame_for(st, sc, k, why)) return 0;
+    if (sc.sky == sky_model::physical && pass != clouds_pass::far_shadow && !ensure_far_shadow(st, sc, v, k, why)) return 0;
     const GLuint program = st.program_for(v, sc, pass, why);
     if (program == 0) return 0;
     gl.UseProgram(program);
@@ -603,9 +602,10 @@ GLuint bind_clouds(gl_renderer::state& st, const scene& sc, const variant& v, in
 
 // The shadow-map pass's program (bind_clouds with clouds_pass::shadow_map) when the variant
 // draws the map (needs_shadow_map), else 0 with `why` empty; 0 and `why` on failure.
-GLuint bind_shadow_map(gl_renderer::state& st, const scene& sc, const variant& v, int width, int height, std::string& why) {
+GLuint bind_shadow_map(gl_renderer::state& st, const scene& sc, const variant& v, const frame_constants& k, int width, int height,
+                       std::string& why) {
     if (!needs_shadow_map(v, sc)) return 0;
-    return bind_clouds(st, sc, v, width, height, clouds_pass::shadow_map, glm::uvec2(0), why);
+    return bind_clouds(st, sc, v, k, width, height, clouds_pass::shadow_map, glm::uvec2(0), why);
 }
 
 // Draws rows [rows.x, rows.y) of the Beer shadow map (all: a full frame; a slice: the
@@ -784,17 +784,18 @@ void composite_pass(const gl_api& gl, GLuint program, float exposure, std::uint3
 bool gl_renderer::draw(const scene& sc, const variant& v, unsigned fbo, int width, int height,
                        frame_timing* timing, std::string& why) {
     if (!ensure_frame_targets(*s_, width, height, why)) return false;
-    // Every program bound (compiled the first time) and its uniforms set before the timing.
-    const GLuint shadow = bind_shadow_map(*s_, sc, v, width, height, why);
+    // The frame's constants once, then every program bound (compiled the first time) and its
+    // uniforms set before the timing.
+    frame_constants k;
+    if (!frame_for(*s_, sc, k, why)) return false;
+    const GLuint shadow = bind_shadow_map(*s_, sc, v, k, width, height, why);
     if (shadow == 0 && !why.empty()) return false;
-    const GLuint background = bind_clouds(*s_, sc, v, width, height, clouds_pass::background, glm::uvec2(0), why);
+    const GLuint background = bind_clouds(*s_, sc, v, k, width, height, clouds_pass::background, glm::uvec2(0), why);
     if (background == 0) return false;
-    const GLuint clouds = bind_clouds(*s_, sc, v, width, height, clouds_pass::frame, glm::uvec2(0), why);
+    const GLuint clouds = bind_clouds(*s_, sc, v, k, width, height, clouds_pass::frame, glm::uvec2(0), why);
     if (clouds == 0) return false;
     const GLuint composite = s_->composite_program(sc, why);
     if (composite == 0) return false;
-    frame_constants k;
-    if (!frame_for(*s_, sc, k, why)) return false;
     const gl_api& gl = s_->gl;
     const auto& f = s_->frame;
     bool shadow_ok = true;
@@ -815,20 +816,23 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, int width, in
     auto& t = s_->temporal;
     const gl_api& gl = s_->gl;
     const glm::uvec2 offset = cloudmath::temporal_update_offset(sc.frame);
-    // The shading pass: one pixel of every 4 x 4 block, the jitter of frame / 16. Every
-    // program bound (compiled the first time) and its uniforms set before the timing.
+    // The frame's constants once (the frame number is not among them: the shading pass's
+    // are the same). The shading pass: one pixel of every 4 x 4 block, the jitter of frame / 16.
+    // Every program bound (compiled the first time) and its uniforms set before the timing.
+    frame_constants k;
+    if (!frame_for(*s_, sc, k, why)) return false;
     scene shading = sc;
     shading.frame = sc.frame >> 4U;
-    const GLuint shadow = bind_shadow_map(*s_, shading, v, width, height, why);
+    const GLuint shadow = bind_shadow_map(*s_, shading, v, k, width, height, why);
     if (shadow == 0 && !why.empty()) return false;
     // The shadow map a slice a frame (temporal_shadow_rows): the whole of it on a first frame,
     // or when the variant, the shape or the shader form changed.
     const std::string map_key = permutation_key(v, sc);
     const bool whole_map = !t.has_history || map_key != t.shadow_map_key;
     t.shadow_map_key = map_key;
-    const GLuint background = bind_clouds(*s_, shading, v, width, height, clouds_pass::background, offset, why);
+    const GLuint background = bind_clouds(*s_, shading, v, k, width, height, clouds_pass::background, offset, why);
     if (background == 0) return false;
-    const GLuint clouds = bind_clouds(*s_, shading, v, width, height, clouds_pass::temporal_shading, offset, why);
+    const GLuint clouds = bind_clouds(*s_, shading, v, k, width, height, clouds_pass::temporal_shading, offset, why);
     if (clouds == 0) return false;
     const GLuint composite = s_->composite_program(sc, why);
     if (composite == 0) return false;
@@ -838,9 +842,6 @@ bool gl_renderer::draw_temporal(const scene& sc, const variant& v, int width, in
     const GLuint r = t.resolve_program;
     gl.UseProgram(r);
     const uniform_setter u{gl, r};
-    frame_constants k;
-    if (!frame_for(*s_, sc, k, why)) return false;
-    gl.UseProgram(r);
     const scene& prev = t.has_history ? t.previous : sc;
     const frame_constants pk = geometry_constants(prev);  // its camera
     u.v2("u_resolution", glm::vec2(float(width), float(height)));
@@ -973,7 +974,8 @@ bool gl_renderer::far_shadow_gpu(const scene& sc, const variant& v, std::vector<
         return false;
     }
     state& st = *s_;
-    if (!ensure_far_shadow(st, sc, v, why)) return false;
+    frame_constants k;
+    if (!frame_for(st, sc, k, why) || !ensure_far_shadow(st, sc, v, k, why)) return false;
     const far_shadow_table f = far_shadow_nodes(sc, light_reach(v, geometry_constants(sc)));
     std::vector<float> rgba(static_cast<std::size_t>(f.n_alt * f.n_mu) * 4u);
     st.gl.BindFramebuffer(GL_FRAMEBUFFER, st.far_shadow_fbo);
