@@ -48,28 +48,31 @@ std::string with_cloudmath(std::string body) {
     return body;
 }
 
+// A permutation block: the empty CR_PARAM and `const int name = value;` for each constant (the
+// shader's CR_PARAM lines, compiled in as constants).
+std::string permutation_block(const std::vector<shader_constant>& constants) {
+    std::string block = "#define CR_PARAM(type, name)\n";
+    for (const shader_constant& c : constants) block += std::string("const int ") + c.name + " = " + std::to_string(c.value) + ";\n";
+    return block;
+}
+
 }  // namespace
 
 std::string fragment_shader_source(const variant& v, const scene& sc, clouds_pass pass) {
     std::string head = "#version 410 core\n";
     if (sc.sky == sky_model::physical) head += "#define CR_PHYSICAL_SKY 1\n";
-    head += "#define CR_PARAM(type, name)\n";
-    head += "const int u_pass = " + std::to_string(static_cast<int>(pass)) + ";\n";
     // The permutation's values under the shader's names (clouds.frag's CR_PARAM lines): the
-    // variant's and the scene's tables (scene.hpp).
-    std::vector<shader_constant> constants = scene_constants(sc);
+    // pass, and the variant's and the scene's tables (scene.hpp).
+    std::vector<shader_constant> constants = {{"u_pass", static_cast<int>(pass)}};
+    for (const shader_constant& c : scene_constants(sc)) constants.push_back(c);
     for (const shader_constant& c : variant_constants(v)) constants.push_back(c);
-    for (const shader_constant& c : constants) head += std::string("const int ") + c.name + " = " + std::to_string(c.value) + ";\n";
-    return head + with_cloudmath(clouds_frag_text);
+    return head + permutation_block(constants) + with_cloudmath(clouds_frag_text);
 }
 
 std::string temporal_resolve_shader_source() { return "#version 410 core\n" + with_cloudmath(temporal_resolve_frag_text); }
 
 std::string composite_shader_source(const scene& sc) {
-    std::string head = "#version 410 core\n#define CR_PARAM(type, name)\n";
-    for (const shader_constant& c : scene_constants(sc, switch_shader::composite))
-        head += std::string("const int ") + c.name + " = " + std::to_string(c.value) + ";\n";
-    return head + with_cloudmath(composite_frag_text);
+    return "#version 410 core\n" + permutation_block(scene_constants(sc, switch_shader::composite)) + with_cloudmath(composite_frag_text);
 }
 
 std::string sky_tables_shader_source() { return "#version 410 core\n" + with_cloudmath(sky_tables_frag_text); }

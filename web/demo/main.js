@@ -25,6 +25,9 @@ const cloudsFragBlock = /uniform CrFrame \{([\s\S]*?)\};/.exec(cloudsFrag)[1].re
 for (const m of cloudsFragBlock.matchAll(/\w+\s+([^;]+);/g)) for (const n of m[1].split(',')) cloudsFragUniforms.add(n.trim().replace(/\[\d+\]$/, ''));
 // composite.frag's switches (the dither), compiled into its program, not clouds.frag's.
 const compositeSwitches = [...compositeFrag.matchAll(/^CR_PARAM\(\w+,\s*(\w+)\)/gm)].map((m) => m[1]);
+// A permutation's constants: `const int name = value;` for each switch name (unset: 0), compiled
+// in as the desktop host does (gl_renderer.cpp's permutation_block).
+const constantLines = (names, values) => names.map((name) => `const int ${name} = ${Math.trunc(values[name] ?? 0)};\n`).join('');
 
 const canvas = document.getElementById('view');
 const gl = canvas.getContext('webgl2', { antialias: false, preserveDrawingBuffer: true });
@@ -190,7 +193,7 @@ const cloudPrograms = new Map();
 function useClouds(values) {
   // The physical sky is a permutation as well (the desktop host's #define CR_PHYSICAL_SKY).
   const constants = (values.u_physical_sky ? '#define CR_PHYSICAL_SKY 1\n' : '') +
-    cloudsFragSwitches.map((name) => `const int ${name} = ${Math.trunc(values[name] ?? 0)};\n`).join('');
+    constantLines(cloudsFragSwitches, values);
   if (!cloudPrograms.has(constants))
     cloudPrograms.set(constants, program(header + '#define CR_PARAM(type, name)\n' + constants + resolve(cloudsFrag), 'clouds.frag'));
   clouds = cloudPrograms.get(constants);
@@ -221,7 +224,7 @@ function setupClouds(values) {
 // composite.frag's program for the values' composite switches (the dither), compiled on first use.
 const compositePrograms = new Map();
 function useComposite(values) {
-  const constants = compositeSwitches.map((name) => `const int ${name} = ${Math.trunc(values[name] ?? 0)};\n`).join('');
+  const constants = constantLines(compositeSwitches, values);
   if (!compositePrograms.has(constants))
     compositePrograms.set(constants, program(header + '#define CR_PARAM(type, name)\n' + constants + resolve(compositeFrag), 'composite.frag'));
   return compositePrograms.get(constants);
